@@ -1,0 +1,36 @@
+// The graspsynth command: a thin front end over the libraries. Each subcommand parses its
+// options, calls the libraries and prints what they report.
+
+#include <CLI/CLI.hpp>
+
+#include <exception>
+#include <iostream>
+
+#include "collision/library_info.hpp"
+#include "simulation/library_info.hpp"
+#include "solver/library_info.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "graspsynth: demonstration-seeded grasp synthesis for a PA-10 arm with a Gifu Hand III.\n"
+      "Run 'graspsynth <command> --help' for the options of one command."};
+  app.require_subcommand(1);
+
+  auto* version = app.add_subcommand("version", "Print the versions of the linked libraries");
+  version->callback([] {
+    std::cout << "graspsynth 0.1.0\n"
+              << "  " << graspsynth::CollisionLibraryInfo() << "\n"
+              << "  " << graspsynth::SimulationLibraryInfo() << "\n"
+              << "  " << graspsynth::SolverLibraryInfo() << "\n";
+  });
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const std::exception& e) {
+    std::cerr << "graspsynth: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,44 @@
+# Every third-party library graspsynth uses, all from Debian 12's archive. A missing one stops
+# the configure step with the package to install (scripts/setup.sh installs them all).
+function(graspsynth_require found what package)
+  if(NOT ${found})
+    message(FATAL_ERROR "graspsynth needs ${what}: install the Debian package '${package}' "
+                        "(or run scripts/setup.sh, which installs every dependency).")
+  endif()
+endfunction()
+
+find_package(Eigen3 3.4 QUIET NO_MODULE)
+graspsynth_require(Eigen3_FOUND "Eigen 3.4" libeigen3-dev)
+find_package(Ceres 2.1 QUIET)
+graspsynth_require(Ceres_FOUND "Ceres Solver 2.1" libceres-dev)
+find_package(NLopt 2.7 QUIET)
+graspsynth_require(NLopt_FOUND "NLopt 2.7" libnlopt-cxx-dev)
+find_package(fcl 0.7 QUIET)
+graspsynth_require(fcl_FOUND "FCL 0.7" libfcl-dev)
+find_package(CGAL 5.5 QUIET)
+graspsynth_require(CGAL_FOUND "CGAL 5.5" libcgal-dev)
+find_package(urdfdom QUIET)
+graspsynth_require(urdfdom_FOUND "urdfdom" liburdfdom-dev)
+find_package(CLI11 QUIET)
+graspsynth_require(CLI11_FOUND "CLI11" libcli11-dev)
+find_package(nlohmann_json 3 QUIET)
+graspsynth_require(nlohmann_json_FOUND "nlohmann-json" nlohmann-json3-dev)
+find_package(Threads REQUIRED)
+
+# ODE ships no CMake config on Debian; pkg-config 'ode'. graspsynth needs the double-precision
+# build, which is what Debian's libode-dev is (checked in simulation/ at compile time).
+find_package(PkgConfig QUIET)
+graspsynth_require(PkgConfig_FOUND "pkg-config" pkg-config)
+pkg_check_modules(ODE QUIET IMPORTED_TARGET ode>=0.16)
+graspsynth_require(ODE_FOUND "ODE 0.16 (double precision)" libode-dev)
+
+if(GRASPSYNTH_BUILD_TESTS)
+  find_package(GTest QUIET)
+  graspsynth_require(GTest_FOUND "GoogleTest" "libgtest-dev libgmock-dev")
+endif()
+if(GRASPSYNTH_BUILD_BENCHMARKS)
+  find_package(benchmark QUIET)
+  graspsynth_require(benchmark_FOUND "Google Benchmark" libbenchmark-dev)
+  find_package(orocos_kdl QUIET)
+  graspsynth_require(orocos_kdl_FOUND "orocos KDL 1.5 (benchmarks only)" liborocos-kdl-dev)
+endif()

@@ -1,0 +1,21 @@
+# Compiler flags shared by every graspsynth target, applied through graspsynth_options.
+add_library(graspsynth_options INTERFACE)
+target_compile_options(graspsynth_options INTERFACE -Wall -Wextra -Wpedantic)
+if(GRASPSYNTH_SANITIZE)
+  target_compile_options(graspsynth_options INTERFACE
+    -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)
+  target_link_options(graspsynth_options INTERFACE -fsanitize=address,undefined)
+endif()
+
+# graspsynth_module(NAME SOURCES ... DEPS ...): one library target per module, with the
+# graspsynth:: alias. Headers are included as "module/file.hpp" from the repository root.
+function(graspsynth_module name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
+  add_library(graspsynth_${name} ${ARG_SOURCES})
+  add_library(graspsynth::${name} ALIAS graspsynth_${name})
+  target_include_directories(graspsynth_${name} PUBLIC ${PROJECT_SOURCE_DIR})
+  target_link_libraries(graspsynth_${name} PUBLIC graspsynth_options ${ARG_PUBLIC_DEPS}
+                                           PRIVATE ${ARG_PRIVATE_DEPS})
+  target_compile_definitions(graspsynth_${name} PRIVATE
+    GRASPSYNTH_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+endfunction()

@@ -1,0 +1,16 @@
+#pragma once
+
+/// @file
+/// Atomic file output: write to a temporary file in the same folder, then rename it over the
+/// destination, so that an interrupted run never leaves a half-written file.
+
+#include <filesystem>
+#include <string_view>
+
+namespace graspsynth {
+
+/// Writes `contents` to `path` atomically (temporary file + rename). Creates missing parent
+/// folders. Throws InputError naming the path when the folder or file cannot be written.
+void WriteFileAtomically(const std::filesystem::path& path, std::string_view contents);
+
+}  // namespace graspsynth

@@ -1,0 +1,38 @@
+#pragma once
+
+/// @file
+/// Vocabulary types and the frame notation used across graspsynth.
+///
+/// Notation (after Drake's monogram notation):
+/// - `X_AB` is the pose (rigid transform) of frame B measured in frame A, so that a point
+///   `p_B` expressed in B is `X_AB * p_B` in A. `R_AB` is its rotation, `p_AB` its translation.
+/// - `p_AQ` is the position of point Q in frame A.
+/// - Frames: W world (the PA-10 base, z up), B arm base, L<i> arm link i, F flange (DH frame 7),
+///   H hand mount ("wrist" in the paper's sense), P palm, O object centre.
+/// - Quaternions are Eigen (w, x, y, z) unit quaternions; files always store w first.
+/// SI units everywhere; angles in radians inside the code.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace graspsynth {
+
+/// Number of arm joints (PA-10-7C: S1 S2 S3 E1 E2 W1 W2).
+inline constexpr int kArmDof = 7;
+/// Number of actuated hand joints (Gifu Hand III), the order f0..f15 of every file format.
+inline constexpr int kHandDof = 16;
+
+/// Arm joint vector q = (S1, S2, S3, E1, E2, W1, W2) in radians.
+using Vector7d = Eigen::Matrix<double, kArmDof, 1>;
+/// Actuated finger joints f0..f15 in radians (order: models/README.md).
+using HandVector = Eigen::Matrix<double, kHandDof, 1>;
+
+/// A closed interval [lo, hi].
+struct Interval {
+  double lo = 0.0;
+  double hi = 0.0;
+  double width() const { return hi - lo; }
+  bool Contains(double x) const { return lo <= x && x <= hi; }
+};
+
+}  // namespace graspsynth

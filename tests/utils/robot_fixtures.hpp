@@ -1,0 +1,37 @@
+#pragma once
+
+/// @file
+/// Sample robots for tests: the PA-10-7C from its DH table and limits (reference/robot.md 1.3,
+/// 1.4), independent of the URDF loader, and the path of the shipped robot description.
+
+#include <cmath>
+#include <string>
+
+#include "kinematics/arm_model.hpp"
+
+namespace graspsynth::testing {
+
+inline double Deg(double degrees) { return degrees * M_PI / 180.0; }
+
+inline Vector7d Pa10Upper() {
+  Vector7d u;
+  u << Deg(177), Deg(94), Deg(174), Deg(137), Deg(255), Deg(165), Deg(255);
+  return u;
+}
+inline Vector7d Pa10Lower() { return -Pa10Upper(); }
+
+/// The PA-10-7C kinematics with the limits of robot.md 1.4.
+inline ArmModel Pa10FromDh() {
+  Vector7d vel;
+  vel << 1, 1, 2, 2, 2 * M_PI, 2 * M_PI, 2 * M_PI;
+  Vector7d eff;
+  eff << 200, 200, 80, 80, 15, 15, 10;
+  return ArmModel::FromDh({0.317, 0.450, 0.480, 0.070}, Pa10Lower(), Pa10Upper(), vel, eff);
+}
+
+/// The shipped robot description.
+inline std::string ShippedUrdfPath() {
+  return std::string(GRASPSYNTH_SOURCE_DIR) + "/models/pa10_gifu3.urdf";
+}
+
+}  // namespace graspsynth::testing
