@@ -6,6 +6,8 @@
 #include <exception>
 #include <iostream>
 
+#include "apps/kinematics_commands.hpp"
+#include "apps/run_command.hpp"
 #include "collision/library_info.hpp"
 #include "simulation/library_info.hpp"
 #include "solver/library_info.hpp"
@@ -15,6 +17,10 @@ int main(int argc, char** argv) {
       "graspsynth: demonstration-seeded grasp synthesis for a PA-10 arm with a Gifu Hand III.\n"
       "Run 'graspsynth <command> --help' for the options of one command."};
   app.require_subcommand(1);
+  int exit_code = 0;
+
+  graspsynth::apps::AddRunCommand(app, &exit_code);
+  graspsynth::apps::AddKinematicsCommands(app, &exit_code);
 
   auto* version = app.add_subcommand("version", "Print the versions of the linked libraries");
   version->callback([] {
@@ -30,7 +36,7 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const std::exception& e) {
     std::cerr << "graspsynth: error: " << e.what() << "\n";
-    return 1;
+    return 2;
   }
-  return 0;
+  return exit_code;
 }

@@ -14,6 +14,8 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <vector>
 
 namespace graspsynth {
 
@@ -34,5 +36,24 @@ struct Interval {
   double width() const { return hi - lo; }
   bool Contains(double x) const { return lo <= x && x <= hi; }
 };
+
+}  // namespace graspsynth
+
+namespace graspsynth {
+
+/// The union of `intervals` as sorted, disjoint intervals (touching ones are merged).
+inline std::vector<Interval> MergeIntervals(std::vector<Interval> intervals) {
+  std::sort(intervals.begin(), intervals.end(),
+            [](const Interval& a, const Interval& b) { return a.lo < b.lo; });
+  std::vector<Interval> merged;
+  for (const Interval& iv : intervals) {
+    if (!merged.empty() && iv.lo <= merged.back().hi) {
+      merged.back().hi = std::max(merged.back().hi, iv.hi);
+    } else {
+      merged.push_back(iv);
+    }
+  }
+  return merged;
+}
 
 }  // namespace graspsynth

@@ -1,0 +1,183 @@
+// graspsynth fk / ik: line-oriented forward and inverse kinematics of the arm. One JSON object
+// per input line on stdout; a malformed line gets {"error": ...} on stdout, its line number on
+// stderr, and the next line is read.
+
+#include "apps/kinematics_commands.hpp"
+
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "common/errors.hpp"
+#include "common/text_input.hpp"
+#include "kinematics/arm_ik.hpp"
+#include "kinematics/pose_math.hpp"
+#include "kinematics/robot_description.hpp"
+
+namespace graspsynth::apps {
+namespace {
+
+using nlohmann::json;
+
+// Tolerance on |q| - 1 for an input quaternion; within it the quaternion is normalized.
+constexpr double kQuaternionTol = 1e-6;
+
+struct KinematicsOptions {
+  std::string input = "-";
+  std::string robot;
+  std::string branch;
+};
+
+// Calls `handle(line_text)` for every non-blank, non-comment line of the input and reports
+// malformed lines; returns the number of malformed lines.
+template <typename Handler>
+int ForEachInputLine(const std::string& input, Handler handle) {
+  std::unique_ptr<std::ifstream> file;
+  std::istream* in = &std::cin;
+  if (input != "-") {
+    file = std::make_unique<std::ifstream>(input);
+    if (!*file) throw InputError("cannot open input file '" + input + "'");
+    in = file.get();
+  }
+  const std::string source = input == "-" ? "<stdin>" : input;
+  int bad = 0;
+  std::string line;
+  for (int number = 1; std::getline(*in, line); ++number) {
+    const std::string_view text = TrimBlanks(line);
+    if (text.empty() || text.front() == '#') continue;
+    try {
+      std::cout << handle(text).dump() << "\n";
+    } catch (const InputError& e) {
+      ++bad;
+      const std::string message = source + ":" + std::to_string(number) + ": " + e.what();
+      std::cerr << "graspsynth: " << message << "\n";
+      std::cout << json{{"error", message}}.dump() << "\n";
+    }
+  }
+  std::cout.flush();
+  return bad;
+}
+
+std::vector<double> ParseLine(std::string_view text, size_t count, const char* layout) {
+  std::string why;
+  const auto values = ParseNumberList(text, count, &why);
+  if (!values) throw InputError(why + " (expected: " + layout + ")");
+  return *values;
+}
+
+json ToJson(const Vector7d& q) { return std::vector<double>(q.data(), q.data() + kArmDof); }
+
+json FkLine(const ArmModel& arm, std::string_view text) {
+  const std::vector<double> v = ParseLine(text, kArmDof, "q1 .. q7 in radians");
+  const Eigen::Isometry3d X_WF = ArmFlangePose(arm, Eigen::Map<const Vector7d>(v.data()));
+  const Eigen::Quaterniond q = Canonical(Eigen::Quaterniond(X_WF.linear()));
+  const Eigen::Vector3d& p = X_WF.translation();
+  return json{{"position", {p.x(), p.y(), p.z()}}, {"quaternion", {q.w(), q.x(), q.y(), q.z()}}};
+}
+
+std::optional<ArmBranch> ParseBranch(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  const auto values = ParseNumberList(text, 3, nullptr);
+  if (!values ||
+      std::any_of(values->begin(), values->end(), [](double v) { return v != 1.0 && v != -1.0; })) {
+    throw InputError("--branch takes three signs GC2,GC4,GC6, each 1 or -1, got '" + text + "'");
+  }
+  return ArmBranch{static_cast<int>((*values)[0]), static_cast<int>((*values)[1]),
+                   static_cast<int>((*values)[2])};
+}
+
+json IkLine(const ArmModel& arm, std::optional<ArmBranch> only, std::string_view text) {
+  const std::vector<double> v = ParseLine(text, 8, "x y z qw qx qy qz psi");
+  Eigen::Quaterniond quat(v[3], v[4], v[5], v[6]);
+  if (std::abs(quat.norm() - 1.0) > kQuaternionTol) {
+    throw InputError("quaternion (qw qx qy qz) has norm " + std::to_string(quat.norm()) +
+                     ", not 1");
+  }
+  const double psi = v[7];
+  if (psi < -M_PI - 1e-12 || psi > M_PI + 1e-12) {
+    throw InputError("psi = " + std::to_string(psi) + " is outside [-pi, pi]");
+  }
+  Eigen::Isometry3d X_WF = Eigen::Isometry3d::Identity();
+  X_WF.linear() = quat.normalized().toRotationMatrix();
+  X_WF.translation() = Eigen::Vector3d(v[0], v[1], v[2]);
+
+  json solutions = json::array();
+  json branches = json::array();
+  std::vector<Interval> intervals;
+  for (int index = 0; index < 8; ++index) {
+    const ArmBranch b = ArmBranch::FromIndex(index);
+    if (only && !(b == *only)) continue;
+    const ArmTargetForm form = PrepareArmTarget(arm, X_WF, b.gc4);
+    const std::vector<Interval> feasible = FeasibleArmAngles(arm, form, b.gc2, b.gc6);
+    intervals.insert(intervals.end(), feasible.begin(), feasible.end());
+    const ArmIkSolution s = SolveArmIk(arm, X_WF, psi, b);
+    if (s.status == IkStatus::kOk) {
+      solutions.push_back(ToJson(s.q));
+      branches.push_back({b.gc2, b.gc4, b.gc6});
+    }
+  }
+  json psi_intervals = json::array();
+  for (const Interval& iv : MergeIntervals(intervals)) psi_intervals.push_back({iv.lo, iv.hi});
+  return json{{"solutions", solutions}, {"psi_intervals", psi_intervals}, {"branches", branches}};
+}
+
+void AddCommonOptions(CLI::App* cmd, KinematicsOptions* opts) {
+  cmd->add_option("input", opts->input, "Input file, or - for standard input")
+      ->capture_default_str();
+  cmd->add_option("--robot", opts->robot,
+                  "Robot description (URDF); default: models/pa10_gifu3.urdf of this checkout "
+                  "or $GRASPSYNTH_DATA_DIR/models/pa10_gifu3.urdf");
+}
+
+RobotModel LoadRobot(const KinematicsOptions& opts) {
+  return LoadRobotModel(opts.robot.empty() ? DefaultRobotDescriptionPath()
+                                           : std::filesystem::path(opts.robot));
+}
+
+}  // namespace
+
+void AddKinematicsCommands(CLI::App& app, int* exit_code) {
+  auto opts = std::make_shared<KinematicsOptions>();
+
+  CLI::App* fk = app.add_subcommand(
+      "fk",
+      "Forward kinematics of the arm.\n"
+      "Reads one configuration per line, 7 joint values in radians (S1 S2 S3 E1 E2 W1 W2,\n"
+      "blank- or comma-separated), and prints one JSON object per line:\n"
+      "  {\"position\":[x,y,z],\"quaternion\":[w,x,y,z]}  (flange pose, world frame, metres)\n"
+      "Blank lines and lines starting with # are skipped. A malformed line prints\n"
+      "{\"error\":...} and is named on stderr; the exit status is 1 if any line was bad.");
+  AddCommonOptions(fk, opts.get());
+  fk->callback([opts, exit_code] {
+    const RobotModel robot = LoadRobot(*opts);
+    const int bad = ForEachInputLine(
+        opts->input, [&](std::string_view text) { return FkLine(robot.arm, text); });
+    if (bad > 0) *exit_code = 1;
+  });
+
+  CLI::App* ik = app.add_subcommand(
+      "ik",
+      "Analytic inverse kinematics of the arm at a given arm angle.\n"
+      "Reads one flange target per line: x y z qw qx qy qz psi (metres, unit quaternion,\n"
+      "arm angle in radians in [-pi, pi]) and prints one JSON object per line:\n"
+      "  {\"solutions\":[[q1..q7],...],\"psi_intervals\":[[lo,hi],...],\"branches\":[...]}\n"
+      "solutions: every solution within the joint limits at that psi over all 8 branches\n"
+      "(or the --branch one); branches: the (GC2,GC4,GC6) signs of each solution;\n"
+      "psi_intervals: the arm angles at which the target is feasible (union over the\n"
+      "branches considered). A malformed line prints {\"error\":...}; exit status 1 then.");
+  AddCommonOptions(ik, opts.get());
+  ik->add_option("--branch", opts->branch,
+                 "Only this branch: the signs of S2, E1, W1 as GC2,GC4,GC6, e.g. 1,1,-1");
+  ik->callback([opts, exit_code] {
+    const std::optional<ArmBranch> only = ParseBranch(opts->branch);
+    const RobotModel robot = LoadRobot(*opts);
+    const int bad = ForEachInputLine(
+        opts->input, [&](std::string_view text) { return IkLine(robot.arm, only, text); });
+    if (bad > 0) *exit_code = 1;
+  });
+}
+
+}  // namespace graspsynth::apps

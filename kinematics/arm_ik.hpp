@@ -1,0 +1,120 @@
+#pragma once
+
+/// @file
+/// Closed-form inverse kinematics of the PA-10-7C with the arm angle psi as the redundancy
+/// parameter (reference/robot.md 1.5, after Shimizu et al. 2008).
+///
+/// A flange target X_WF fixes the shoulder-wrist vector, hence the elbow angle E1 up to its
+/// sign. The remaining freedom is the arm angle psi: the rotation of the arm plane about the
+/// shoulder-wrist axis, measured from the reference plane in which S3 = 0. Each joint is then a
+/// closed form of psi: S2 and W1 are "cosine type" (acos of a sinusoid), S1, S3, E2 and W2
+/// "tangent type" (atan2 of two sinusoids). Eight branches are told apart by the signs
+/// (GC2, GC4, GC6) of S2, E1 and W1.
+///
+/// Conventions: psi and the joint values returned by the closed forms are in (-pi, pi]. Joints
+/// whose range is wider than 2*pi minus nothing (E2 and W2 at +-255 deg) can take a value or its
+/// 2*pi-equivalent; NearestEquivalent picks the one closest to a current configuration.
+/// Failures (unreachable target, singular target, limits) are statuses, never NaN.
+
+#include <array>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "kinematics/arm_model.hpp"
+#include "kinematics/types.hpp"
+
+namespace graspsynth {
+
+/// Configuration signs of an arm solution: the signs of S2 (gc2), E1 (gc4) and W1 (gc6),
+/// each +1 or -1.
+struct ArmBranch {
+  int gc2 = 1;
+  int gc4 = 1;
+  int gc6 = 1;
+
+  /// 0..7, bit 0 for gc2 = -1, bit 1 for gc4 = -1, bit 2 for gc6 = -1.
+  int index() const { return (gc2 < 0 ? 1 : 0) | (gc4 < 0 ? 2 : 0) | (gc6 < 0 ? 4 : 0); }
+  static ArmBranch FromIndex(int index) {
+    return {index & 1 ? -1 : 1, index & 2 ? -1 : 1, index & 4 ? -1 : 1};
+  }
+  bool operator==(const ArmBranch&) const = default;
+};
+
+/// The branch of configuration q (a zero joint counts as +1).
+ArmBranch BranchOf(const Eigen::Ref<const Vector7d>& q);
+
+/// Outcome of an IK query.
+enum class IkStatus {
+  kOk,           ///< a solution within every joint limit
+  kUnreachable,  ///< the wrist centre is farther than d_se + d_ew or closer than |d_se - d_ew|
+  kSingular,     ///< the elbow is stretched (E1 = 0): the arm angle is undefined
+  kElbowLimit,   ///< E1 needed by the target lies outside its limit, for every psi
+  kOutOfLimits,  ///< a solution exists at this psi and branch, but some joint is off limits
+};
+
+/// A short lowercase name of the status, e.g. "unreachable".
+std::string_view ToString(IkStatus status);
+
+/// The closed forms of one flange target for one elbow sign gc4 (robot.md 1.5 steps 1-4):
+/// R03(psi) = As sin(psi) + Bs cos(psi) + Cs and R47(psi) = Aw sin(psi) + Bw cos(psi) + Cw.
+/// Built once per target by PrepareArmTarget, then evaluated at any psi and (gc2, gc6).
+struct ArmTargetForm {
+  IkStatus status = IkStatus::kUnreachable;  ///< kOk when the forms below are valid
+  int gc4 = 1;
+  double theta4 = 0.0;                              ///< E1, rad, constant in psi
+  Eigen::Vector3d u_sw = Eigen::Vector3d::UnitZ();  ///< unit shoulder-to-wrist vector, world
+  Eigen::Matrix3d As, Bs, Cs;                       ///< shoulder rotation forms
+  Eigen::Matrix3d Aw, Bw, Cw;                       ///< wrist rotation forms
+};
+
+/// Builds the closed forms of flange target X_WF for elbow sign gc4. The status is
+/// kUnreachable, kSingular or kElbowLimit when no psi can work; kOk otherwise.
+ArmTargetForm PrepareArmTarget(const ArmModel& arm, const Eigen::Isometry3d& X_WF, int gc4);
+
+/// Joint values at arm angle psi for shoulder and wrist signs gc2, gc6 (E1 from the form).
+/// Every value is in (-pi, pi]; limits are not checked. Requires form.status == kOk.
+Vector7d JointsAtArmAngle(const ArmTargetForm& form, double psi, int gc2, int gc6);
+
+/// One IK solution.
+struct ArmIkSolution {
+  IkStatus status = IkStatus::kUnreachable;
+  Vector7d q = Vector7d::Zero();  ///< valid when status is kOk or kOutOfLimits
+};
+
+/// Solves X_WF at arm angle psi on one branch. Joints with a range beyond +-pi take the
+/// in-limit 2*pi-equivalent closest to `q_near` (or to zero without it). kOutOfLimits when a
+/// joint cannot be brought within its limit.
+ArmIkSolution SolveArmIk(const ArmModel& arm, const Eigen::Isometry3d& X_WF, double psi,
+                         ArmBranch branch, const Vector7d* q_near = nullptr);
+
+/// Every in-limit solution of X_WF at arm angle psi, over the eight branches, in branch index
+/// order. Empty when there is none.
+std::vector<Vector7d> SolveArmIkAllBranches(const ArmModel& arm, const Eigen::Isometry3d& X_WF,
+                                            double psi);
+
+/// The arm angle of configuration q: the signed angle about the shoulder-wrist axis from the
+/// reference elbow position (S3 = 0) to the actual elbow, in (-pi, pi]. With it,
+/// SolveArmIk(FK(q), ArmAngleOf(q), BranchOf(q)) returns q. Returns 0 when the elbow lies on
+/// the shoulder-wrist axis (stretched arm), where the angle is undefined.
+double ArmAngleOf(const ArmModel& arm, const Eigen::Ref<const Vector7d>& q);
+
+/// The exact set of arm angles at which branch (gc2, form.gc4, gc6) of the target is within
+/// every joint limit (robot.md 1.5 step 6: limit-crossing roots of every joint plus the
+/// singular psi of tangent-type joints, then a midpoint test of each sub-arc). Disjoint sorted
+/// intervals in [-pi, pi]; an arc through +-pi comes back as two intervals, one ending at pi
+/// and one starting at -pi. Empty when form.status is not kOk.
+std::vector<Interval> FeasibleArmAngles(const ArmModel& arm, const ArmTargetForm& form, int gc2,
+                                        int gc6);
+
+/// The value equivalent to `angle` modulo 2*pi that lies in [lower, upper] and is closest to
+/// `reference`; std::nullopt when no equivalent lies in the range.
+std::optional<double> NearestEquivalentAngle(double angle, double reference, double lower,
+                                             double upper);
+
+/// q with every joint replaced by its in-limit 2*pi-equivalent closest to q_ref;
+/// std::nullopt when some joint has no equivalent within its limits.
+std::optional<Vector7d> NearestEquivalent(const ArmModel& arm, const Eigen::Ref<const Vector7d>& q,
+                                          const Eigen::Ref<const Vector7d>& q_ref);
+
+}  // namespace graspsynth

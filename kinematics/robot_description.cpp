@@ -1,0 +1,403 @@
+#include "kinematics/robot_description.hpp"
+
+#include <console_bridge/console.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include <Eigen/Eigenvalues>
+#include <array>
+#include <cmath>
+#include <exception>
+#include <fstream>
+#include <iterator>
+#include <mutex>
+#include <set>
+#include <sstream>
+#include <utility>
+
+#include "common/data_dir.hpp"
+#include "common/errors.hpp"
+
+namespace graspsynth {
+namespace {
+
+constexpr std::array<const char*, kArmDof> kArmJointNames = {"S1", "S2", "S3", "E1",
+                                                             "E2", "W1", "W2"};
+constexpr std::array<const char*, kArmDof + 1> kArmLinkNames = {
+    "base_link", "S1_link", "S2_link", "S3_link", "E1_link", "E2_link", "W1_link", "W2_link"};
+constexpr const char* kHandMountJoint = "hand_mount";
+constexpr const char* kHandMountLink = "hand_mount_link";
+constexpr const char* kPalmLink = "palm";
+constexpr const char* kShippedRelativePath = "models/pa10_gifu3.urdf";
+
+// urdfdom reports through console_bridge; while it parses, its messages are collected here
+// instead of going to the console. One handler for the process, used under the parse mutex.
+class CapturingOutputHandler : public console_bridge::OutputHandler {
+ public:
+  void log(const std::string& text, console_bridge::LogLevel level, const char* /*filename*/,
+           int /*line*/) override {
+    std::string& sink = level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR ? errors_ : warnings_;
+    if (!sink.empty()) sink += "; ";
+    sink += text;
+  }
+  void Clear() {
+    errors_.clear();
+    warnings_.clear();
+  }
+  // the errors, or the warnings when there were no errors.
+  const std::string& reason() const { return errors_.empty() ? warnings_ : errors_; }
+
+ private:
+  std::string errors_;
+  std::string warnings_;
+};
+
+// console_bridge's handler and log level are process-wide: one parse at a time swaps them.
+urdf::ModelInterfaceSharedPtr ParseWithUrdfdom(std::string_view urdf_xml,
+                                               const std::string& source) {
+  static std::mutex parse_mutex;
+  // never destroyed: console_bridge may keep a pointer to it as its "previous" handler.
+  static CapturingOutputHandler* const handler_ptr = new CapturingOutputHandler;
+  CapturingOutputHandler& handler = *handler_ptr;
+  std::lock_guard<std::mutex> lock(parse_mutex);
+  handler.Clear();
+  console_bridge::OutputHandler* const previous_handler = console_bridge::getOutputHandler();
+  const console_bridge::LogLevel previous_level = console_bridge::getLogLevel();
+  console_bridge::useOutputHandler(&handler);
+  console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_WARN);
+  urdf::ModelInterfaceSharedPtr model;
+  std::string exception_text;
+  try {
+    model = urdf::parseURDF(std::string(urdf_xml));
+  } catch (const std::exception& e) {
+    exception_text = e.what();
+  }
+  console_bridge::setLogLevel(previous_level);
+  console_bridge::useOutputHandler(previous_handler);
+  if (!model) {
+    std::string reason = handler.reason();
+    if (!exception_text.empty()) reason += (reason.empty() ? "" : "; ") + exception_text;
+    if (reason.empty()) reason = "urdfdom gave no reason";
+    throw InputError(source + ": not a valid URDF robot description (urdfdom: " + reason + ")");
+  }
+  return model;
+}
+
+Eigen::Isometry3d ToIsometry(const urdf::Pose& pose) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.translation() = Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
+  const Eigen::Quaterniond q(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z);
+  X.linear() = q.normalized().toRotationMatrix();
+  return X;
+}
+
+std::string Quoted(const std::string& name) { return "'" + name + "'"; }
+
+const char* JointTypeName(int type) {
+  switch (type) {
+    case urdf::Joint::REVOLUTE:
+      return "revolute";
+    case urdf::Joint::CONTINUOUS:
+      return "continuous";
+    case urdf::Joint::PRISMATIC:
+      return "prismatic";
+    case urdf::Joint::FLOATING:
+      return "floating";
+    case urdf::Joint::PLANAR:
+      return "planar";
+    case urdf::Joint::FIXED:
+      return "fixed";
+    default:
+      return "unknown";
+  }
+}
+
+// the parsed description and the names of the links the model has used so far.
+class Reader {
+ public:
+  Reader(const urdf::ModelInterface& model, std::string source)
+      : model_(model), source_(std::move(source)) {}
+
+  [[noreturn]] void Fail(const std::string& what) const { throw InputError(source_ + ": " + what); }
+
+  const urdf::Joint& Joint(const std::string& name, const std::string& role) const {
+    const urdf::JointConstSharedPtr joint = model_.getJoint(name);
+    if (!joint) Fail(role + " " + Quoted(name) + " is missing");
+    return *joint;
+  }
+
+  const urdf::Link& Link(const std::string& name, const std::string& role) {
+    const urdf::LinkConstSharedPtr link = model_.getLink(name);
+    if (!link) Fail(role + " link " + Quoted(name) + " is missing");
+    used_links_.insert(name);
+    return *link;
+  }
+
+  void RequireParentChild(const urdf::Joint& joint, const std::string& role,
+                          const std::string& parent, const std::string& child) const {
+    if (joint.parent_link_name != parent || joint.child_link_name != child) {
+      Fail(role + " " + Quoted(joint.name) + " connects " + Quoted(joint.parent_link_name) +
+           " -> " + Quoted(joint.child_link_name) + "; it must connect " + Quoted(parent) + " -> " +
+           Quoted(child));
+    }
+  }
+
+  void RequireFixed(const urdf::Joint& joint, const std::string& role) const {
+    if (joint.type != urdf::Joint::FIXED) {
+      Fail(role + " " + Quoted(joint.name) + " is " + JointTypeName(joint.type) +
+           "; it must be fixed");
+    }
+  }
+
+  RevoluteJoint Revolute(const urdf::Joint& joint, const std::string& role) const {
+    const std::string where = role + " " + Quoted(joint.name);
+    if (joint.type == urdf::Joint::CONTINUOUS) {
+      Fail(where + " is continuous; it must be revolute with position limits");
+    }
+    if (joint.type != urdf::Joint::REVOLUTE) {
+      Fail(where + " is " + JointTypeName(joint.type) + "; it must be revolute");
+    }
+    if (!joint.limits) Fail(where + " has no <limit>");
+    RevoluteJoint r;
+    r.name = joint.name;
+    r.X_PJ = ToIsometry(joint.parent_to_joint_origin_transform);
+    r.axis_J = Eigen::Vector3d(joint.axis.x, joint.axis.y, joint.axis.z);
+    r.lower = joint.limits->lower;
+    r.upper = joint.limits->upper;
+    r.max_velocity = joint.limits->velocity;
+    r.max_effort = joint.limits->effort;
+    return r;
+  }
+
+  LinkInertia Inertia(const urdf::Link& link) const {
+    const std::string where = "link " + Quoted(link.name);
+    if (!link.inertial) Fail(where + " has no <inertial>; every body needs a positive mass");
+    const urdf::Inertial& in = *link.inertial;
+    if (!(in.mass > 0.0) || !std::isfinite(in.mass)) {
+      std::ostringstream msg;
+      msg << where << " needs a positive mass, has " << in.mass << " kg";
+      Fail(msg.str());
+    }
+    Eigen::Matrix3d I;
+    I << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
+    const Eigen::Isometry3d X_LC = ToIsometry(in.origin);
+    LinkInertia inertia;
+    inertia.mass = in.mass;
+    inertia.p_LCm = X_LC.translation();
+    inertia.I_Cm = X_LC.linear() * I * X_LC.linear().transpose();
+    // a physical inertia is positive definite and its principal moments obey the triangle
+    // inequality; ODE refuses anything else.
+    const Eigen::Vector3d m = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I).eigenvalues();
+    if (!I.allFinite() || !(m[0] > 0.0) || m[0] + m[1] < m[2] * (1.0 - 1e-9)) {
+      std::ostringstream msg;
+      msg << where << " has a non-physical inertia (principal moments " << m.transpose()
+          << " kg m^2; they must be positive and satisfy the triangle inequality)";
+      Fail(msg.str());
+    }
+    return inertia;
+  }
+
+  std::vector<CollisionShape> Shapes(const urdf::Link& link) const {
+    const std::string where = "link " + Quoted(link.name);
+    std::vector<CollisionShape> shapes;
+    for (const urdf::CollisionSharedPtr& collision : link.collision_array) {
+      if (!collision || !collision->geometry) Fail(where + " has a <collision> without geometry");
+      CollisionShape shape;
+      shape.X_LG = ToIsometry(collision->origin);
+      const urdf::Geometry& g = *collision->geometry;
+      switch (g.type) {
+        case urdf::Geometry::BOX: {
+          const auto& box = static_cast<const urdf::Box&>(g);
+          shape.kind = CollisionShape::Kind::kBox;
+          shape.size = Eigen::Vector3d(box.dim.x, box.dim.y, box.dim.z);
+          break;
+        }
+        case urdf::Geometry::CYLINDER: {
+          const auto& cylinder = static_cast<const urdf::Cylinder&>(g);
+          // the capsule convention of models/README.md.
+          shape.kind = collision->name.starts_with("capsule") ? CollisionShape::Kind::kCapsule
+                                                              : CollisionShape::Kind::kCylinder;
+          shape.size = Eigen::Vector3d(cylinder.radius, cylinder.length, 0.0);
+          break;
+        }
+        case urdf::Geometry::SPHERE: {
+          const auto& sphere = static_cast<const urdf::Sphere&>(g);
+          shape.kind = CollisionShape::Kind::kSphere;
+          shape.size = Eigen::Vector3d(sphere.radius, 0.0, 0.0);
+          break;
+        }
+        case urdf::Geometry::MESH:
+          Fail(where +
+               " has a mesh collision geometry; graspsynth uses primitives only (box, cylinder, "
+               "sphere, capsule)");
+        default:
+          Fail(where + " has a collision geometry of an unknown type");
+      }
+      const Eigen::Vector3d& d = shape.size;
+      bool positive = d[0] > 0.0;
+      if (shape.kind == CollisionShape::Kind::kBox) positive = (d.array() > 0.0).all();
+      if (shape.kind == CollisionShape::Kind::kCylinder) positive = positive && d[1] > 0.0;
+      if (shape.kind == CollisionShape::Kind::kCapsule) positive = positive && d[1] >= 0.0;
+      if (!positive || !shape.size.allFinite()) {
+        Fail(where + " has a collision geometry with a zero, negative or non-finite size");
+      }
+      shapes.push_back(shape);
+    }
+    return shapes;
+  }
+
+  RigidLink Body(const std::string& name, const std::string& role) {
+    const urdf::Link& link = Link(name, role);
+    return RigidLink{link.name, Inertia(link), Shapes(link)};
+  }
+
+  // every link of the description must have been read: anything else would be silently
+  // missing from the simulation and the collision checks.
+  void RequireAllLinksUsed() const {
+    for (const auto& [name, link] : model_.links_) {
+      if (!used_links_.count(name)) {
+        Fail("link " + Quoted(name) +
+             " is not part of the PA-10-7C + Gifu Hand III model (models/README.md lists the "
+             "links it reads)");
+      }
+    }
+  }
+
+  const urdf::ModelInterface& model() const { return model_; }
+
+ private:
+  const urdf::ModelInterface& model_;
+  std::string source_;
+  std::set<std::string> used_links_;
+};
+
+ArmModel ReadArm(Reader& reader, const std::string& source) {
+  RigidLink base = reader.Body(kArmLinkNames[0], "arm");
+  std::array<RevoluteJoint, kArmDof> joints;
+  std::array<RigidLink, kArmDof> links;
+  for (int i = 0; i < kArmDof; ++i) {
+    const urdf::Joint& joint = reader.Joint(kArmJointNames[i], "arm joint");
+    joints[i] = reader.Revolute(joint, "arm joint");
+    if (joint.mimic) reader.Fail("arm joint " + Quoted(joint.name) + " must not have a <mimic>");
+    reader.RequireParentChild(joint, "arm joint", kArmLinkNames[i], kArmLinkNames[i + 1]);
+    links[i] = reader.Body(kArmLinkNames[i + 1], "arm");
+  }
+  return ArmModel(source, std::move(base), std::move(joints), std::move(links));
+}
+
+Finger ReadFinger(Reader& reader, int finger_index) {
+  const std::string name(kFingerNames[finger_index]);
+  const bool is_thumb = finger_index == 0;
+  Finger finger;
+  finger.name = name;
+  std::string parent = kPalmLink;
+  for (int k = 0; k < kFingerJoints; ++k) {
+    const std::string joint_name = name + "_j" + std::to_string(k + 1);
+    const urdf::Joint& joint = reader.Joint(joint_name, "hand joint");
+    HandJoint& hj = finger.joints[k];
+    hj.joint = reader.Revolute(joint, "hand joint");
+    if (joint.parent_link_name != parent) {
+      reader.Fail(
+          "hand joint " + Quoted(joint_name) + " has parent link " +
+          Quoted(joint.parent_link_name) + "; it must be " + Quoted(parent) +
+          (k == 0 ? " (the palm)" : " (the child of " + name + "_j" + std::to_string(k) + ")"));
+    }
+    const bool coupled = !is_thumb && k == kFingerJoints - 1;
+    if (coupled) {
+      const std::string pip = name + "_j3";
+      if (!joint.mimic) {
+        reader.Fail("hand joint " + Quoted(joint_name) +
+                    " (DIP) has no <mimic>; it must follow its PIP: <mimic joint=\"" + pip +
+                    "\" multiplier=\"1\" offset=\"0\"/>");
+      }
+      if (joint.mimic->joint_name != pip) {
+        reader.Fail("hand joint " + Quoted(joint_name) + " (DIP) mimics " +
+                    Quoted(joint.mimic->joint_name) + "; it must mimic its PIP " + Quoted(pip));
+      }
+      hj.coupling = JointCoupling{HandJointIndex(finger_index, 2), joint.mimic->multiplier,
+                                  joint.mimic->offset};
+    } else {
+      if (joint.mimic) {
+        reader.Fail("hand joint " + Quoted(joint_name) +
+                    " is actuated and must not have a <mimic> (only the DIP joints j4 of index, "
+                    "middle, ring and little are coupled)");
+      }
+      // f0..f3 = thumb j1..j4, then j1..j3 of index, middle, ring, little.
+      hj.actuated = is_thumb ? k : 4 + 3 * (finger_index - 1) + k;
+    }
+    finger.links[k] = reader.Body(joint.child_link_name, "hand");
+    parent = joint.child_link_name;
+  }
+  const std::string tip_joint = name + "_tip";
+  const urdf::Joint& tip = reader.Joint(tip_joint, "fingertip joint");
+  reader.RequireFixed(tip, "fingertip joint");
+  if (tip.parent_link_name != parent) {
+    reader.Fail("fingertip joint " + Quoted(tip_joint) + " has parent link " +
+                Quoted(tip.parent_link_name) + "; it must be the distal link " + Quoted(parent));
+  }
+  const urdf::Link& tip_link = reader.Link(tip.child_link_name, "fingertip");
+  if (tip_link.inertial || !tip_link.collision_array.empty() || !tip_link.child_joints.empty()) {
+    reader.Fail("fingertip frame " + Quoted(tip_link.name) +
+                " must be a frame only: no <inertial>, no <collision>, no child joints");
+  }
+  finger.tip_name = tip_link.name;
+  finger.X_LT = ToIsometry(tip.parent_to_joint_origin_transform);
+  return finger;
+}
+
+}  // namespace
+
+RobotModel ParseRobotModel(std::string_view urdf_xml, const std::string& source) {
+  const urdf::ModelInterfaceSharedPtr model = ParseWithUrdfdom(urdf_xml, source);
+  Reader reader(*model, source);
+
+  const urdf::LinkConstSharedPtr root = model->getRoot();
+  if (!root || root->name != kArmLinkNames[0]) {
+    reader.Fail("the root link is " + Quoted(root ? root->name : std::string()) +
+                "; the description must start at the arm's " + Quoted(kArmLinkNames[0]));
+  }
+
+  ArmModel arm = ReadArm(reader, source);
+
+  const urdf::Joint& mount = reader.Joint(kHandMountJoint, "hand mount joint");
+  reader.RequireFixed(mount, "hand mount joint");
+  reader.RequireParentChild(mount, "hand mount joint", kArmLinkNames[kArmDof], kHandMountLink);
+  const Eigen::Isometry3d X_FH = ToIsometry(mount.parent_to_joint_origin_transform);
+  RigidLink mount_link = reader.Body(kHandMountLink, "hand mount");
+
+  const urdf::Link& palm_urdf = reader.Link(kPalmLink, "hand");
+  if (!palm_urdf.parent_joint) reader.Fail("link 'palm' has no parent joint");
+  const urdf::Joint& palm_joint = *palm_urdf.parent_joint;
+  reader.RequireFixed(palm_joint, "palm joint");
+  reader.RequireParentChild(palm_joint, "palm joint", kHandMountLink, kPalmLink);
+  RigidLink palm = reader.Body(kPalmLink, "hand");
+
+  std::array<Finger, kFingers> fingers;
+  for (int i = 0; i < kFingers; ++i) fingers[i] = ReadFinger(reader, i);
+  reader.RequireAllLinksUsed();
+
+  HandModel hand(source, std::move(mount_link), std::move(palm),
+                 ToIsometry(palm_joint.parent_to_joint_origin_transform), std::move(fingers));
+  return RobotModel{source, std::move(arm), X_FH, std::move(hand)};
+}
+
+RobotModel LoadRobotModel(const std::filesystem::path& path) {
+  const std::string source = path.string();
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) {
+    throw InputError(source + ": robot description not found (no such file)");
+  }
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    throw InputError(source + ": robot description is not a regular file");
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(source + ": robot description could not be opened");
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (in.bad()) throw InputError(source + ": robot description could not be read");
+  return ParseRobotModel(text, source);
+}
+
+std::filesystem::path DefaultRobotDescriptionPath() {
+  return DataDirectory() / kShippedRelativePath;
+}
+
+}  // namespace graspsynth

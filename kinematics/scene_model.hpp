@@ -1,0 +1,78 @@
+#pragma once
+
+/// @file
+/// The immutable description of the robot's surroundings: the table, the pan-like object of
+/// DESIGN.md and the grasp workspace region, loaded from models/scene.json.
+///
+/// The object frame O has its origin at the object centre (the centre of the pan's body), z up
+/// and x along the handle. At orientation theta the object stands at its fixed centre, turned
+/// about the vertical so that the handle points along phi(theta) = theta + handle_offset in the
+/// world.
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "kinematics/types.hpp"
+
+namespace graspsynth {
+
+/// The table: a box whose top face is the plane z = top_z.
+struct TableModel {
+  double top_z = 0.0;                                   ///< m, world
+  Eigen::Vector2d centre_xy = Eigen::Vector2d::Zero();  ///< m, world
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();       ///< full side lengths, m
+  double friction = 0.8;                                ///< Coulomb coefficient with the object
+};
+
+/// The pan: a short cylinder (the body) with a radial bar handle (a box).
+struct ObjectModel {
+  std::string name;
+  Eigen::Vector2d centre_xy = Eigen::Vector2d::Zero();  ///< object centre in the table plane, m
+  double handle_offset = 0.0;        ///< rad; the handle points along theta + handle_offset
+  double body_radius = 0.0;          ///< m
+  double body_height = 0.0;          ///< m
+  double handle_start_radius = 0.0;  ///< m from the centre
+  double handle_end_radius = 0.0;    ///< m from the centre
+  double handle_width = 0.0;         ///< horizontal side of the bar's cross-section, m
+  double handle_thickness = 0.0;     ///< vertical side of the bar's cross-section, m
+  double handle_axis_height = 0.0;   ///< height of the bar's axis above the table, m
+  double body_mass = 0.0;            ///< kg
+  double handle_mass = 0.0;          ///< kg
+  double friction = 1.0;             ///< Coulomb coefficient with the fingers
+
+  /// Height of the object centre above the table when the pan rests on it.
+  double rest_height() const { return 0.5 * body_height; }
+};
+
+/// Where the grasping motion starts: the pre-grasp pose is the first wrist sample inside it.
+struct GraspRegionModel {
+  enum class Shape { kCylinder, kSphere };
+  Shape shape = Shape::kCylinder;
+  double radius = 0.41;  ///< m, around the object centre
+  double height = 1.0;   ///< cylinder: full height, centred on the object centre, m
+};
+
+/// Table, object and grasp region.
+struct SceneModel {
+  std::string source;
+  TableModel table;
+  ObjectModel object;
+  GraspRegionModel grasp_region;
+
+  /// Pose X_WO of the object frame at rest on the table at orientation theta (radians).
+  Eigen::Isometry3d ObjectPose(double theta) const;
+};
+
+/// Parses a scene description (format graspsynth-scene/1). `source` names it in messages.
+/// Throws InputError naming the source, the field and the value for anything missing, of the
+/// wrong type, non-finite or out of range.
+SceneModel ParseSceneModel(std::string_view json_text, const std::string& source);
+
+/// Reads and parses a scene file. Throws InputError naming the file.
+SceneModel LoadSceneModel(const std::filesystem::path& path);
+
+/// models/scene.json under $GRASPSYNTH_DATA_DIR if set, else in this source checkout.
+std::filesystem::path DefaultSceneModelPath();
+
+}  // namespace graspsynth

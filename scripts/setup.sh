@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Installs every dependency of graspsynth from Debian 12's archive (idempotent: only missing
+# packages are installed) and builds the project in Release into build/.
+#
+#   scripts/setup.sh              install + configure + build
+#   scripts/setup.sh --deps-only  install only
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(
+  build-essential cmake ninja-build pkg-config clang-format
+  libeigen3-dev libceres-dev libnlopt-cxx-dev libfcl-dev libode-dev libcgal-dev
+  liburdfdom-dev libcli11-dev nlohmann-json3-dev libspdlog-dev
+  libgtest-dev libgmock-dev libbenchmark-dev liborocos-kdl-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}" >&2
+  sudo_cmd=()
+  if [[ $(id -u) -ne 0 ]]; then sudo_cmd=(sudo); fi
+  "${sudo_cmd[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends \
+    "${missing[@]}"
+else
+  echo "setup: all dependencies are installed" >&2
+fi
+
+if [[ ${1:-} == --deps-only ]]; then exit 0; fi
+
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
+cmake --build build
+echo "setup: built build/apps/graspsynth" >&2

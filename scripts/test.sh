@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Runs the whole test suite: the Release build in build/ and the same tests built with
+# AddressSanitizer + UndefinedBehaviorSanitizer in build-asan/. Any failure or sanitizer
+# report fails the run.
+#
+#   scripts/test.sh          both builds
+#   scripts/test.sh --fast   the Release build only
+set -euo pipefail
+cd "$(dirname "$0")/.."
+jobs=$(nproc)
+
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
+cmake --build build
+ctest --test-dir build --output-on-failure -j "$jobs"
+
+if [[ ${1:-} == --fast ]]; then exit 0; fi
+
+export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGRASPSYNTH_SANITIZE=ON \
+  -DGRASPSYNTH_BUILD_BENCHMARKS=OFF
+cmake --build build-asan
+ctest --test-dir build-asan --output-on-failure -j "$jobs"

@@ -1,0 +1,53 @@
+#pragma once
+
+/// @file
+/// Runs the graspsynth binary in a test, with text on its standard input, and captures what it
+/// prints and its exit status.
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace graspsynth::testing {
+
+struct CommandOutput {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+inline std::string ReadFileText(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+/// Runs `graspsynth <args>` (args are passed to the shell as written) with `input` on stdin.
+inline CommandOutput RunGraspsynth(const std::string& args, const std::string& input = "") {
+  namespace fs = std::filesystem;
+  const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const fs::path dir =
+      fs::temp_directory_path() / ("graspsynth_cmd_" + std::string(info->test_suite_name()) + "_" +
+                                   info->name() + "_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "in") << input;
+  const std::string command = std::string(GRASPSYNTH_BINARY) + " " + args + " < " +
+                              (dir / "in").string() + " > " + (dir / "out").string() + " 2> " +
+                              (dir / "err").string();
+  const int status = std::system(command.c_str());
+  CommandOutput result;
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.out = ReadFileText(dir / "out");
+  result.err = ReadFileText(dir / "err");
+  fs::remove_all(dir);
+  return result;
+}
+
+}  // namespace graspsynth::testing
