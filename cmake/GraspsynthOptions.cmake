@@ -5,6 +5,8 @@ if(GRASPSYNTH_SANITIZE)
   target_compile_options(graspsynth_options INTERFACE
     -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)
   target_link_options(graspsynth_options INTERFACE -fsanitize=address,undefined)
+  # lets heavy tests (long simulations, large random sweeps) run fewer cases when sanitized.
+  target_compile_definitions(graspsynth_options INTERFACE GRASPSYNTH_SANITIZED=1)
 endif()
 
 # graspsynth_module(NAME SOURCES ... DEPS ...): one library target per module, with the
