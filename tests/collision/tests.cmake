@@ -1,0 +1,1 @@
+graspsynth_test(collision/collision_scene_test.cpp LIBS graspsynth::collision)
