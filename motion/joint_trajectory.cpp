@@ -44,8 +44,7 @@ std::string MarkNonFiniteTokens(std::string_view text) {
     bool replaced = false;
     for (std::string_view token : kTokens) {
       if (text.substr(i, token.size()) == token) {
-        out += '"';
-        out += kNonFiniteMark;
+        out += "\"\\u0001non-finite:";  // parses to kNonFiniteMark
         out += token;
         out += '"';
         i += token.size() - 1;
@@ -123,10 +122,8 @@ TrajectorySample SampleAt(const JointTrajectory& trajectory, double t) {
   const std::vector<TrajectorySample>& s = trajectory.samples;
   if (t <= s.front().t) return s.front();
   if (t >= s.back().t) return s.back();
-  const auto next = std::upper_bound(s.begin(), s.end(), t,
-                                     [](double time, const TrajectorySample& x) {
-                                       return time < x.t;
-                                     });
+  const auto next = std::upper_bound(
+      s.begin(), s.end(), t, [](double time, const TrajectorySample& x) { return time < x.t; });
   const TrajectorySample& b = *next;
   const TrajectorySample& a = *(next - 1);
   const double u = (t - a.t) / (b.t - a.t);
@@ -185,7 +182,8 @@ JointTrajectory ParseJointTrajectory(std::string_view json_text, const std::stri
       WristWaypoint p;
       p.t = FiniteNumber(Field(w, "t", where), where + ".t");
       p.p_WH = FiniteVector<3>(Field(w, "position", where), where + ".position");
-      const Eigen::Vector4d q = FiniteVector<4>(Field(w, "quaternion", where), where + ".quaternion");
+      const Eigen::Vector4d q =
+          FiniteVector<4>(Field(w, "quaternion", where), where + ".quaternion");
       if (std::abs(q.norm() - 1.0) > 1e-6) {
         throw InputError(where + ".quaternion has norm " + Number(q.norm()) + ", not 1");
       }
@@ -200,22 +198,22 @@ JointTrajectory ParseJointTrajectory(std::string_view json_text, const std::stri
   return trajectory;
 }
 
-void CheckJointLimits(const JointTrajectory& trajectory, const ArmModel& arm,
-                      const HandModel& hand, const std::string& source, double tol) {
+void CheckJointLimits(const JointTrajectory& trajectory, const ArmModel& arm, const HandModel& hand,
+                      const std::string& source, double tol) {
   for (size_t i = 0; i < trajectory.samples.size(); ++i) {
     const TrajectorySample& s = trajectory.samples[i];
     const std::string where = source + ": samples[" + std::to_string(i) + "]";
     for (int j = 0; j < kArmDof; ++j) {
       if (s.arm[j] < arm.lower()[j] - tol || s.arm[j] > arm.upper()[j] + tol) {
         throw InputError(where + ".arm[" + std::to_string(j) + "] = " + Number(s.arm[j]) + " (" +
-                         arm.joint(j).name + ") is outside its limits [" +
-                         Number(arm.lower()[j]) + ", " + Number(arm.upper()[j]) + "] rad");
+                         arm.joint(j).name + ") is outside its limits [" + Number(arm.lower()[j]) +
+                         ", " + Number(arm.upper()[j]) + "] rad");
       }
     }
     for (int k = 0; k < kHandDof; ++k) {
       if (s.hand[k] < hand.lower()[k] - tol || s.hand[k] > hand.upper()[k] + tol) {
-        throw InputError(where + ".hand[" + std::to_string(k) + "] = " + Number(s.hand[k]) +
-                         " (" + hand.actuated_names()[k] + ") is outside its limits [" +
+        throw InputError(where + ".hand[" + std::to_string(k) + "] = " + Number(s.hand[k]) + " (" +
+                         hand.actuated_names()[k] + ") is outside its limits [" +
                          Number(hand.lower()[k]) + ", " + Number(hand.upper()[k]) + "] rad");
       }
     }
@@ -239,9 +237,9 @@ std::string JointTrajectoryToJson(const JointTrajectory& trajectory) {
   out += "  \"samples\": [\n";
   for (size_t i = 0; i < trajectory.samples.size(); ++i) {
     const TrajectorySample& s = trajectory.samples[i];
-    const json line = {{"t", Rounded(s.t)},
-                       {"arm", RoundedArray(s.arm.data(), kArmDof)},
-                       {"hand", RoundedArray(s.hand.data(), kHandDof)}};
+    const nlohmann::ordered_json line = {{"t", Rounded(s.t)},
+                                         {"arm", RoundedArray(s.arm.data(), kArmDof)},
+                                         {"hand", RoundedArray(s.hand.data(), kHandDof)}};
     out += "    " + line.dump() + (i + 1 < trajectory.samples.size() ? ",\n" : "\n");
   }
   out += "  ]";
@@ -252,9 +250,9 @@ std::string JointTrajectoryToJson(const JointTrajectory& trajectory) {
       Eigen::Quaterniond q = w.q_WH.normalized();
       if (q.w() < 0.0) q.coeffs() = -q.coeffs();
       const double qv[4] = {q.w(), q.x(), q.y(), q.z()};
-      const json line = {{"t", Rounded(w.t)},
-                         {"position", RoundedArray(w.p_WH.data(), 3)},
-                         {"quaternion", RoundedArray(qv, 4)}};
+      const nlohmann::ordered_json line = {{"t", Rounded(w.t)},
+                                           {"position", RoundedArray(w.p_WH.data(), 3)},
+                                           {"quaternion", RoundedArray(qv, 4)}};
       out += "    " + line.dump() + (i + 1 < trajectory.waypoints.size() ? ",\n" : "\n");
     }
     out += "  ]";

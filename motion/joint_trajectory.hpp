@@ -21,8 +21,8 @@
 #include <string_view>
 #include <vector>
 
-#include "kinematics/hand_model.hpp"
 #include "kinematics/arm_model.hpp"
+#include "kinematics/hand_model.hpp"
 #include "kinematics/types.hpp"
 
 namespace graspsynth {
@@ -39,9 +39,9 @@ struct TrajectorySample {
 
 /// A Cartesian wrist waypoint: the pose X_WH of the hand-mount frame H at time t.
 struct WristWaypoint {
-  double t = 0.0;                                                ///< s
-  Eigen::Vector3d p_WH = Eigen::Vector3d::Zero();                ///< m, world
-  Eigen::Quaterniond q_WH = Eigen::Quaterniond::Identity();      ///< unit, world
+  double t = 0.0;                                            ///< s
+  Eigen::Vector3d p_WH = Eigen::Vector3d::Zero();            ///< m, world
+  Eigen::Quaterniond q_WH = Eigen::Quaterniond::Identity();  ///< unit, world
 
   /// The waypoint as a rigid transform.
   Eigen::Isometry3d pose() const;
@@ -76,8 +76,8 @@ JointTrajectory ParseJointTrajectory(std::string_view json_text, const std::stri
 /// Checks every sample against the joint limits of the arm and the hand (closed ranges, with
 /// `tol` radians of slack). Throws InputError "source: samples[i].arm[j] = v (S3) is outside
 /// [lo, hi]" for the first offending value.
-void CheckJointLimits(const JointTrajectory& trajectory, const ArmModel& arm,
-                      const HandModel& hand, const std::string& source, double tol = 1e-9);
+void CheckJointLimits(const JointTrajectory& trajectory, const ArmModel& arm, const HandModel& hand,
+                      const std::string& source, double tol = 1e-9);
 
 /// Reads, parses and limit-checks a trajectory file. Throws InputError naming the file.
 JointTrajectory LoadJointTrajectory(const std::filesystem::path& path, const ArmModel& arm,

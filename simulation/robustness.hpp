@@ -1,0 +1,81 @@
+#pragma once
+
+/// @file
+/// Robustness of a grasp trajectory (paper IV-B): N perturbed replays (time scaling and
+/// waypoint noise, simulation/perturbation.hpp), each a full grasp-and-lift trial; the score is
+/// the success fraction with its 95% Wilson interval.
+///
+/// Trials run in parallel, one ODE world per trial on a worker thread (each world has its own
+/// threading implementation: simulation_data.hpp). Trial i draws its perturbation from the
+/// random stream (seed, i) alone and its world is built fresh, so every trial's result - down
+/// to the last bit of the final object pose - is the same whatever the number of threads.
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "simulation/perturbation.hpp"
+#include "simulation/trial.hpp"
+
+namespace graspsynth {
+
+/// Options of a robustness evaluation.
+struct RobustnessOptions {
+  int trials = 100;   ///< perturbed replays, >= 1
+  uint64_t seed = 1;  ///< the whole evaluation is a function of the seed
+  int threads = 0;    ///< worker threads; 0: one per hardware thread
+  PerturbationOptions perturbation;
+  TrialOptions trial;
+
+  bool IsValid(std::string* why) const;
+};
+
+/// One perturbed replay.
+struct RobustnessTrial {
+  int index = 0;
+  double time_scale = 1.0;
+  TrialOutcome outcome = TrialOutcome::kUnstable;
+  std::string reason;
+  double lift = 0.0;  ///< m
+  Eigen::Isometry3d final_object_pose = Eigen::Isometry3d::Identity();
+  double simulated_time = 0.0;  ///< s
+  double wall_time = 0.0;       ///< s
+  double cpu_time = 0.0;        ///< s
+  long dynamic_steps = 0;
+  long kinematic_steps = 0;
+
+  bool success() const { return outcome == TrialOutcome::kSuccess; }
+};
+
+/// The score and every trial.
+struct RobustnessResult {
+  std::vector<RobustnessTrial> trials;  ///< in index order
+  int successes = 0;
+  double score = 0.0;           ///< successes / trials
+  Interval ci95;                ///< Wilson score interval of the success probability
+  int threads = 0;              ///< worker threads used
+  double wall_time = 0.0;       ///< s
+  double simulated_time = 0.0;  ///< s, summed over trials
+  double cpu_time = 0.0;        ///< s, summed over trials (simulated / cpu: speed per core)
+};
+
+/// The Wilson score interval for `successes` out of `n` at normal quantile z (1.959964 for
+/// 95%). [0, 1] when n is 0.
+Interval WilsonInterval(int successes, int n, double z = 1.959963984540054);
+
+/// Progress: trials done so far and the total. Called from the worker threads, one call at a
+/// time.
+using ProgressCallback = std::function<void(int done, int total)>;
+
+/// Runs options.trials perturbed replays of `nominal`. Throws InputError for invalid options;
+/// failed and infeasible replays are results.
+RobustnessResult EvaluateRobustness(const SimulationModel& model, const JointTrajectory& nominal,
+                                    const RobustnessOptions& options,
+                                    const ProgressCallback& progress = {});
+
+/// Runs trial `index` of an evaluation alone (what EvaluateRobustness runs for it).
+RobustnessTrial RunRobustnessTrial(const SimulationModel& model, const JointTrajectory& nominal,
+                                   const RobustnessOptions& options, int index);
+
+}  // namespace graspsynth

@@ -1,0 +1,199 @@
+#include "simulation/scripted_grasp.hpp"
+
+#include <cmath>
+
+#include "common/demand.hpp"
+#include "common/errors.hpp"
+#include "kinematics/arm_ik.hpp"
+#include "motion/joint_space.hpp"
+
+namespace graspsynth {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+double MinimumJerk(double u) {
+  u = std::clamp(u, 0.0, 1.0);
+  return u * u * u * (10.0 - 15.0 * u + 6.0 * u * u);
+}
+
+Eigen::Isometry3d Pose(const Eigen::Matrix3d& R, const Eigen::Vector3d& p) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = R;
+  X.translation() = p;
+  return X;
+}
+
+MotionWaypoint Waypoint(double t, const Eigen::Isometry3d& X, const HandVector& f) {
+  MotionWaypoint w;
+  w.t = t;
+  w.p_WH = X.translation();
+  w.q_WH = Eigen::Quaterniond(X.linear()).normalized();
+  w.f = f;
+  return w;
+}
+
+// Appends samples (t0, t0 + duration] moving from a to b (min-jerk, slerp, finger blend).
+void AppendSegment(CartesianPath* path, const Eigen::Isometry3d& a, const Eigen::Isometry3d& b,
+                   const HandVector& fa, const HandVector& fb, double duration, double period) {
+  const double t0 = path->back().t;
+  const int n = std::max(1, static_cast<int>(std::ceil(duration / period - 1e-9)));
+  const Eigen::Quaterniond qa(a.linear()), qb(b.linear());
+  for (int k = 1; k <= n; ++k) {
+    const double s = MinimumJerk(static_cast<double>(k) / n);
+    Eigen::Isometry3d X =
+        Pose(qa.slerp(s, qb).toRotationMatrix(), (1.0 - s) * a.translation() + s * b.translation());
+    path->push_back(Waypoint(t0 + duration * k / n, X, (1.0 - s) * fa + s * fb));
+  }
+}
+
+}  // namespace
+
+namespace {
+
+// f indices of the fingers' joints: j1 (ab/adduction), j2 (MCP), j3 (PIP).
+constexpr int kIndexJ1 = 4, kRingJ1 = 10, kLittleJ1 = 13;
+constexpr int J2(int finger) { return 4 + 3 * finger + 1; }  // finger 0..3: index..little
+
+HandVector Spread() {
+  HandVector f = HandVector::Zero();
+  f[0] = 90.0 * kDeg;  // thumb opposed
+  f[kIndexJ1] = -20.0 * kDeg;
+  f[kRingJ1] = 20.0 * kDeg;
+  f[kLittleJ1] = 20.0 * kDeg;
+  return f;
+}
+
+}  // namespace
+
+HandVector ScriptedGraspOptions::DefaultOpenHand() {
+  HandVector f = Spread();
+  f[2] = 15.0 * kDeg;
+  return f;
+}
+
+HandVector ScriptedGraspOptions::DefaultClosedHand() {
+  HandVector f = Spread();
+  f.head<4>() << 90.0 * kDeg, 0.0, 30.0 * kDeg, 10.0 * kDeg;
+  for (int finger = 0; finger < 3; ++finger) {
+    f[J2(finger)] = 70.0 * kDeg;
+    f[J2(finger) + 1] = 17.5 * kDeg;
+  }
+  f[J2(3)] = 20.0 * kDeg;
+  f[J2(3) + 1] = 10.0 * kDeg;
+  return f;
+}
+
+bool ScriptedGraspOptions::IsValid(std::string* why) const {
+  auto fail = [&](const std::string& what) {
+    if (why) *why = what;
+    return false;
+  };
+  auto positive = [](double x) { return std::isfinite(x) && x > 0.0; };
+  if (!std::isfinite(theta_deg)) return fail("theta_deg is not finite");
+  if (!positive(grasp_radius)) return fail("grasp_radius must be positive");
+  if (!bar_in_hand.allFinite()) return fail("bar_in_hand is not finite");
+  if (!std::isfinite(yaw)) return fail("yaw is not finite");
+  if (side != 1 && side != -1) return fail("side must be +1 or -1");
+  if (!std::isfinite(pregrasp_up) || !std::isfinite(pregrasp_back)) {
+    return fail("the pre-grasp offsets must be finite");
+  }
+  if (!open.allFinite() || !closed.allFinite()) return fail("the finger shapes must be finite");
+  for (double d : {reach_duration, approach_duration, close_duration, settle_duration,
+                   lift_duration, end_duration, sample_period}) {
+    if (!positive(d)) return fail("every duration and the sample period must be positive");
+  }
+  if (!std::isfinite(lift_height)) return fail("lift_height is not finite");
+  return true;
+}
+
+Eigen::Isometry3d GraspWristPose(const SceneModel& scene, const ScriptedGraspOptions& options) {
+  const Eigen::Isometry3d X_WO = scene.ObjectPose(options.theta_deg * kDeg);
+  const Eigen::Vector3d h = X_WO.linear().col(0);  // along the handle, horizontal
+  const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
+  // z_H across the handle (from the wrist's side toward it), x_H down, y_H = z_H x x_H.
+  const Eigen::Vector3d across = options.side * up.cross(h);
+  const Eigen::Vector3d z_H = Eigen::AngleAxisd(options.yaw, up) * across;
+  Eigen::Matrix3d R;
+  R.col(0) = -up;
+  R.col(2) = z_H;
+  R.col(1) = z_H.cross(-up);
+  const ObjectModel& o = scene.object;
+  const Eigen::Vector3d p_bar =
+      X_WO.translation() + options.grasp_radius * h + (o.handle_axis_height - o.rest_height()) * up;
+  return Pose(R, p_bar - R * options.bar_in_hand);
+}
+
+Vector7d DefaultRestConfiguration(const RobotModel& robot, const SceneModel& scene,
+                                  const Eigen::Matrix3d& R_WH) {
+  const Eigen::Vector2d toward = scene.object.centre_xy.normalized();
+  const Eigen::Matrix3d R = R_WH * Eigen::AngleAxisd(30.0 * kDeg, Eigen::Vector3d::UnitY());
+  const Eigen::Vector3d p(0.60 * toward.x(), 0.60 * toward.y(), scene.table.top_z + 0.30);
+  const Eigen::Isometry3d X_WF = Pose(R, p) * robot.X_FH.inverse();
+  const ArmTargetForm form = PrepareArmTarget(robot.arm, X_WF, +1);
+  const std::vector<Interval> feasible = FeasibleArmAngles(robot.arm, form, +1, +1);
+  GS_DEMAND(!feasible.empty(), "the default rest pose is not reachable");
+  const Interval* widest = &feasible.front();
+  for (const Interval& iv : feasible) {
+    if (iv.width() > widest->width()) widest = &iv;
+  }
+  const ArmIkSolution s = SolveArmIk(robot.arm, X_WF, 0.5 * (widest->lo + widest->hi), ArmBranch{});
+  GS_DEMAND(s.status == IkStatus::kOk, "the default rest pose has no IK solution");
+  return s.q;
+}
+
+ScriptedGraspResult BuildScriptedGrasp(const RobotModel& robot, const SceneModel& scene,
+                                       const ScriptedGraspOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError("invalid scripted grasp option: " + why);
+  ScriptedGraspResult result;
+  const Eigen::Isometry3d X_grasp = GraspWristPose(scene, options);
+  const Vector7d rest = options.rest.allFinite()
+                            ? options.rest
+                            : DefaultRestConfiguration(robot, scene, X_grasp.linear());
+  const Eigen::Isometry3d X_rest = ArmFlangePose(robot.arm, rest) * robot.X_FH;
+  Eigen::Isometry3d X_pre = X_grasp;
+  X_pre.translation() += options.pregrasp_up * Eigen::Vector3d::UnitZ() -
+                         options.pregrasp_back * X_grasp.linear().col(2);
+  Eigen::Isometry3d X_lift = X_grasp;
+  X_lift.translation().z() += options.lift_height;
+  result.X_WH_grasp = X_grasp;
+  result.X_WH_pregrasp = X_pre;
+
+  const double dt = options.sample_period;
+  CartesianPath path = {Waypoint(0.0, X_rest, options.open)};
+  AppendSegment(&path, X_rest, X_pre, options.open, options.open, options.reach_duration, dt);
+  const size_t i_pre = path.size() - 1;
+  AppendSegment(&path, X_pre, X_grasp, options.open, options.open, options.approach_duration, dt);
+  const size_t i_grasp = path.size() - 1;
+  AppendSegment(&path, X_grasp, X_grasp, options.open, options.closed, options.close_duration, dt);
+  const size_t i_closed = path.size() - 1;
+  AppendSegment(&path, X_grasp, X_grasp, options.closed, options.closed, options.settle_duration,
+                dt);
+  AppendSegment(&path, X_grasp, X_lift, options.closed, options.closed, options.lift_duration, dt);
+  const size_t i_lift = path.size() - 1;
+  AppendSegment(&path, X_lift, X_lift, options.closed, options.closed, options.end_duration, dt);
+
+  JointSpaceOptions js;
+  const JointSpaceResult joints = ToJointTrajectory(robot, path, rest, options.theta_deg, js);
+  if (joints.status != JointSpaceStatus::kOk) {
+    result.message = joints.message;
+    return result;
+  }
+  result.trajectory = joints.trajectory;
+  // the controller starts exactly at the rest configuration.
+  result.trajectory.samples.front().arm = rest;
+  const Eigen::Isometry3d poses[] = {X_rest, X_pre, X_grasp, X_grasp, X_lift};
+  const size_t index[] = {0, i_pre, i_grasp, i_closed, i_lift};
+  for (int k = 0; k < 5; ++k) {
+    WristWaypoint w;
+    w.t = result.trajectory.samples[index[k]].t;
+    w.p_WH = poses[k].translation();
+    w.q_WH = Eigen::Quaterniond(poses[k].linear()).normalized();
+    result.trajectory.waypoints.push_back(w);
+  }
+  result.ok = true;
+  return result;
+}
+
+}  // namespace graspsynth

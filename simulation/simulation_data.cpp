@@ -1,0 +1,915 @@
+#include "simulation/simulation_data.hpp"
+
+#include <ode/ode.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <deque>
+#include <functional>
+#include <mutex>
+#include <sstream>
+#include <vector>
+
+#include "common/demand.hpp"
+#include "common/errors.hpp"
+
+#ifndef dDOUBLE
+#error "graspsynth needs ODE built in double precision (Debian's libode-dev is)"
+#endif
+
+namespace graspsynth {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double Seconds(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double>(b - a).count();
+}
+
+// Roles of geometry, ordered so that a pair can be classified with role(a) <= role(b).
+enum class Role { kTable, kObject, kArm, kPalm, kFinger, kProxy };
+
+// Collision categories: only the pairs listed in simulation_data.hpp are ever tested. The
+// object is made of the pan's cylinder (touched by the robot only), the handle (robot and
+// table) and the pan's foot (table only; see Build).
+constexpr unsigned long kCatTable = 1, kCatHandle = 2, kCatArm = 4, kCatPalm = 8, kCatFinger = 16,
+                        kCatPan = 32, kCatFoot = 64;
+constexpr unsigned long kCatRobot = kCatArm | kCatPalm | kCatFinger;
+
+// How far outside a joint's range its ODE stop lies, rad.
+constexpr double kStopMargin = 2.0 * M_PI / 180.0;
+
+struct GeomInfo {
+  Role role = Role::kTable;
+  std::string link;     // name of the link the geometry belongs to
+  int hand_index = -1;  // HandJointVector index of a finger link, 20 for the palm and mount
+};
+
+// A rigid body made of one or more links, with its frame at the centre of mass and axes of
+// the first (frame-defining) link.
+struct BodyPart {
+  dBodyID body = nullptr;
+  Eigen::Vector3d p_LC = Eigen::Vector3d::Zero();  // centre of mass in the link frame
+};
+
+// Mass properties of several links expressed in one frame L.
+struct MassSum {
+  double mass = 0.0;
+  Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d I_L = Eigen::Matrix3d::Zero();  // about the origin of L
+
+  void Add(const LinkInertia& in, const Eigen::Isometry3d& X_LK) {
+    const Eigen::Matrix3d R = X_LK.linear();
+    const Eigen::Vector3d c = X_LK * in.p_LCm;
+    mass += in.mass;
+    first_moment += in.mass * c;
+    I_L += R * in.I_Cm * R.transpose() +
+           in.mass * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+  }
+  Eigen::Vector3d com() const { return first_moment / mass; }
+  Eigen::Matrix3d I_com() const {
+    const Eigen::Vector3d c = com();
+    return I_L - mass * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+  }
+};
+
+void SetMass(dBodyID body, double mass, const Eigen::Matrix3d& I) {
+  dMass m;
+  dMassSetZero(&m);
+  dMassSetParameters(&m, mass, 0, 0, 0, I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2), I(1, 2));
+  dBodySetMass(body, &m);
+}
+
+void ToOde(const Eigen::Matrix3d& R, dMatrix3 out) {
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) out[4 * r + c] = R(r, c);
+    out[4 * r + 3] = 0.0;
+  }
+}
+
+Eigen::Isometry3d BodyPose(dBodyID body) {
+  const dReal* p = dBodyGetPosition(body);
+  const dReal* q = dBodyGetQuaternion(body);
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
+  X.translation() = Eigen::Vector3d(p[0], p[1], p[2]);
+  return X;
+}
+
+// Places a body (frame at the centre of mass) for link pose X_WL.
+void PlaceBody(const BodyPart& part, const Eigen::Isometry3d& X_WL) {
+  const Eigen::Vector3d p = X_WL * part.p_LC;
+  dBodySetPosition(part.body, p.x(), p.y(), p.z());
+  const Eigen::Quaterniond q(X_WL.linear());
+  const dQuaternion dq = {q.w(), q.x(), q.y(), q.z()};
+  dBodySetQuaternion(part.body, dq);
+}
+
+// Velocity that carries the body from link pose `from` to `to` in h.
+void SetBodyVelocity(const BodyPart& part, const Eigen::Isometry3d& from,
+                     const Eigen::Isometry3d& to, double h) {
+  const Eigen::Vector3d v = ((to * part.p_LC) - (from * part.p_LC)) / h;
+  const Eigen::AngleAxisd aa(to.linear() * from.linear().transpose());
+  const Eigen::Vector3d w = aa.angle() * aa.axis() / h;
+  dBodySetLinearVel(part.body, v.x(), v.y(), v.z());
+  dBodySetAngularVel(part.body, w.x(), w.y(), w.z());
+}
+
+double Wrap(double a) { return std::remainder(a, 2.0 * M_PI); }
+
+double Clamp(double x, double limit) { return std::clamp(x, -limit, limit); }
+
+bool Finite3(const dReal* v) {
+  return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+}
+
+}  // namespace
+
+namespace {
+
+// ODE reports internal errors (failed assertions, e.g. on a NaN state) through handlers that
+// abort by default. A simulation that became unstable must be a failed trial, never a crash,
+// so they throw instead; ODE's informational messages are dropped (the library never prints).
+// Set while a world steps on this thread, so that an error marks that world as broken.
+thread_local bool* current_world_broken = nullptr;
+
+[[noreturn]] void ThrowOdeError(int errnum, const char* msg, va_list ap) {
+  char text[512];
+  std::vsnprintf(text, sizeof(text), msg, ap);
+  if (current_world_broken) *current_world_broken = true;
+  throw OdeError("ODE error " + std::to_string(errnum) + ": " + text);
+}
+
+void IgnoreOdeMessage(int, const char*, va_list) {}
+
+}  // namespace
+
+void EnsureOdeThread() {
+  static std::once_flag init;
+  std::call_once(init, [] {
+    dInitODE2(0);
+    dSetErrorHandler(&ThrowOdeError);
+    dSetDebugHandler(&ThrowOdeError);
+    dSetMessageHandler(&IgnoreOdeMessage);
+  });
+  // per-thread collision caches; released when the thread ends.
+  struct ThreadData {
+    ThreadData() { GS_DEMAND(dAllocateODEDataForThread(dAllocateMaskAll), "ODE thread data"); }
+    ~ThreadData() { dCleanupODEAllDataForThread(); }
+  };
+  thread_local ThreadData data;
+  (void)data;
+}
+
+bool WorldOptions::IsValid(std::string* why) const {
+  auto fail = [&](const std::string& what, double v) {
+    if (why) {
+      std::ostringstream s;
+      s << what << " = " << v;
+      *why = s.str();
+    }
+    return false;
+  };
+  if (!(std::isfinite(time_step) && time_step > 0.0 && time_step <= 0.02)) {
+    return fail("time_step (s, in (0, 0.02])", time_step);
+  }
+  if (!std::isfinite(theta)) return fail("theta", theta);
+  if (!(std::isfinite(proximity_margin) && proximity_margin >= 0.0 && proximity_margin < 0.5)) {
+    return fail("proximity_margin (m)", proximity_margin);
+  }
+  return true;
+}
+
+struct SimulationData::Impl {
+  const SimulationModel* model = nullptr;
+  WorldOptions options;
+  double h = 0.0;
+
+  dWorldID world = nullptr;
+  dSpaceID space = nullptr;
+  dSpaceID proxy_space = nullptr;
+  dJointGroupID contact_group = nullptr;
+  dThreadingImplementationID threading = nullptr;
+  std::deque<GeomInfo> geom_info;  // stable addresses for dGeomSetData
+  int geom_count = 0;
+
+  // arm bodies: arm[0..5] = links 1..6 (S1..W1), arm[6] = the wrist (W2 + mount + palm).
+  std::array<BodyPart, kArmDof> arm;
+  std::array<dJointID, kArmDof> arm_joints{};
+  // finger links, finger-major (HandJointVector order), and their joints.
+  std::array<BodyPart, kHandJoints> fingers;
+  std::array<dJointID, kHandJoints> finger_joints{};
+  BodyPart object;
+
+  // controller state
+  ServoMode arm_mode = ServoMode::kPosition;
+  Vector7d arm_command = Vector7d::Zero();
+  Vector7d arm_ff = Vector7d::Zero();
+  ServoMode hand_mode = ServoMode::kPosition;
+  HandVector hand_command = HandVector::Zero();
+  int violation = -1;
+  double violation_value = 0.0;
+
+  // measured (dynamic) or modelled (kinematic) joint state
+  Vector7d q_arm = Vector7d::Zero();
+  HandJointVector q_hand = HandJointVector::Zero();
+  bool hand_dynamic = false;  // set by the first Step()
+
+  // link poses of the current state, for kinematic placement
+  ArmFrames arm_frames;
+  HandFrames hand_frames;
+
+  double time = 0.0;
+  bool detect_only = false;
+  ContactReport report;
+  StepStatistics stats;
+  bool near_object = false;
+  bool broken = false;  // ODE raised an error inside a step of this world
+
+  // arm joint limits and caps
+  Vector7d arm_lower, arm_upper, arm_vmax, arm_fmax;
+  // per hand joint (HandJointVector order)
+  HandJointVector hand_vmax, hand_fmax;
+
+  ~Impl() {
+    if (world) {
+      dWorldSetStepThreadingImplementation(world, nullptr, nullptr);
+    }
+    // a step that ODE aborted leaves jobs in the threading implementation, whose release
+    // would fail ODE's checks again: it is left allocated (a small leak on a path that only
+    // a broken simulation takes).
+    if (threading && !broken) {
+      dThreadingImplementationShutdownProcessing(threading);
+      dThreadingFreeImplementation(threading);
+    }
+    if (contact_group) dJointGroupDestroy(contact_group);
+    if (proxy_space) dSpaceDestroy(proxy_space);
+    if (space) dSpaceDestroy(space);
+    if (world) dWorldDestroy(world);
+  }
+
+  const RobotModel& robot() const { return model->robot(); }
+  bool arm_kinematic() const { return options.arm_mode == ArmMode::kKinematic; }
+
+  dGeomID AddGeom(dSpaceID into, const CollisionShape& shape, Role role, const std::string& link,
+                  double inflate = 0.0, unsigned long category = kCatHandle) {
+    dGeomID g = nullptr;
+    const Eigen::Vector3d& s = shape.size;
+    switch (shape.kind) {
+      case CollisionShape::Kind::kBox:
+        g = dCreateBox(into, s.x() + 2 * inflate, s.y() + 2 * inflate, s.z() + 2 * inflate);
+        break;
+      case CollisionShape::Kind::kCapsule:
+        g = dCreateCapsule(into, s.x() + inflate, s.y());
+        break;
+      case CollisionShape::Kind::kCylinder:
+        g = dCreateCylinder(into, s.x() + inflate, s.y() + 2 * inflate);
+        break;
+      case CollisionShape::Kind::kSphere:
+        g = dCreateSphere(into, s.x() + inflate);
+        break;
+    }
+    geom_info.push_back({role, link});
+    dGeomSetData(g, &geom_info.back());
+    unsigned long cat = 0, collide = 0;
+    switch (role) {
+      case Role::kTable:
+        cat = kCatTable;
+        collide = kCatHandle | kCatFoot | kCatRobot;
+        break;
+      case Role::kObject:
+        cat = category;
+        collide = category == kCatFoot  ? kCatTable
+                  : category == kCatPan ? kCatRobot
+                                        : kCatTable | kCatRobot;
+        break;
+      case Role::kArm:
+      case Role::kPalm:
+      case Role::kFinger:
+        cat = role == Role::kArm ? kCatArm : role == Role::kPalm ? kCatPalm : kCatFinger;
+        collide = kCatTable | kCatHandle | kCatPan;
+        break;
+      case Role::kProxy:
+        break;
+    }
+    dGeomSetCategoryBits(g, cat);
+    dGeomSetCollideBits(g, collide);
+    if (role != Role::kProxy) ++geom_count;
+    return g;
+  }
+
+  // Attaches geometry given in link frame L to a body whose frame is the link frame moved to
+  // the centre of mass p_LC.
+  void AttachShapes(const BodyPart& part, const RigidLink& link, const Eigen::Isometry3d& X_BL,
+                    Role role, int hand_index = -1) {
+    for (const CollisionShape& shape : link.shapes) {
+      dGeomID g = AddGeom(space, shape, role, link.name);
+      geom_info.back().hand_index = hand_index;
+      dGeomSetBody(g, part.body);
+      const Eigen::Isometry3d X_CG =
+          Eigen::Translation3d(-part.p_LC) * X_BL * shape.X_LG;  // body (CoM) frame to geom
+      dGeomSetOffsetPosition(g, X_CG.translation().x(), X_CG.translation().y(),
+                             X_CG.translation().z());
+      dMatrix3 R;
+      ToOde(X_CG.linear(), R);
+      dGeomSetOffsetRotation(g, R);
+    }
+  }
+
+  BodyPart MakeBody(const MassSum& sum) {
+    BodyPart part;
+    part.body = dBodyCreate(world);
+    part.p_LC = sum.com();
+    SetMass(part.body, sum.mass, sum.I_com());
+    return part;
+  }
+
+  void Build(const Vector7d& arm_q, const HandVector& hand_f) {
+    const SimulationOptions& so = model->options();
+    const RobotModel& r = robot();
+    world = dWorldCreate();
+    dWorldSetGravity(world, 0, 0, -so.gravity);
+    dWorldSetERP(world, so.erp);
+    dWorldSetCFM(world, so.cfm);
+    dWorldSetAutoDisableFlag(world, 0);
+    dWorldSetContactSurfaceLayer(world, so.surface_layer);
+    dWorldSetContactMaxCorrectingVel(world, so.max_correcting_vel);
+    // each world gets its own threading implementation: the process-wide default one is not
+    // safe when two threads step two worlds (reference/ode.md, "Threads").
+    threading = dThreadingAllocateSelfThreadedImplementation();
+    dWorldSetStepThreadingImplementation(world, dThreadingImplementationGetFunctions(threading),
+                                         threading);
+    space = dSimpleSpaceCreate(nullptr);
+    proxy_space = dSimpleSpaceCreate(nullptr);
+    contact_group = dJointGroupCreate(0);
+
+    // static geometry: table and arm base.
+    const TableModel& t = model->scene().table;
+    CollisionShape table_box;
+    table_box.size = t.size;
+    dGeomID table = AddGeom(space, table_box, Role::kTable, "table");
+    dGeomSetPosition(table, t.centre_xy.x(), t.centre_xy.y(), t.top_z - 0.5 * t.size.z());
+    for (const CollisionShape& shape : r.arm.base().shapes) {
+      dGeomID g = AddGeom(space, shape, Role::kArm, r.arm.base().name);
+      dGeomSetPosition(g, shape.X_LG.translation().x(), shape.X_LG.translation().y(),
+                       shape.X_LG.translation().z());
+      dMatrix3 R;
+      ToOde(shape.X_LG.linear(), R);
+      dGeomSetRotation(g, R);
+    }
+
+    // arm links 1..6 and the wrist body in link-7 (flange) axes.
+    for (int i = 1; i <= kArmDof; ++i) {
+      MassSum sum;
+      sum.Add(r.arm.link(i).inertia, Eigen::Isometry3d::Identity());
+      if (i == kArmDof) {
+        sum.Add(r.hand.mount().inertia, r.X_FH);
+        sum.Add(r.hand.palm().inertia, r.X_FH * r.hand.X_HP());
+      }
+      arm[i - 1] = MakeBody(sum);
+      if (arm_kinematic()) dBodySetKinematic(arm[i - 1].body);
+      AttachShapes(arm[i - 1], r.arm.link(i), Eigen::Isometry3d::Identity(), Role::kArm);
+      if (i == kArmDof) {
+        AttachShapes(arm[i - 1], r.hand.mount(), r.X_FH, Role::kPalm, kHandJoints);
+        AttachShapes(arm[i - 1], r.hand.palm(), r.X_FH * r.hand.X_HP(), Role::kPalm, kHandJoints);
+      }
+    }
+    for (int j = 0; j < kHandJoints; ++j) {
+      const RigidLink& link = r.hand.finger(j / kFingerJoints).links[j % kFingerJoints];
+      MassSum sum;
+      sum.Add(link.inertia, Eigen::Isometry3d::Identity());
+      fingers[j] = MakeBody(sum);
+      AttachShapes(fingers[j], link, Eigen::Isometry3d::Identity(), Role::kFinger, j);
+    }
+
+    // the object: pan body (cylinder) and handle (box), frame at its centre of mass.
+    const ObjectModel& o = model->scene().object;
+    const ObjectInertia& oi = model->object_inertia();
+    object.body = dBodyCreate(world);
+    object.p_LC = oi.p_OC;
+    SetMass(object.body, oi.mass, oi.I_C);
+    CollisionShape pan;
+    pan.kind = CollisionShape::Kind::kCylinder;
+    pan.size = Eigen::Vector3d(o.body_radius, o.body_height, 0.0);
+    CollisionShape handle;
+    handle.size = Eigen::Vector3d(o.handle_end_radius - o.handle_start_radius, o.handle_width,
+                                  o.handle_thickness);
+    handle.X_LG.translation() = Eigen::Vector3d(0.5 * (o.handle_start_radius + o.handle_end_radius),
+                                                0.0, o.handle_axis_height - o.rest_height());
+    // ODE's cylinder-box contact rocks (3-4 contacts that jump around the rim; measured: the
+    // pan tilted 0.8 deg and crept 3 mm in 10 s). The pan therefore stands on a "foot" of two
+    // boxes inscribed in its cylinder, turned 45 deg to each other (an eight-pointed star whose
+    // points lie on the rim), which is what touches the table; the cylinder itself meets only
+    // the robot.
+    CollisionShape foot;
+    const double side = std::sqrt(2.0) * o.body_radius;
+    foot.size = Eigen::Vector3d(side, side, o.body_height);
+    CollisionShape foot2 = foot;
+    foot2.X_LG.linear() = Eigen::AngleAxisd(M_PI / 4, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    const std::pair<const CollisionShape*, unsigned long> parts[] = {
+        {&pan, kCatPan}, {&handle, kCatHandle}, {&foot, kCatFoot}, {&foot2, kCatFoot}};
+    for (const auto& [shape, category] : parts) {
+      for (bool proxy : {false, true}) {
+        if (proxy && category == kCatFoot) continue;
+        dGeomID g =
+            proxy ? AddGeom(proxy_space, *shape, Role::kProxy, o.name, options.proximity_margin)
+                  : AddGeom(space, *shape, Role::kObject, o.name, 0.0, category);
+        dGeomSetBody(g, object.body);
+        const Eigen::Vector3d off = shape->X_LG.translation() - oi.p_OC;
+        dGeomSetOffsetPosition(g, off.x(), off.y(), off.z());
+        dMatrix3 R;
+        ToOde(shape->X_LG.linear(), R);
+        dGeomSetOffsetRotation(g, R);
+      }
+    }
+    PlaceBody(object, model->scene().ObjectPose(options.theta));
+
+    // joints are made with every joint at zero: ODE measures hinge angles from the relative
+    // orientation at the time the axis is set.
+    q_arm.setZero();
+    q_hand.setZero();
+    ComputeFrames(q_arm, q_hand, &arm_frames, &hand_frames);
+    PlaceAll(arm_frames, hand_frames);
+    const ArmModel& am = r.arm;
+    for (int i = 0; i < kArmDof; ++i) {
+      arm_lower[i] = am.lower()[i];
+      arm_upper[i] = am.upper()[i];
+      arm_vmax[i] = am.max_velocity()[i];
+      arm_fmax[i] = am.max_effort()[i];
+      if (arm_kinematic()) continue;
+      const Eigen::Isometry3d X_WJ = arm_frames.X_WL[i] * am.joint(i).X_PJ;
+      arm_joints[i] =
+          MakeHinge(arm[i].body, i == 0 ? nullptr : arm[i - 1].body, X_WJ, am.joint(i).axis_J);
+      // stops only where the range lies inside (-pi, pi); E2 and W2 are the controller's.
+      if (am.upper()[i] < M_PI - 1e-6 && am.lower()[i] > -M_PI + 1e-6) {
+        dJointSetHingeParam(arm_joints[i], dParamLoStop, am.lower()[i] - kStopMargin);
+        dJointSetHingeParam(arm_joints[i], dParamHiStop, am.upper()[i] + kStopMargin);
+      }
+    }
+    for (int j = 0; j < kHandJoints; ++j) {
+      const int finger = j / kFingerJoints, k = j % kFingerJoints;
+      const HandJoint& hj = r.hand.joint(j);
+      const Eigen::Isometry3d X_WParent =
+          arm_frames.X_WL[kArmDof] * r.X_FH *
+          (k == 0 ? hand_frames.X_HP : hand_frames.X_HL[finger][k - 1]);
+      finger_joints[j] =
+          MakeHinge(fingers[j].body, k == 0 ? arm[kArmDof - 1].body : fingers[j - 1].body,
+                    X_WParent * hj.joint.X_PJ, hj.joint.axis_J);
+      // stops a little outside the range: the servo targets lie inside it, and a motor
+      // holding a joint right at its stop fights the stop's correction.
+      dJointSetHingeParam(finger_joints[j], dParamLoStop, hj.joint.lower - kStopMargin);
+      dJointSetHingeParam(finger_joints[j], dParamHiStop, hj.joint.upper + kStopMargin);
+      hand_vmax[j] = hj.joint.max_velocity;
+      hand_fmax[j] = hj.joint.max_effort * so.hand_effort_scale;
+    }
+
+    // the initial configuration, at rest, with commands that hold it.
+    q_arm = arm_q;
+    q_hand = HandJointPositions(r.hand, hand_f);
+    ComputeFrames(q_arm, q_hand, &arm_frames, &hand_frames);
+    PlaceAll(arm_frames, hand_frames);
+    arm_command = arm_q;
+    hand_command = hand_f;
+  }
+
+  // A hinge with the child first: dJointGetHingeAngle is then the child's rotation about the
+  // axis relative to the parent (tests/simulation/simulation_data_test.cpp checks the sign).
+  dJointID MakeHinge(dBodyID child, dBodyID parent, const Eigen::Isometry3d& X_WJ,
+                     const Eigen::Vector3d& axis_J) {
+    dJointID j = dJointCreateHinge(world, nullptr);
+    dJointAttach(j, child, parent);
+    const Eigen::Vector3d a = X_WJ.translation();
+    const Eigen::Vector3d axis = X_WJ.linear() * axis_J;
+    dJointSetHingeAnchor(j, a.x(), a.y(), a.z());
+    dJointSetHingeAxis(j, axis.x(), axis.y(), axis.z());
+    return j;
+  }
+
+  void ComputeFrames(const Vector7d& qa, const HandJointVector& qh, ArmFrames* af,
+                     HandFrames* hf) const {
+    ArmLinkFrames(robot().arm, qa, af);
+    // the coupled joints take their own (lagging) values, not their couplings'.
+    HandFramesFromJoints(qh, hf);
+  }
+
+  // Hand FK from all 20 joint values (HandLinkFrames takes the 16 actuated ones and derives
+  // the DIPs; here the DIPs are states of their own).
+  void HandFramesFromJoints(const HandJointVector& qh, HandFrames* hf) const {
+    const HandModel& hand = robot().hand;
+    hf->X_HP = hand.X_HP();
+    for (int i = 0; i < kFingers; ++i) {
+      const Finger& finger = hand.finger(i);
+      Eigen::Isometry3d X = hand.X_HP();
+      for (int k = 0; k < kFingerJoints; ++k) {
+        const RevoluteJoint& j = finger.joints[k].joint;
+        X = X * j.X_PJ * Eigen::AngleAxisd(qh[HandJointIndex(i, k)], j.axis_J);
+        hf->X_HL[i][k] = X;
+      }
+      hf->X_HT[i] = X * finger.X_LT;
+    }
+  }
+
+  Eigen::Isometry3d WristLinkPose(const ArmFrames& af) const { return af.X_WL[kArmDof]; }
+
+  void PlaceAll(const ArmFrames& af, const HandFrames& hf) {
+    for (int i = 0; i < kArmDof; ++i) PlaceBody(arm[i], af.X_WL[i + 1]);
+    const Eigen::Isometry3d X_WH = af.X_WL[kArmDof] * robot().X_FH;
+    for (int j = 0; j < kHandJoints; ++j) {
+      PlaceBody(fingers[j], X_WH * hf.X_HL[j / kFingerJoints][j % kFingerJoints]);
+    }
+    for (int i = 0; i < kArmDof; ++i) {
+      dBodySetLinearVel(arm[i].body, 0, 0, 0);
+      dBodySetAngularVel(arm[i].body, 0, 0, 0);
+    }
+    for (const BodyPart& f : fingers) {
+      dBodySetLinearVel(f.body, 0, 0, 0);
+      dBodySetAngularVel(f.body, 0, 0, 0);
+    }
+  }
+
+  // arm joint velocity commanded by the controller at the current state.
+  Vector7d ArmVelocity() {
+    violation = -1;
+    Vector7d v;
+    for (int i = 0; i < kArmDof; ++i) {
+      if (arm_mode == ServoMode::kPosition) {
+        double target = arm_command[i];
+        if (target < arm_lower[i] || target > arm_upper[i]) {
+          if (violation < 0) {
+            violation = i;
+            violation_value = target;
+          }
+          target = std::clamp(target, arm_lower[i], arm_upper[i]);
+        }
+        v[i] =
+            Clamp(arm_ff[i] + model->options().arm_servo_gain * (target - q_arm[i]), arm_vmax[i]);
+      } else {
+        v[i] = Clamp(arm_command[i], arm_vmax[i]);
+      }
+      // the controller stops a joint at its limit.
+      if ((q_arm[i] >= arm_upper[i] && v[i] > 0.0) || (q_arm[i] <= arm_lower[i] && v[i] < 0.0)) {
+        v[i] = 0.0;
+      }
+    }
+    return v;
+  }
+
+  // hand joint velocities (HandJointVector order) commanded at state q.
+  HandJointVector HandVelocity(const HandJointVector& q) const {
+    const HandModel& hand = robot().hand;
+    const double gain = model->options().finger_servo_gain;
+    HandJointVector v;
+    for (int j = 0; j < kHandJoints; ++j) {
+      const HandJoint& hj = hand.joint(j);
+      double target_v = 0.0;
+      if (hj.is_actuated()) {
+        target_v = hand_mode == ServoMode::kPosition ? gain * (hand_command[hj.actuated] - q[j])
+                                                     : hand_command[hj.actuated];
+      } else {
+        // the DIP coupling: its target is the PIP's measured angle.
+        const JointCoupling& c = *hj.coupling;
+        target_v = gain * (c.multiplier * q[c.source] + c.offset - q[j]);
+      }
+      v[j] = Clamp(target_v, hand_vmax[j]);
+    }
+    return v;
+  }
+
+  void ReadJoints() {
+    if (!arm_kinematic()) {
+      for (int i = 0; i < kArmDof; ++i) {
+        const double raw = dJointGetHingeAngle(arm_joints[i]);
+        q_arm[i] += Wrap(raw - q_arm[i]);
+      }
+    }
+    if (hand_dynamic) {
+      for (int j = 0; j < kHandJoints; ++j) q_hand[j] = dJointGetHingeAngle(finger_joints[j]);
+    }
+  }
+
+  void Collide(bool only_detect) {
+    detect_only = only_detect;
+    report = ContactReport{};
+    dSpaceCollide(space, this, &Impl::NearCallback);
+  }
+
+  static void NearCallback(void* data, dGeomID a, dGeomID b) {
+    static_cast<Impl*>(data)->CollidePair(a, b);
+  }
+
+  void CollidePair(dGeomID a, dGeomID b) {
+    const GeomInfo* ia = static_cast<const GeomInfo*>(dGeomGetData(a));
+    const GeomInfo* ib = static_cast<const GeomInfo*>(dGeomGetData(b));
+    if (ia->role > ib->role) {
+      std::swap(a, b);
+      std::swap(ia, ib);
+    }
+    const SimulationOptions& so = model->options();
+    dContactGeom cg[16];
+    const int n = dCollide(a, b, so.max_contacts_per_pair, cg, sizeof(dContactGeom));
+    if (n <= 0) return;
+    double mu = 0.0;
+    const Role ra = ia->role, rb = ib->role;
+    if (ra == Role::kTable && (rb == Role::kArm || rb == Role::kPalm)) {
+      if (report.arm_table == 0) report.arm_table_link = ib->link;
+      report.arm_table += n;
+      return;  // reported only: the trial ends there
+    }
+    if (ra == Role::kTable && rb == Role::kObject) {
+      report.object_table += n;
+      mu = model->scene().table.friction;
+    } else if (ra == Role::kTable && rb == Role::kFinger) {
+      report.finger_table += n;
+      mu = so.hand_table_friction;
+    } else if (ra == Role::kObject && rb == Role::kArm) {
+      report.object_arm += n;
+      mu = so.arm_object_friction;
+    } else if (ra == Role::kObject && (rb == Role::kPalm || rb == Role::kFinger)) {
+      report.object_hand += n;
+      report.hand_links_on_object |= 1ul << ib->hand_index;
+      mu = model->scene().object.friction;
+    } else {
+      return;
+    }
+    if (ra == Role::kObject || rb == Role::kObject) {
+      for (int i = 0; i < n; ++i) {
+        report.max_object_penetration = std::max(report.max_object_penetration, cg[i].depth);
+      }
+    }
+    if (detect_only) return;
+    const double erp = h * so.contact_kp / (h * so.contact_kp + so.contact_kd);
+    const double cfm = 1.0 / (h * so.contact_kp + so.contact_kd);
+    dBodyID ba = dGeomGetBody(a), bb = dGeomGetBody(b);
+    for (int i = 0; i < n; ++i) {
+      dContact c{};
+      c.surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM;
+      c.surface.mu = mu;
+      c.surface.soft_erp = erp;
+      c.surface.soft_cfm = cfm;
+      c.geom = cg[i];
+      dJointID j = dJointCreateContact(world, contact_group, &c);
+      dJointAttach(j, ba, bb);
+      ++report.total;
+    }
+  }
+
+  void Step() {
+    const auto t0 = Clock::now();
+    hand_dynamic = true;
+    // arm: kinematic bodies get the velocity that carries them to the next state.
+    const Vector7d va = ArmVelocity();
+    if (arm_kinematic()) {
+      const Vector7d q_next = q_arm + h * va;
+      ArmFrames next;
+      ArmLinkFrames(robot().arm, q_next, &next);
+      for (int i = 0; i < kArmDof; ++i) {
+        PlaceBody(arm[i], arm_frames.X_WL[i + 1]);
+        SetBodyVelocity(arm[i], arm_frames.X_WL[i + 1], next.X_WL[i + 1], h);
+      }
+      arm_frames = next;
+      q_arm = q_next;
+    } else {
+      for (int i = 0; i < kArmDof; ++i) {
+        dJointSetHingeParam(arm_joints[i], dParamVel, va[i]);
+        dJointSetHingeParam(arm_joints[i], dParamFMax, arm_fmax[i]);
+      }
+    }
+    const HandJointVector vh = HandVelocity(q_hand);
+    for (int j = 0; j < kHandJoints; ++j) {
+      dJointSetHingeParam(finger_joints[j], dParamVel, vh[j]);
+      dJointSetHingeParam(finger_joints[j], dParamFMax, hand_fmax[j]);
+    }
+    const auto t1 = Clock::now();
+    Collide(false);
+    const auto t2 = Clock::now();
+    // a non-finite state must not reach ODE, whose checks would fail deep inside the step.
+    if (!StateIsFinite()) {
+      dJointGroupEmpty(contact_group);
+      throw OdeError("non-finite body state before step " + std::to_string(stats.dynamic_steps));
+    }
+    current_world_broken = &broken;
+    dWorldStep(world, h);
+    current_world_broken = nullptr;
+    dJointGroupEmpty(contact_group);
+    const auto t3 = Clock::now();
+    ReadJoints();
+    if (!arm_kinematic()) ArmLinkFrames(robot().arm, q_arm, &arm_frames);
+    time += h;
+    stats.dynamic_steps++;
+    stats.control_s += Seconds(t0, t1) + Seconds(t3, Clock::now());
+    stats.collision_s += Seconds(t1, t2);
+    stats.solver_s += Seconds(t2, t3);
+    stats.max_contacts = std::max(stats.max_contacts, report.total);
+  }
+
+  void StepKinematically() {
+    GS_DEMAND(!hand_dynamic, "StepKinematically after Step: the fingers are dynamic already");
+    const auto t0 = Clock::now();
+    const Vector7d va = ArmVelocity();
+    const HandJointVector vh = HandVelocity(q_hand);
+    const Vector7d qa_next = q_arm + h * va;
+    const HandJointVector qh_next = q_hand + h * vh;
+    ArmFrames af;
+    HandFrames hf;
+    ComputeFrames(qa_next, qh_next, &af, &hf);
+    const Eigen::Isometry3d X_WH0 = arm_frames.X_WL[kArmDof] * robot().X_FH;
+    const Eigen::Isometry3d X_WH1 = af.X_WL[kArmDof] * robot().X_FH;
+    for (int i = 0; i < kArmDof; ++i) {
+      PlaceBody(arm[i], af.X_WL[i + 1]);
+      SetBodyVelocity(arm[i], arm_frames.X_WL[i + 1], af.X_WL[i + 1], h);
+    }
+    for (int j = 0; j < kHandJoints; ++j) {
+      const int i = j / kFingerJoints, k = j % kFingerJoints;
+      const Eigen::Isometry3d from = X_WH0 * hand_frames.X_HL[i][k];
+      const Eigen::Isometry3d to = X_WH1 * hf.X_HL[i][k];
+      PlaceBody(fingers[j], to);
+      SetBodyVelocity(fingers[j], from, to, h);
+    }
+    arm_frames = af;
+    hand_frames = hf;
+    q_arm = qa_next;
+    q_hand = qh_next;
+    const auto t1 = Clock::now();
+    Collide(true);
+    time += h;
+    stats.kinematic_steps++;
+    stats.control_s += Seconds(t0, t1);
+    stats.collision_s += Seconds(t1, Clock::now());
+  }
+
+  static void ProxyCallback(void* data, dGeomID a, dGeomID b) {
+    auto* self = static_cast<Impl*>(data);
+    if (self->near_object) return;
+    const GeomInfo* ia = static_cast<const GeomInfo*>(dGeomGetData(a));
+    const GeomInfo* ib = static_cast<const GeomInfo*>(dGeomGetData(b));
+    const Role other = ia->role == Role::kProxy ? ib->role : ia->role;
+    if (other != Role::kArm && other != Role::kPalm && other != Role::kFinger) return;
+    dContactGeom cg;
+    if (dCollide(a, b, 1, &cg, sizeof(dContactGeom)) > 0) self->near_object = true;
+  }
+
+  bool HandNearObject() {
+    const auto t0 = Clock::now();
+    near_object = false;
+    dSpaceCollide2(reinterpret_cast<dGeomID>(proxy_space), reinterpret_cast<dGeomID>(space), this,
+                   &Impl::ProxyCallback);
+    stats.collision_s += Seconds(t0, Clock::now());
+    return near_object;
+  }
+
+  void ForEachDynamic(const std::function<void(dBodyID)>& fn) const {
+    for (const BodyPart& f : fingers) fn(f.body);
+    fn(object.body);
+  }
+
+  bool StateIsFinite() const {
+    bool ok = true;
+    auto check = [&](dBodyID b) {
+      const dReal* q = dBodyGetQuaternion(b);
+      ok = ok && Finite3(dBodyGetPosition(b)) && Finite3(dBodyGetLinearVel(b)) &&
+           Finite3(dBodyGetAngularVel(b)) && std::isfinite(q[0]) && Finite3(q + 1);
+    };
+    ForEachDynamic(check);
+    for (const BodyPart& a : arm) check(a.body);
+    return ok && q_arm.allFinite() && q_hand.allFinite();
+  }
+};
+
+SimulationData::SimulationData(const SimulationModel& model, const WorldOptions& options,
+                               const Vector7d& arm_q, const HandVector& hand_f)
+    : impl_(std::make_unique<Impl>()) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError("invalid world option: " + why);
+  EnsureOdeThread();
+  impl_->model = &model;
+  impl_->options = options;
+  impl_->h = options.time_step;
+  impl_->Build(arm_q, hand_f);
+}
+
+SimulationData::~SimulationData() = default;
+SimulationData::SimulationData(SimulationData&&) noexcept = default;
+SimulationData& SimulationData::operator=(SimulationData&&) noexcept = default;
+
+void SimulationData::SetArmCommand(ServoMode mode, const Vector7d& value,
+                                   const Vector7d& velocity_ff) {
+  impl_->arm_mode = mode;
+  impl_->arm_command = value;
+  impl_->arm_ff = velocity_ff;
+}
+
+void SimulationData::SetHandCommand(ServoMode mode, const HandVector& value) {
+  impl_->hand_mode = mode;
+  impl_->hand_command = value;
+}
+
+void SimulationData::Step() { impl_->Step(); }
+void SimulationData::StepKinematically() { impl_->StepKinematically(); }
+bool SimulationData::HandNearObject() { return impl_->HandNearObject(); }
+double SimulationData::time() const { return impl_->time; }
+Vector7d SimulationData::arm_positions() const { return impl_->q_arm; }
+
+HandVector SimulationData::hand_positions() const {
+  HandVector f;
+  for (int k = 0; k < kHandDof; ++k) {
+    f[k] = impl_->q_hand[impl_->robot().hand.actuated_joint_index(k)];
+  }
+  return f;
+}
+
+HandJointVector SimulationData::hand_joint_positions() const { return impl_->q_hand; }
+
+Eigen::Isometry3d SimulationData::object_pose() const {
+  return BodyPose(impl_->object.body) * Eigen::Translation3d(-impl_->object.p_LC);
+}
+
+Eigen::Vector3d SimulationData::object_velocity() const {
+  const dReal* v = dBodyGetLinearVel(impl_->object.body);
+  return {v[0], v[1], v[2]};
+}
+
+Eigen::Vector3d SimulationData::object_angular_velocity() const {
+  const dReal* v = dBodyGetAngularVel(impl_->object.body);
+  return {v[0], v[1], v[2]};
+}
+
+Eigen::Isometry3d SimulationData::wrist_pose() const {
+  const BodyPart& wrist = impl_->arm[kArmDof - 1];
+  return BodyPose(wrist.body) * Eigen::Translation3d(-wrist.p_LC) * impl_->robot().X_FH;
+}
+
+Eigen::Isometry3d SimulationData::arm_link_pose(int i) const {
+  GS_DEMAND(i >= 1 && i <= kArmDof, "arm link index out of range");
+  const BodyPart& b = impl_->arm[i - 1];
+  return BodyPose(b.body) * Eigen::Translation3d(-b.p_LC);
+}
+
+Eigen::Isometry3d SimulationData::hand_link_pose(int j) const {
+  GS_DEMAND(j >= 0 && j < kHandJoints, "hand link index out of range");
+  const BodyPart& b = impl_->fingers[j];
+  return BodyPose(b.body) * Eigen::Translation3d(-b.p_LC);
+}
+
+const ContactReport& SimulationData::contacts() const { return impl_->report; }
+int SimulationData::limit_violation() const { return impl_->violation; }
+double SimulationData::limit_violation_value() const { return impl_->violation_value; }
+
+bool SimulationData::IsFinite() const { return impl_->StateIsFinite(); }
+
+double SimulationData::HandObjectKineticEnergy() const {
+  double e = 0.0;
+  impl_->ForEachDynamic([&](dBodyID b) {
+    dMass m;
+    dBodyGetMass(b, &m);
+    const dReal* v = dBodyGetLinearVel(b);
+    const dReal* w = dBodyGetAngularVel(b);
+    const Eigen::Vector3d vw(v[0], v[1], v[2]), ww(w[0], w[1], w[2]);
+    const Eigen::Matrix3d R = BodyPose(b).linear();
+    Eigen::Matrix3d I;
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) I(r, c) = m.I[4 * r + c];
+    }
+    const Eigen::Vector3d wb = R.transpose() * ww;
+    e += 0.5 * m.mass * vw.squaredNorm() + 0.5 * wb.dot(I * wb);
+  });
+  return e;
+}
+
+double SimulationData::MaxDynamicSpeed() const {
+  double s = 0.0;
+  impl_->ForEachDynamic([&](dBodyID b) {
+    const dReal* v = dBodyGetLinearVel(b);
+    s = std::max(s, std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
+  });
+  return s;
+}
+
+double SimulationData::MaxDynamicAngularSpeed() const {
+  double s = 0.0;
+  impl_->ForEachDynamic([&](dBodyID b) {
+    const dReal* v = dBodyGetAngularVel(b);
+    s = std::max(s, std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
+  });
+  return s;
+}
+
+WorldCounts SimulationData::counts() const {
+  WorldCounts c;
+  c.bodies = kArmDof + kHandJoints + 1;
+  c.dynamic_bodies = kHandJoints + 1 + (impl_->arm_kinematic() ? 0 : kArmDof);
+  c.joints = kHandJoints + (impl_->arm_kinematic() ? 0 : kArmDof);
+  c.geoms = impl_->geom_count;
+  return c;
+}
+
+const StepStatistics& SimulationData::statistics() const { return impl_->stats; }
+
+void SimulationData::SetObjectVelocity(const Eigen::Vector3d& v, const Eigen::Vector3d& w) {
+  dBodySetLinearVel(impl_->object.body, v.x(), v.y(), v.z());
+  dBodySetAngularVel(impl_->object.body, w.x(), w.y(), w.z());
+}
+
+}  // namespace graspsynth

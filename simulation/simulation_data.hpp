@@ -1,0 +1,190 @@
+#pragma once
+
+/// @file
+/// The mutable ODE world of one simulation (STYLE.md's Data): the PA-10 links, the Gifu Hand
+/// III phalanges, the table and the object, with the robot's joint controller. One per thread;
+/// ODE types stay inside the implementation (pimpl).
+///
+/// Bodies and joints (built from SimulationModel's robot description and scene):
+/// - the arm links S1..W1 and a "wrist" body (W2_link with the hand-mount adapter and the
+///   palm, which are rigidly fixed to it) either follow the controller kinematically
+///   (ArmMode::kKinematic: kinematic bodies whose pose and velocity are set every step, so
+///   contacts see their motion) or are dynamic bodies on hinge joints driven by motors
+///   (ArmMode::kDynamic); the base link is static geometry;
+/// - the 20 finger links are dynamic bodies on hinge joints, driven by implicit motors
+///   (dParamVel, capped by dParamFMax = the joint's effort); each DIP's target is its PIP's
+///   measured angle (the four DIP couplings);
+/// - the object is one dynamic body (cylinder + bar handle); the table a static box.
+///
+/// The controller, per joint and step: position mode, v = clamp(v_ff + gain * (target - q),
+/// -v_max, v_max); velocity mode, v = clamp(target, -v_max, v_max). Arm targets are first
+/// clamped to the joint limits (the controller enforces the E2/W2 ranges beyond +-180 deg,
+/// which an ODE hinge stop cannot); a clamped command is reported (limit_violation()).
+///
+/// Collisions: hand-hand and arm-arm and arm-hand pairs are never tested. Finger, palm and
+/// arm geometry touching the object, the object touching the table and fingers touching the
+/// table make contacts (pyramid friction, soft contacts); the arm or palm touching the table
+/// is only reported (contacts()), since a trial ends there.
+
+#include <array>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "simulation/simulation_model.hpp"
+
+namespace graspsynth {
+
+/// An internal error that ODE reported (a failed assertion, e.g. on a non-finite state). The
+/// world that raised it must not be stepped again. RunTrial turns it into a failed trial.
+class OdeError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// How the arm moves.
+enum class ArmMode {
+  kKinematic,  ///< kinematic bodies follow the controller model (infinitely strong arm)
+  kDynamic,    ///< dynamic links on motor-driven hinges, in the same solve as the hand
+};
+
+/// How a joint target is read.
+enum class ServoMode {
+  kPosition,  ///< target angle, rad (with an optional velocity feed-forward)
+  kVelocity,  ///< target joint velocity, rad/s
+};
+
+/// Construction options of one world.
+struct WorldOptions {
+  double time_step = 0.002;  ///< s, one physics and control step
+  ArmMode arm_mode = ArmMode::kKinematic;
+  double theta = 0.0;  ///< object orientation, rad (SceneModel::ObjectPose)
+  /// Free-space test (HandNearObject): how far from the object hand and arm geometry count as
+  /// "near", m.
+  double proximity_margin = 0.02;
+
+  /// True when the values are finite and in range; otherwise false with the reason.
+  bool IsValid(std::string* why) const;
+};
+
+/// What touched what in the last collision pass.
+struct ContactReport {
+  int total = 0;               ///< contact joints created
+  int object_hand = 0;         ///< object with fingers or palm
+  int object_table = 0;        ///< object with the table
+  int object_arm = 0;          ///< object with arm links
+  int finger_table = 0;        ///< fingers with the table
+  int arm_table = 0;           ///< arm links, hand mount or palm with the table (not resolved)
+  std::string arm_table_link;  ///< first link found touching the table
+  /// Hand links touching the object: bit j for the child link of hand joint j
+  /// (HandJointVector order), bit 20 for the palm or the hand mount.
+  unsigned long hand_links_on_object = 0;
+  double max_object_penetration = 0.0;  ///< deepest contact involving the object, m
+};
+
+/// Size of the world (the figures a benchmark reports).
+struct WorldCounts {
+  int bodies = 0;  ///< dynamic and kinematic bodies
+  int joints = 0;  ///< hinge joints (contacts not counted)
+  int geoms = 0;   ///< collision primitives, the table included
+  int dynamic_bodies = 0;
+};
+
+/// Where the time of the steps went.
+struct StepStatistics {
+  long dynamic_steps = 0;    ///< Step() calls
+  long kinematic_steps = 0;  ///< StepKinematically() calls
+  double collision_s = 0.0;  ///< wall time in collision detection
+  double solver_s = 0.0;     ///< wall time in dWorldStep
+  double control_s = 0.0;    ///< wall time in the controller, kinematics and body placement
+  int max_contacts = 0;      ///< most contact joints in one step
+};
+
+/// One ODE world. Not copyable; movable. Use from one thread at a time (each thread that uses
+/// one must be a thread ODE knows about: the constructor registers the calling thread).
+class SimulationData {
+ public:
+  /// Builds the world with the arm at `arm_q` (rad), the hand at `hand_f` (rad, DIPs equal to
+  /// their PIPs), everything at rest, the object at rest on the table at options.theta, and
+  /// position-mode commands holding that configuration. The model must outlive the data.
+  /// Throws InputError when `options` is not valid.
+  SimulationData(const SimulationModel& model, const WorldOptions& options, const Vector7d& arm_q,
+                 const HandVector& hand_f);
+  ~SimulationData();
+  SimulationData(SimulationData&&) noexcept;
+  SimulationData& operator=(SimulationData&&) noexcept;
+  SimulationData(const SimulationData&) = delete;
+  SimulationData& operator=(const SimulationData&) = delete;
+
+  /// Arm command, held until changed: position mode reads `value` as target angles (rad) and
+  /// `velocity_ff` as their rate (rad/s); velocity mode reads `value` as joint velocities.
+  void SetArmCommand(ServoMode mode, const Vector7d& value,
+                     const Vector7d& velocity_ff = Vector7d::Zero());
+  /// Hand command for f0..f15, held until changed (position: rad; velocity: rad/s).
+  void SetHandCommand(ServoMode mode, const HandVector& value);
+
+  /// One step of the full physics: controller, collision (contacts), dWorldStep. Throws
+  /// OdeError, without stepping, when the state is not finite, and when ODE reports an
+  /// internal error during the step (the world must then be discarded).
+  void Step();
+  /// One step without dynamics, for free space: the controller model moves arm and fingers
+  /// exactly as their servos would without load, bodies are placed at their poses (velocities
+  /// set), collisions are detected and reported but not resolved; the object is not moved.
+  /// Use only while nothing touches (see HandNearObject and contacts()).
+  void StepKinematically();
+  /// True when some arm or hand geometry lies within options.proximity_margin of the object
+  /// (tested against inflated copies of the object's shapes).
+  bool HandNearObject();
+
+  /// Simulated time since construction, s.
+  double time() const;
+  /// Measured arm joint angles (rad; E2 and W2 unwrapped beyond +-pi).
+  Vector7d arm_positions() const;
+  /// Measured actuated hand joints f0..f15, rad.
+  HandVector hand_positions() const;
+  /// Measured values of all 20 hand joints (HandJointVector order), rad.
+  HandJointVector hand_joint_positions() const;
+  /// Pose X_WO of the object frame (the pan body's centre).
+  Eigen::Isometry3d object_pose() const;
+  /// Linear velocity of the object's centre of mass (m/s) and its angular velocity (rad/s),
+  /// world frame.
+  Eigen::Vector3d object_velocity() const;
+  Eigen::Vector3d object_angular_velocity() const;
+  /// Pose X_WH of the hand-mount frame H.
+  Eigen::Isometry3d wrist_pose() const;
+  /// Pose X_WL of arm link i in 1..7 (7: the flange frame F).
+  Eigen::Isometry3d arm_link_pose(int i) const;
+  /// Pose X_WL of hand link j (HandJointVector index 0..19: the child link of that joint).
+  Eigen::Isometry3d hand_link_pose(int j) const;
+  /// Contacts of the last collision pass.
+  const ContactReport& contacts() const;
+  /// Index (0..6) of an arm joint whose command was clamped to its limit in the last step,
+  /// or -1; the commanded value is in limit_violation_value().
+  int limit_violation() const;
+  double limit_violation_value() const;
+  /// False when a body's position, orientation or velocity is NaN or infinite.
+  bool IsFinite() const;
+  /// Kinetic energy of the fingers and the object (J): the part the solver can destabilize.
+  double HandObjectKineticEnergy() const;
+  /// Largest linear (m/s) and angular (rad/s) speed of a finger link or the object.
+  double MaxDynamicSpeed() const;
+  double MaxDynamicAngularSpeed() const;
+
+  WorldCounts counts() const;
+  const StepStatistics& statistics() const;
+
+  /// Sets the object's velocity (world frame). For tests and fault injection (e.g. a NaN to
+  /// check that instability is detected).
+  void SetObjectVelocity(const Eigen::Vector3d& v, const Eigen::Vector3d& w);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Makes the calling thread usable for ODE (dInitODE2 once per process,
+/// dAllocateODEDataForThread once per thread; released when the thread ends). Called by
+/// SimulationData's constructor; worker pools may call it up front.
+void EnsureOdeThread();
+
+}  // namespace graspsynth

@@ -1,0 +1,89 @@
+#include "simulation/simulation_model.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <utility>
+
+#include "common/errors.hpp"
+
+namespace graspsynth {
+namespace {
+
+bool Check(bool ok, const std::string& what, double value, std::string* why) {
+  if (!ok && why) {
+    std::ostringstream s;
+    s << what << " = " << value;
+    *why = s.str();
+  }
+  return ok;
+}
+
+bool Positive(double x) { return std::isfinite(x) && x > 0.0; }
+bool NonNegative(double x) { return std::isfinite(x) && x >= 0.0; }
+
+// Inertia of a solid cylinder (axis z) and a solid box about their centres.
+Eigen::Matrix3d CylinderInertia(double m, double r, double h) {
+  const double ixx = m * (3.0 * r * r + h * h) / 12.0;
+  return Eigen::Vector3d(ixx, ixx, 0.5 * m * r * r).asDiagonal();
+}
+
+Eigen::Matrix3d BoxInertia(double m, const Eigen::Vector3d& s) {
+  return Eigen::Vector3d(m * (s.y() * s.y() + s.z() * s.z()) / 12.0,
+                         m * (s.x() * s.x() + s.z() * s.z()) / 12.0,
+                         m * (s.x() * s.x() + s.y() * s.y()) / 12.0)
+      .asDiagonal();
+}
+
+// Parallel-axis term of a point mass m at offset d.
+Eigen::Matrix3d Shift(double m, const Eigen::Vector3d& d) {
+  return m * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
+}
+
+ObjectInertia ComputeObjectInertia(const ObjectModel& o) {
+  const double len = o.handle_end_radius - o.handle_start_radius;
+  const Eigen::Vector3d p_body = Eigen::Vector3d::Zero();
+  const Eigen::Vector3d p_handle(0.5 * (o.handle_start_radius + o.handle_end_radius), 0.0,
+                                 o.handle_axis_height - o.rest_height());
+  ObjectInertia out;
+  out.mass = o.body_mass + o.handle_mass;
+  out.p_OC = (o.body_mass * p_body + o.handle_mass * p_handle) / out.mass;
+  out.I_C = CylinderInertia(o.body_mass, o.body_radius, o.body_height) +
+            Shift(o.body_mass, p_body - out.p_OC) +
+            BoxInertia(o.handle_mass, Eigen::Vector3d(len, o.handle_width, o.handle_thickness)) +
+            Shift(o.handle_mass, p_handle - out.p_OC);
+  return out;
+}
+
+}  // namespace
+
+bool SimulationOptions::IsValid(std::string* why) const {
+  return Check(Positive(erp) && erp <= 1.0, "erp", erp, why) &&
+         Check(NonNegative(cfm) && cfm < 1.0, "cfm", cfm, why) &&
+         Check(Positive(contact_kp), "contact_kp", contact_kp, why) &&
+         Check(NonNegative(contact_kd), "contact_kd", contact_kd, why) &&
+         Check(NonNegative(surface_layer) && surface_layer < 0.01, "surface_layer", surface_layer,
+               why) &&
+         Check(Positive(max_correcting_vel), "max_correcting_vel", max_correcting_vel, why) &&
+         Check(max_contacts_per_pair >= 1 && max_contacts_per_pair <= 16, "max_contacts_per_pair",
+               max_contacts_per_pair, why) &&
+         Check(NonNegative(gravity), "gravity", gravity, why) &&
+         Check(Positive(finger_servo_gain), "finger_servo_gain", finger_servo_gain, why) &&
+         Check(Positive(arm_servo_gain), "arm_servo_gain", arm_servo_gain, why) &&
+         Check(NonNegative(hand_table_friction), "hand_table_friction", hand_table_friction, why) &&
+         Check(NonNegative(arm_object_friction), "arm_object_friction", arm_object_friction, why) &&
+         Check(Positive(hand_effort_scale), "hand_effort_scale", hand_effort_scale, why);
+}
+
+SimulationModel::SimulationModel(RobotModel robot, SceneModel scene, SimulationOptions options)
+    : robot_(std::move(robot)), scene_(std::move(scene)), options_(options) {
+  std::string why;
+  if (!options_.IsValid(&why)) throw InputError("invalid simulation option: " + why);
+  object_inertia_ = ComputeObjectInertia(scene_.object);
+}
+
+SimulationModel LoadDefaultSimulationModel(const SimulationOptions& options) {
+  return SimulationModel(LoadRobotModel(DefaultRobotDescriptionPath()),
+                         LoadSceneModel(DefaultSceneModelPath()), options);
+}
+
+}  // namespace graspsynth

@@ -1,0 +1,74 @@
+#pragma once
+
+/// @file
+/// The immutable description of a simulated grasp scene (STYLE.md's Model/Data split): the
+/// robot and the scene as loaded from models/, and the physics parameters of the ODE world.
+/// Build it once and share it between threads; every thread makes its own SimulationData
+/// (simulation/simulation_data.hpp) from it.
+///
+/// The physics model (reference/ode.md, measured again in this model; models/README.md,
+/// "Physics"): ODE's direct solver dWorldStep, pyramid friction (dContactApprox1) with soft
+/// contacts given as a spring-damper (kp, kd), implicit hinge motors for every joint.
+
+#include <string>
+
+#include "kinematics/robot_description.hpp"
+#include "kinematics/scene_model.hpp"
+
+namespace graspsynth {
+
+/// Physics parameters of the world. Defaults are the measured recipe of reference/ode.md.
+struct SimulationOptions {
+  double erp = 0.2;                  ///< world error reduction parameter (joints), 1
+  double cfm = 1e-9;                 ///< world constraint force mixing (joints)
+  double contact_kp = 2e5;           ///< contact stiffness, N/m (soft ERP/CFM from kp, kd, h)
+  double contact_kd = 500.0;         ///< contact damping, N s/m
+  double surface_layer = 0.0005;     ///< allowed contact penetration, m
+  double max_correcting_vel = 0.5;   ///< cap on contact correction velocity, m/s
+  int max_contacts_per_pair = 4;     ///< contact points per geom pair, 1..16
+  double gravity = 9.81;             ///< m/s^2, along -z of the world
+  double finger_servo_gain = 20.0;   ///< position mode: joint velocity = gain * error, 1/s
+  double arm_servo_gain = 20.0;      ///< position mode of the arm joints, 1/s
+  double hand_table_friction = 0.8;  ///< Coulomb coefficient of finger-table contacts
+  double arm_object_friction = 0.5;  ///< Coulomb coefficient of arm-object contacts
+  /// Fingers (MCP/PIP/DIP flexion and ab/adduction) and thumb joints use the torque caps of
+  /// the robot description (URDF efforts: 0.5 / 0.2 / 2.0 N m); arm joints those of
+  /// reference/robot.md 1.4 (200, 200, 80, 80, 15, 15, 10 N m), also from the description.
+  /// This factor scales every hand cap (1 = as described), for experiments.
+  double hand_effort_scale = 1.0;
+
+  /// True when every value is finite and in its range; otherwise false with the reason.
+  bool IsValid(std::string* why) const;
+};
+
+/// Mass properties of the object, derived from the scene (uniform density per part).
+struct ObjectInertia {
+  double mass = 0.0;                               ///< kg
+  Eigen::Vector3d p_OC = Eigen::Vector3d::Zero();  ///< centre of mass in the object frame O, m
+  Eigen::Matrix3d I_C = Eigen::Matrix3d::Zero();   ///< about the centre of mass, O axes, kg m^2
+};
+
+/// Robot + scene + physics parameters. Immutable once built.
+class SimulationModel {
+ public:
+  /// Throws InputError when `options` is not valid (with IsValid's reason).
+  SimulationModel(RobotModel robot, SceneModel scene, SimulationOptions options = {});
+
+  const RobotModel& robot() const { return robot_; }
+  const SceneModel& scene() const { return scene_; }
+  const SimulationOptions& options() const { return options_; }
+  /// The pan's mass properties: a solid cylinder body plus a solid bar handle.
+  const ObjectInertia& object_inertia() const { return object_inertia_; }
+
+ private:
+  RobotModel robot_;
+  SceneModel scene_;
+  SimulationOptions options_;
+  ObjectInertia object_inertia_;
+};
+
+/// Loads the shipped robot description and scene (DefaultRobotDescriptionPath,
+/// DefaultSceneModelPath) into a model with `options`.
+SimulationModel LoadDefaultSimulationModel(const SimulationOptions& options = {});
+
+}  // namespace graspsynth

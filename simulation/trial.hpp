@@ -1,0 +1,118 @@
+#pragma once
+
+/// @file
+/// One grasp-and-lift trial: a joint trajectory (reach -> grasp -> lift) played through the
+/// robot's controller in the ODE world, then held, and judged as DESIGN.md defines success:
+/// after the lift and a hold of at least 1 s, the object's centre is at least 5 cm above its
+/// resting height and the object touches only the hand. Expected failures are results with a
+/// reason, never exceptions; a simulation that became unstable is a failure, never a success.
+///
+/// Two fidelities that must agree on every outcome (benchmarks/README.md, "Simulation"):
+/// - kFull: the arm is a chain of dynamic, motor-driven links in the same solve as the hand
+///   and the object, every step simulated at 1 ms, no early stop;
+/// - kFast: the arm follows the controller kinematically (it is 35 kg against a 0.4 kg
+///   object and 200 N m motors: it does not yield), steps of 4 ms, free space is not
+///   simulated in contact detail (the controller model moves arm and fingers and collisions
+///   are checked until some robot geometry comes within 2 cm of the object or touches
+///   anything), and the trial stops as soon as its outcome is decided.
+
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "motion/joint_trajectory.hpp"
+#include "simulation/simulation_data.hpp"
+#include "simulation/simulation_model.hpp"
+
+namespace graspsynth {
+
+/// How a trial ended.
+enum class TrialOutcome {
+  kSuccess,       ///< lifted >= lift_threshold, held, touching only the hand
+  kNotLifted,     ///< the object never left the table (no grasp)
+  kDropped,       ///< the object had been lifted, then slipped or dropped
+  kKnockedOver,   ///< the object was knocked over or pushed away without being lifted
+  kTouchesOther,  ///< lifted, but resting on something other than the hand (the arm)
+  kCollision,     ///< the arm, the hand mount or the palm hit the table
+  kJointLimit,    ///< an arm command outside the joint limits (the controller stops there)
+  kUnstable,      ///< numerical instability: non-finite state or runaway energy
+};
+
+/// Lowercase name of an outcome, e.g. "not_lifted" (report files use it).
+std::string_view ToString(TrialOutcome outcome);
+
+/// Simulation detail of a trial (see the file comment).
+enum class Fidelity { kFast, kFull };
+
+/// Options of one trial.
+struct TrialOptions {
+  Fidelity fidelity = Fidelity::kFast;
+  /// Physics step, s; 0 picks the fidelity's default (kFast 0.004, kFull 0.001).
+  double time_step = 0.0;
+  /// Time the last command is held after the trajectory ends, s (DESIGN.md: >= 1 s).
+  double hold = 1.0;
+  /// Success needs the object centre this far above its resting height at the end, m.
+  double lift_threshold = 0.05;
+  /// Below this lift the object counts as not lifted (for the failure reason), m.
+  double lifted_min = 0.01;
+  /// Object tilt (rad) or horizontal shift (m) beyond which an object that was not lifted
+  /// counts as knocked over or pushed away.
+  double knocked_tilt = 20.0 * M_PI / 180.0;
+  double knocked_shift = 0.03;
+  /// Instability: a finger or the object faster than this (m/s, rad/s) or with more kinetic
+  /// energy (J; the hand moves at well under 1 m/s) is a numerical failure.
+  double max_speed = 5.0;
+  double max_angular_speed = 200.0;
+  double max_kinetic_energy = 2.0;
+  /// kFast only: free-space test margin, m (WorldOptions::proximity_margin).
+  double proximity_margin = 0.02;
+  /// Record the state every this many seconds (0: no record).
+  double record_interval = 0.0;
+
+  /// True when every value is finite and in range; otherwise false with the reason.
+  bool IsValid(std::string* why) const;
+  /// The physics step this trial uses, s.
+  double step() const;
+};
+
+/// One recorded state of a trial.
+struct TrialState {
+  double t = 0.0;                                          ///< s
+  Vector7d arm = Vector7d::Zero();                         ///< measured arm joints, rad
+  HandVector hand = HandVector::Zero();                    ///< measured f0..f15, rad
+  Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();  ///< object pose
+  Eigen::Isometry3d X_WH = Eigen::Isometry3d::Identity();  ///< wrist (hand mount) pose
+};
+
+/// What a trial found.
+struct TrialResult {
+  TrialOutcome outcome = TrialOutcome::kUnstable;
+  std::string reason;            ///< one sentence, with the figures that decided it
+  double lift = 0.0;             ///< object centre above its rest height at the end, m
+  double max_lift = 0.0;         ///< highest it got, m
+  double max_penetration = 0.0;  ///< deepest contact involving the object, m
+  double simulated_time = 0.0;   ///< s
+  double planned_time = 0.0;     ///< trajectory + hold, s (more than simulated if stopped)
+  double wall_time = 0.0;        ///< s
+  double cpu_time = 0.0;         ///< s of the calling thread's CPU time
+  Eigen::Isometry3d final_object_pose = Eigen::Isometry3d::Identity();
+  StepStatistics statistics;       ///< steps and where their time went
+  WorldCounts counts;              ///< bodies, joints, geoms of the world
+  std::vector<TrialState> states;  ///< when recording
+
+  bool success() const { return outcome == TrialOutcome::kSuccess; }
+  /// One line: outcome, reason, lift, steps, speed (simulated time per CPU second).
+  std::string BriefReport() const;
+};
+
+/// Called after every step with the world (for tests and instrumentation).
+using StepObserver = std::function<void(SimulationData&)>;
+
+/// Plays `trajectory` (a valid one: ParseJointTrajectory + CheckJointLimits) for object
+/// orientation trajectory.theta_deg from its first sample, holds its last command for
+/// options.hold and judges the outcome. Throws InputError only for invalid options.
+TrialResult RunTrial(const SimulationModel& model, const JointTrajectory& trajectory,
+                     const TrialOptions& options = {}, const StepObserver& observer = {});
+
+}  // namespace graspsynth

@@ -1,0 +1,176 @@
+// Tests of `graspsynth simulate` and `graspsynth scripted-grasp` through the built binary.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "tests/utils/run_command.hpp"
+
+namespace graspsynth {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using ::testing::HasSubstr;
+using testing::ReadFileText;
+using testing::RunGraspsynth;
+
+std::string Example() { return std::string(GRASPSYNTH_SOURCE_DIR) + "/examples/grasp_60deg.json"; }
+
+// A scratch folder per test.
+class SimulateCommand : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() /
+           ("graspsynth_simulate_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string Path(const std::string& name) const { return (dir_ / name).string(); }
+
+  // The example with one change made by `edit`, written to `name`.
+  std::string EditedExample(const std::string& name, const std::function<void(json&)>& edit) {
+    json doc = json::parse(ReadFileText(Example()));
+    edit(doc);
+    std::ofstream(Path(name)) << doc.dump();
+    return Path(name);
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(SimulateCommand, SimulatesTheExampleAndWritesReportAndRecord) {
+  const auto r = RunGraspsynth("simulate " + Example() + " --perturb 3 --threads 2 --out " +
+                               Path("report.json") + " --record " + Path("states.csv"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json report = json::parse(ReadFileText(Path("report.json")));
+  EXPECT_EQ(report["format"], "graspsynth-simulation/1");
+  EXPECT_EQ(report["theta_deg"], 60.0);
+  EXPECT_EQ(report["nominal"]["success"], true);
+  EXPECT_EQ(report["nominal"]["outcome"], "success");
+  EXPECT_GE(report["nominal"]["lift_m"].get<double>(), 0.05);
+  EXPECT_FALSE(report["nominal"]["reason"].get<std::string>().empty());
+  const json& rob = report["robustness"];
+  EXPECT_EQ(rob["trials"], 3);
+  const int k = rob["successes"];
+  EXPECT_DOUBLE_EQ(rob["score"].get<double>(), k / 3.0 + 0.0 * k);
+  ASSERT_EQ(rob["ci95"].size(), 2u);
+  EXPECT_LE(rob["ci95"][0].get<double>(), rob["score"].get<double>());
+  EXPECT_GE(rob["ci95"][1].get<double>(), rob["score"].get<double>() - 1e-9);
+  ASSERT_EQ(report["trials"].size(), 3u);
+  for (int i = 0; i < 3; ++i) {
+    const json& t = report["trials"][i];
+    EXPECT_EQ(t["index"], i);
+    EXPECT_GE(t["time_scale"].get<double>(), 0.7);
+    EXPECT_LE(t["time_scale"].get<double>(), 1.3);
+    EXPECT_TRUE(t["success"].is_boolean());
+    EXPECT_TRUE(t["reason"].is_string());
+  }
+  EXPECT_THAT(r.err, HasSubstr("nominal trial: success"));
+  EXPECT_THAT(r.err, HasSubstr("3/3 trials"));
+  // the record: a header and one row per 10 ms of the 6.3 s trial.
+  std::istringstream csv(ReadFileText(Path("states.csv")));
+  std::string header, line;
+  std::getline(csv, header);
+  EXPECT_THAT(header, HasSubstr("t,q1,q2"));
+  EXPECT_THAT(header, HasSubstr(",f15,object_x"));
+  int rows = 0;
+  while (std::getline(csv, line)) ++rows;
+  EXPECT_NEAR(rows, 631, 2);
+}
+
+TEST_F(SimulateCommand, TheSameSeedGivesTheSameBytesWhateverTheThreads) {
+  for (const char* threads : {"1", "2"}) {
+    const auto r = RunGraspsynth("simulate " + Example() + " --perturb 4 --seed 9 --threads " +
+                                 threads + " --out " + Path(std::string(threads) + ".json"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  EXPECT_EQ(ReadFileText(Path("1.json")), ReadFileText(Path("2.json")));
+}
+
+TEST_F(SimulateCommand, AFailedGraspIsReportedWithItsReason) {
+  const std::string open = EditedExample("open.json", [](json& doc) {
+    for (json& s : doc["samples"]) s["hand"] = doc["samples"][0]["hand"];
+  });
+  const auto r = RunGraspsynth("simulate " + open + " --out " + Path("report.json"));
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  const json report = json::parse(ReadFileText(Path("report.json")));
+  EXPECT_EQ(report["nominal"]["success"], false);
+  EXPECT_EQ(report["nominal"]["outcome"], "not_lifted");
+  EXPECT_THAT(report["nominal"]["reason"].get<std::string>(), HasSubstr("not lifted"));
+  EXPECT_EQ(report["robustness"]["trials"], 0);
+  EXPECT_TRUE(report["trials"].empty());
+}
+
+TEST_F(SimulateCommand, RejectsMalformedTrajectoriesNamingFileSampleAndField) {
+  struct Case {
+    std::string name;
+    std::function<void(json&)> edit;
+    std::vector<std::string> expected;
+  };
+  const std::vector<Case> cases = {
+      {"format.json",
+       [](json& d) { d["format"] = "graspsynth-demo/1"; },
+       {"format.json", "format = \"graspsynth-demo/1\""}},
+      {"joints.json",
+       [](json& d) { d["samples"][5]["arm"].erase(2); },
+       {"joints.json", "samples[5].arm has 6 values, expected 7"}},
+      {"time.json",
+       [](json& d) { d["samples"][7]["t"] = 0.1; },
+       {"time.json", "samples[7].t = 0.1 does not increase"}},
+      {"limits.json",
+       [](json& d) { d["samples"][3]["hand"][2] = 3.0; },
+       {"limits.json", "samples[3].hand[2] = 3 (thumb_j3) is outside its limits"}},
+  };
+  for (const Case& c : cases) {
+    const auto r = RunGraspsynth("simulate " + EditedExample(c.name, c.edit) + " --out " +
+                                 Path("report.json"));
+    EXPECT_EQ(r.exit_code, 2) << c.name;
+    for (const std::string& part : c.expected) EXPECT_THAT(r.err, HasSubstr(part)) << c.name;
+    EXPECT_FALSE(fs::exists(Path("report.json"))) << c.name;
+  }
+  // a NaN as Python's json module writes it, in place of the first arm value of sample 10.
+  std::string text = ReadFileText(Example());
+  const std::string key = "\"arm\":[";
+  const size_t first = text.find(key, text.find("\"t\":0.2,")) + key.size();
+  const size_t comma = text.find(',', first);
+  ASSERT_NE(comma, std::string::npos);
+  text = text.substr(0, first) + "NaN" + text.substr(comma);
+  std::ofstream(Path("nan.json")) << text;
+  const auto r = RunGraspsynth("simulate " + Path("nan.json") + " --out " + Path("report.json"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("nan.json: samples[10].arm[0] = NaN is not a finite number"));
+}
+
+TEST_F(SimulateCommand, HelpNamesEveryOption) {
+  const auto r = RunGraspsynth("simulate --help");
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* option : {"--perturb", "--seed", "--threads", "--record", "--out", "--fidelity",
+                             "--position-noise", "graspsynth-simulation/1"}) {
+    EXPECT_THAT(r.out, HasSubstr(option));
+  }
+}
+
+TEST_F(SimulateCommand, ScriptedGraspWritesTheExample) {
+  const auto r = RunGraspsynth("scripted-grasp --theta 60 --out " + Path("g.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json made = json::parse(ReadFileText(Path("g.json")));
+  const json shipped = json::parse(ReadFileText(Example()));
+  ASSERT_EQ(made["samples"].size(), shipped["samples"].size());
+  for (size_t i = 0; i < made["samples"].size(); i += 17) {
+    for (int j = 0; j < 7; ++j) {
+      EXPECT_NEAR(made["samples"][i]["arm"][j].get<double>(),
+                  shipped["samples"][i]["arm"][j].get<double>(), 1e-9);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace graspsynth

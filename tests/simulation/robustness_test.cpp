@@ -1,0 +1,113 @@
+#include "simulation/robustness.hpp"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "common/errors.hpp"
+#include "tests/utils/eigen_matchers.hpp"
+#include "tests/utils/simulation_fixtures.hpp"
+
+namespace graspsynth {
+namespace {
+
+using testing::ExampleTrajectory;
+using testing::ShippedSimulationModel;
+
+TEST(WilsonInterval, MatchesKnownValues) {
+  const Interval all = WilsonInterval(10, 10);
+  EXPECT_NEAR(all.lo, 0.7225, 1e-4);
+  EXPECT_DOUBLE_EQ(all.hi, 1.0);
+  const Interval none = WilsonInterval(0, 10);
+  EXPECT_DOUBLE_EQ(none.lo, 0.0);
+  EXPECT_NEAR(none.hi, 0.2775, 1e-4);
+  const Interval half = WilsonInterval(50, 100);
+  EXPECT_NEAR(half.lo, 0.4038, 1e-4);
+  EXPECT_NEAR(half.hi, 0.5962, 1e-4);
+  const Interval empty = WilsonInterval(0, 0);
+  EXPECT_EQ(empty.lo, 0.0);
+  EXPECT_EQ(empty.hi, 1.0);
+}
+
+TEST(RobustnessOptions, RejectsBadValues) {
+  RobustnessOptions o;
+  o.trials = 0;
+  std::string why;
+  EXPECT_FALSE(o.IsValid(&why));
+  GS_EXPECT_THROW_WITH(EvaluateRobustness(ShippedSimulationModel(), ExampleTrajectory(), o),
+                       InputError, "trials");
+}
+
+// ODE is not instrumented for ThreadSanitizer, and two worlds stepped on two threads crash
+// Debian's ODE without per-world threading implementations: the proof of the parallel scheme
+// is that many trials run concurrently give, bit for bit, what they give one after another.
+TEST(EvaluateRobustness, TheThreadCountChangesNoBitOfAnyTrial) {
+  RobustnessOptions o;
+  o.trials = testing::Scaled(12, 4);
+  o.seed = 42;
+  o.threads = 1;
+  std::vector<int> reported;
+  const RobustnessResult one = EvaluateRobustness(ShippedSimulationModel(), ExampleTrajectory(), o,
+                                                  [&](int done, int total) {
+                                                    EXPECT_EQ(total, o.trials);
+                                                    reported.push_back(done);
+                                                  });
+  ASSERT_EQ(static_cast<int>(reported.size()), o.trials);
+  EXPECT_EQ(reported.back(), o.trials);
+  EXPECT_EQ(one.threads, 1);
+  for (int threads : {2, 3}) {
+    o.threads = threads;
+    const RobustnessResult many =
+        EvaluateRobustness(ShippedSimulationModel(), ExampleTrajectory(), o);
+    EXPECT_EQ(many.threads, threads);
+    ASSERT_EQ(many.trials.size(), one.trials.size());
+    for (size_t i = 0; i < one.trials.size(); ++i) {
+      const RobustnessTrial& a = one.trials[i];
+      const RobustnessTrial& b = many.trials[i];
+      EXPECT_EQ(a.index, b.index);
+      EXPECT_EQ(a.time_scale, b.time_scale);
+      EXPECT_EQ(a.outcome, b.outcome) << i;
+      EXPECT_EQ(a.reason, b.reason) << i;
+      EXPECT_EQ(a.lift, b.lift) << i;
+      EXPECT_EQ(a.dynamic_steps, b.dynamic_steps) << i;
+      // final object poses exactly equal
+      EXPECT_TRUE(a.final_object_pose.matrix() == b.final_object_pose.matrix())
+          << i << "\n"
+          << a.final_object_pose.matrix() << "\n"
+          << b.final_object_pose.matrix();
+    }
+    EXPECT_EQ(many.successes, one.successes);
+    EXPECT_EQ(many.score, one.score);
+  }
+  // the example is robust (the benchmark's 100-trial figure is in benchmarks/README.md).
+  EXPECT_GE(one.score, 0.75);
+  EXPECT_GT(one.ci95.hi, one.score - 1e-12);
+  EXPECT_LT(one.ci95.lo, one.score + 1e-12);
+}
+
+// A small version of benchmarks/simulation_benchmark.cpp's agreement study: the fast path
+// (kinematic arm, kinematic free space, 4 ms, early stop) and the full-detail simulation
+// (dynamic arm, 1 ms, everything simulated) agree on every outcome. Twice the default noise,
+// so that some replays fail.
+TEST(EvaluateRobustness, FastAndFullDetailAgreeOnEveryOutcome) {
+  RobustnessOptions o;
+  o.trials = testing::Scaled(6, 2);
+  o.seed = 7;
+  o.threads = 2;
+  o.perturbation.position_sigma *= 2.0;
+  o.perturbation.orientation_sigma *= 2.0;
+  o.perturbation.finger_sigma *= 2.0;
+  const RobustnessResult fast =
+      EvaluateRobustness(ShippedSimulationModel(), ExampleTrajectory(), o);
+  o.trial.fidelity = Fidelity::kFull;
+  const RobustnessResult full =
+      EvaluateRobustness(ShippedSimulationModel(), ExampleTrajectory(), o);
+  for (int i = 0; i < o.trials; ++i) {
+    EXPECT_EQ(fast.trials[i].outcome, full.trials[i].outcome)
+        << "trial " << i << ": fast " << fast.trials[i].reason << " | full "
+        << full.trials[i].reason;
+  }
+}
+
+}  // namespace
+}  // namespace graspsynth

@@ -1,0 +1,174 @@
+#include "simulation/simulation_data.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "common/errors.hpp"
+#include "tests/utils/eigen_matchers.hpp"
+#include "tests/utils/robot_fixtures.hpp"
+
+namespace graspsynth {
+namespace {
+
+using testing::Deg;
+
+const SimulationModel& Model() {
+  static const SimulationModel model = LoadDefaultSimulationModel();
+  return model;
+}
+
+const SimulationModel& ZeroGravityModel() {
+  static const SimulationModel model = [] {
+    SimulationOptions o;
+    o.gravity = 0.0;
+    return LoadDefaultSimulationModel(o);
+  }();
+  return model;
+}
+
+// An arm pose with the hand high above the table, away from the object.
+Vector7d HighArm() {
+  Vector7d q;
+  q << Deg(100), Deg(20), Deg(10), Deg(60), Deg(200), Deg(-40), Deg(-190);
+  return q;
+}
+
+HandVector ClosedHand() {
+  HandVector f = HandVector::Zero();
+  f.head<4>() << Deg(90), Deg(5), Deg(30), Deg(10);
+  for (int finger = 0; finger < 4; ++finger) {
+    f[4 + 3 * finger + 1] = Deg(55);
+    f[4 + 3 * finger + 2] = Deg(25);
+  }
+  return f;
+}
+
+TEST(WorldOptions, RejectsBadValues) {
+  WorldOptions o;
+  o.time_step = 0.0;
+  std::string why;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_NE(why.find("time_step"), std::string::npos);
+  GS_EXPECT_THROW_WITH(SimulationData(Model(), o, Vector7d::Zero(), HandVector::Zero()), InputError,
+                       "time_step");
+}
+
+// ODE's hinge angle has a sign that depends on the order of the attached bodies: the joint
+// angles the world measures must be the model's, and the bodies must sit where the
+// kinematics put them, including E2 and W2 beyond +-180 deg.
+TEST(SimulationData, MeasuredJointsAndBodiesMatchTheKinematics) {
+  const RobotModel& robot = ZeroGravityModel().robot();
+  WorldOptions options;
+  options.arm_mode = ArmMode::kDynamic;
+  options.time_step = 0.001;
+  const Vector7d q = HighArm();
+  const HandVector f = ClosedHand();
+  SimulationData data(ZeroGravityModel(), options, q, f);
+  for (int i = 0; i < 20; ++i) data.Step();
+  EXPECT_TRUE(testing::MatricesNear(data.arm_positions(), q, 1e-6));
+  EXPECT_TRUE(testing::MatricesNear(data.hand_positions(), f, 1e-6));
+  ArmFrames arm_frames;
+  ArmLinkFrames(robot.arm, q, &arm_frames);
+  for (int i = 1; i <= kArmDof; ++i) {
+    EXPECT_TRUE(testing::PosesNear(data.arm_link_pose(i), arm_frames.X_WL[i], 1e-5)) << i;
+  }
+  const Eigen::Isometry3d X_WH = arm_frames.X_WL[kArmDof] * robot.X_FH;
+  EXPECT_TRUE(testing::PosesNear(data.wrist_pose(), X_WH, 1e-5));
+  HandFrames hand_frames;
+  HandLinkFrames(robot.hand, f, &hand_frames);
+  for (int j = 0; j < kHandJoints; ++j) {
+    EXPECT_TRUE(testing::PosesNear(data.hand_link_pose(j),
+                                   X_WH * hand_frames.X_HL[j / kFingerJoints][j % kFingerJoints],
+                                   1e-5))
+        << j;
+  }
+  // a positive velocity command turns a joint the positive way.
+  HandVector v = HandVector::Zero();
+  v[5] = 1.0;  // index MCP flexion
+  data.SetHandCommand(ServoMode::kVelocity, v);
+  for (int i = 0; i < 100; ++i) data.Step();
+  EXPECT_NEAR(data.hand_positions()[5], f[5] + 0.1, 2e-3);
+}
+
+TEST(SimulationData, ObjectLeftAloneStaysPutForTenSeconds) {
+  for (double h : {0.001, 0.004}) {
+    WorldOptions options;
+    options.time_step = h;
+    options.theta = Deg(60);
+    SimulationData data(Model(), options, HighArm(), HandVector::Zero());
+    const Eigen::Isometry3d X_WO0 = Model().scene().ObjectPose(options.theta);
+    EXPECT_TRUE(testing::PosesNear(data.object_pose(), X_WO0, 1e-12));
+    double worst = 0.0;
+    const int steps = static_cast<int>(std::lround(10.0 / h));
+    for (int i = 0; i < steps; ++i) {
+      data.Step();
+      worst = std::max(worst, (data.object_pose().translation() - X_WO0.translation()).norm());
+    }
+    EXPECT_LT(worst, 1e-3) << "h = " << h;
+    const double tilt =
+        Eigen::AngleAxisd(data.object_pose().linear() * X_WO0.linear().transpose()).angle();
+    EXPECT_LT(tilt, Deg(0.1)) << "h = " << h;
+    EXPECT_GT(data.contacts().object_table, 0);
+    EXPECT_EQ(data.contacts().object_hand, 0);
+    EXPECT_TRUE(data.IsFinite());
+  }
+}
+
+TEST(SimulationData, HandClosingInFreeAirReachesItsTargets) {
+  WorldOptions options;
+  options.time_step = 0.002;
+  SimulationData data(Model(), options, HighArm(), HandVector::Zero());
+  const HandVector target = ClosedHand();
+  data.SetHandCommand(ServoMode::kPosition, target);
+  for (int i = 0; i < 750; ++i) data.Step();
+  EXPECT_TRUE(testing::MatricesNear(data.hand_positions(), target, Deg(0.5)));
+  // every DIP follows its PIP.
+  const HandJointVector q = data.hand_joint_positions();
+  for (int finger = 1; finger < kFingers; ++finger) {
+    EXPECT_NEAR(q[HandJointIndex(finger, 3)], q[HandJointIndex(finger, 2)], Deg(0.5));
+  }
+  EXPECT_EQ(data.contacts().object_hand + data.contacts().finger_table, 0);
+}
+
+TEST(SimulationData, KinematicStepsFollowTheServosAsTheDynamicsDo) {
+  WorldOptions options;
+  options.time_step = 0.002;
+  SimulationData dynamic(Model(), options, HighArm(), HandVector::Zero());
+  SimulationData kinematic(Model(), options, HighArm(), HandVector::Zero());
+  Vector7d q_target = HighArm();
+  q_target[0] += 0.2;
+  q_target[3] -= 0.1;
+  for (SimulationData* d : {&dynamic, &kinematic}) {
+    d->SetHandCommand(ServoMode::kPosition, ClosedHand());
+    d->SetArmCommand(ServoMode::kPosition, q_target);
+  }
+  for (int i = 0; i < 250; ++i) {
+    dynamic.Step();
+    kinematic.StepKinematically();
+  }
+  EXPECT_TRUE(testing::MatricesNear(kinematic.arm_positions(), dynamic.arm_positions(), 1e-12));
+  EXPECT_TRUE(testing::MatricesNear(kinematic.hand_positions(), dynamic.hand_positions(), Deg(1)));
+  EXPECT_FALSE(kinematic.HandNearObject());
+  // the object was not stepped at all in the kinematic world.
+  EXPECT_TRUE(testing::PosesNear(kinematic.object_pose(), Model().scene().ObjectPose(0.0), 1e-15));
+}
+
+TEST(SimulationData, NonFiniteStatesAreErrorsNotCrashes) {
+  WorldOptions options;
+  SimulationData data(Model(), options, HighArm(), HandVector::Zero());
+  data.Step();
+  EXPECT_TRUE(data.IsFinite());
+  EXPECT_LT(data.MaxDynamicSpeed(), 0.1);
+  data.SetObjectVelocity(Eigen::Vector3d(NAN, 0, 0), Eigen::Vector3d::Zero());
+  EXPECT_FALSE(data.IsFinite());
+  // ODE's own checks would abort the process; they throw instead.
+  EXPECT_THROW(
+      {
+        for (int i = 0; i < 3; ++i) data.Step();
+      },
+      OdeError);
+}
+
+}  // namespace
+}  // namespace graspsynth

@@ -1,0 +1,8 @@
+graspsynth_test(simulation/simulation_model_test.cpp LIBS graspsynth::simulation)
+graspsynth_test(simulation/simulation_data_test.cpp LIBS graspsynth::simulation)
+graspsynth_test(simulation/trial_test.cpp LIBS graspsynth::simulation)
+graspsynth_test(simulation/scripted_grasp_test.cpp LIBS graspsynth::simulation)
+graspsynth_test(simulation/perturbation_test.cpp LIBS graspsynth::simulation)
+graspsynth_test(simulation/robustness_test.cpp LIBS graspsynth::simulation)
+graspsynth_test(apps/simulate_command_test.cpp LIBS nlohmann_json::nlohmann_json)
+add_dependencies(apps_simulate_command_test graspsynth)

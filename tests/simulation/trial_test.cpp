@@ -1,0 +1,127 @@
+#include "simulation/trial.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <limits>
+
+#include "common/errors.hpp"
+#include "tests/utils/eigen_matchers.hpp"
+#include "tests/utils/simulation_fixtures.hpp"
+
+namespace graspsynth {
+namespace {
+
+using testing::ExampleTrajectory;
+using ::testing::HasSubstr;
+using testing::ShippedSimulationModel;
+
+TEST(TrialOptions, DefaultsAreValidAndBadValuesAreNamed) {
+  std::string why;
+  EXPECT_TRUE(TrialOptions{}.IsValid(&why)) << why;
+  EXPECT_DOUBLE_EQ(TrialOptions{}.step(), 0.004);
+  TrialOptions o;
+  o.fidelity = Fidelity::kFull;
+  EXPECT_DOUBLE_EQ(o.step(), 0.001);
+  o.hold = -1.0;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_THAT(why, HasSubstr("hold"));
+  GS_EXPECT_THROW_WITH(RunTrial(ShippedSimulationModel(), ExampleTrajectory(), o), InputError,
+                       "hold");
+}
+
+TEST(RunTrial, TheExampleLiftsTheObject) {
+  const TrialResult r = RunTrial(ShippedSimulationModel(), ExampleTrajectory());
+  EXPECT_EQ(r.outcome, TrialOutcome::kSuccess) << r.BriefReport();
+  EXPECT_TRUE(r.success());
+  EXPECT_GE(r.lift, 0.05);
+  EXPECT_NEAR(r.lift, 0.10, 0.01);  // the wrist rises 10 cm and the pan stays level
+  EXPECT_LT(r.max_penetration, 0.002);
+  EXPECT_NEAR(r.simulated_time, ExampleTrajectory().duration() + 1.0, 1e-6);
+  EXPECT_THAT(r.reason, HasSubstr("touching only the hand"));
+  // the pan hangs level in the hand.
+  EXPECT_GT(r.final_object_pose.linear()(2, 2), std::cos(5.0 * M_PI / 180.0));
+  // free space was not simulated in contact detail.
+  EXPECT_GT(r.statistics.kinematic_steps, 0);
+  EXPECT_GT(r.statistics.dynamic_steps, 0);
+  EXPECT_EQ(r.counts.bodies, 28);
+  EXPECT_EQ(r.counts.joints, 20);
+}
+
+TEST(RunTrial, FullFidelityAgreesOnTheExample) {
+  TrialOptions full;
+  full.fidelity = Fidelity::kFull;
+  const TrialResult r = RunTrial(ShippedSimulationModel(), ExampleTrajectory(), full);
+  EXPECT_EQ(r.outcome, TrialOutcome::kSuccess) << r.BriefReport();
+  EXPECT_NEAR(r.lift, 0.10, 0.01);
+  EXPECT_EQ(r.statistics.kinematic_steps, 0);
+  EXPECT_EQ(r.counts.joints, 27);  // the arm's seven motor-driven hinges too
+  const TrialResult fast = RunTrial(ShippedSimulationModel(), ExampleTrajectory());
+  EXPECT_NEAR(r.lift, fast.lift, 0.005);
+  EXPECT_NEAR((r.final_object_pose.translation() - fast.final_object_pose.translation()).norm(),
+              0.0, 0.01);
+}
+
+TEST(RunTrial, TheHandKeptOpenDoesNotLift) {
+  for (Fidelity fidelity : {Fidelity::kFast, Fidelity::kFull}) {
+    TrialOptions o;
+    o.fidelity = fidelity;
+    const TrialResult r = RunTrial(ShippedSimulationModel(), testing::HandKeptOpen(), o);
+    EXPECT_EQ(r.outcome, TrialOutcome::kNotLifted) << r.BriefReport();
+    EXPECT_FALSE(r.success());
+    EXPECT_THAT(r.reason, HasSubstr("not lifted"));
+    EXPECT_LT(r.lift, 0.005);
+    if (fidelity == Fidelity::kFast) break;  // the full run is the slow one; once is enough
+  }
+}
+
+TEST(RunTrial, DrivingTheHandThroughTheTableIsACollision) {
+  const TrialResult r = RunTrial(ShippedSimulationModel(), testing::HandThroughTable());
+  EXPECT_EQ(r.outcome, TrialOutcome::kCollision) << r.BriefReport();
+  EXPECT_THAT(r.reason, HasSubstr("hit the table"));
+  // decided at the collision: the rest is not simulated.
+  EXPECT_LT(r.simulated_time, r.planned_time);
+}
+
+TEST(RunTrial, ACommandBeyondAJointLimitStopsTheTrial) {
+  JointTrajectory t = ExampleTrajectory();
+  // E1 beyond its +-137 deg halfway through the reach (the file check would refuse this).
+  for (size_t i = 40; i < t.samples.size(); ++i) t.samples[i].arm[3] = 2.5;
+  const TrialResult r = RunTrial(ShippedSimulationModel(), t);
+  EXPECT_EQ(r.outcome, TrialOutcome::kJointLimit) << r.BriefReport();
+  EXPECT_THAT(r.reason, HasSubstr("E1 commanded to 2.5"));
+}
+
+TEST(RunTrial, InstabilityIsAFailedTrialNeverACrash) {
+  // a runaway object (energy check) and a NaN state (finite check) half-way through.
+  for (double v : {50.0, std::numeric_limits<double>::quiet_NaN()}) {
+    bool injected = false;
+    const TrialResult r =
+        RunTrial(ShippedSimulationModel(), ExampleTrajectory(), {}, [&](SimulationData& data) {
+          if (!injected && data.time() > 4.5) {
+            data.SetObjectVelocity(Eigen::Vector3d(v, 0, 0), Eigen::Vector3d::Zero());
+            injected = true;
+          }
+        });
+    EXPECT_EQ(r.outcome, TrialOutcome::kUnstable) << r.BriefReport();
+    EXPECT_THAT(r.reason, HasSubstr("numerical instability"));
+    EXPECT_FALSE(r.success());
+  }
+}
+
+TEST(RunTrial, RecordsTheStates) {
+  TrialOptions o;
+  o.record_interval = 0.1;
+  const TrialResult r = RunTrial(ShippedSimulationModel(), ExampleTrajectory(), o);
+  ASSERT_GE(r.states.size(), 60u);
+  EXPECT_EQ(r.states.front().t, 0.0);
+  for (size_t i = 1; i < r.states.size(); ++i) {
+    EXPECT_NEAR(r.states[i].t - r.states[i - 1].t, 0.1, 0.0041);
+  }
+  EXPECT_TRUE(
+      testing::MatricesNear(r.states.front().arm, ExampleTrajectory().samples[0].arm, 1e-12));
+  EXPECT_TRUE(testing::PosesNear(r.states.back().X_WO, r.final_object_pose, 1e-3));
+}
+
+}  // namespace
+}  // namespace graspsynth
