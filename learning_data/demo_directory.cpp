@@ -1,0 +1,50 @@
+#include "learning_data/demo_directory.hpp"
+
+#include <algorithm>
+#include <system_error>
+
+#include "common/errors.hpp"
+
+namespace graspsynth {
+
+namespace fs = std::filesystem;
+
+DemoDirectory ReadDemoDirectory(const fs::path& directory) {
+  std::error_code ec;
+  if (!fs::is_directory(directory, ec)) {
+    throw InputError("demonstration folder '" + directory.string() +
+                     "' does not exist or is not a folder");
+  }
+  std::vector<fs::path> files;
+  fs::directory_iterator it(directory, ec);
+  if (ec) {
+    throw InputError("cannot list demonstration folder '" + directory.string() +
+                     "': " + ec.message());
+  }
+  for (; it != fs::directory_iterator(); it.increment(ec)) {
+    const fs::path& path = it->path();
+    const std::string name = path.filename().string();
+    if (name.empty() || name.front() == '.' || path.extension() != ".csv") continue;
+    if (!it->is_regular_file(ec)) continue;
+    files.push_back(path);
+  }
+  if (ec) {
+    throw InputError("cannot list demonstration folder '" + directory.string() +
+                     "': " + ec.message());
+  }
+  std::sort(files.begin(), files.end(),
+            [](const fs::path& a, const fs::path& b) { return a.filename() < b.filename(); });
+
+  DemoDirectory result;
+  result.directory = directory.string();
+  for (const fs::path& path : files) {
+    try {
+      result.logs.push_back(ReadDemoLog(path));
+    } catch (const InputError& e) {
+      result.rejected.push_back({path.string(), e.what()});
+    }
+  }
+  return result;
+}
+
+}  // namespace graspsynth

@@ -1,0 +1,36 @@
+#pragma once
+
+/// @file
+/// Reading a folder of demonstration logs: the good files are read, every bad one is reported
+/// with its reason, and one bad file never stops the others.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "learning_data/demo_log.hpp"
+
+namespace graspsynth {
+
+/// A file of a demonstration folder that the reader rejected.
+struct RejectedDemoFile {
+  std::string file;    ///< the file's path
+  std::string reason;  ///< the reader's message (names the file, line and column)
+};
+
+/// What ReadDemoDirectory found.
+struct DemoDirectory {
+  std::string directory;                   ///< the folder as given
+  std::vector<DemoLog> logs;               ///< the good logs, sorted by file name
+  std::vector<RejectedDemoFile> rejected;  ///< the bad files with reasons, sorted by file name
+};
+
+/// Reads every regular file whose name ends in ".csv" directly in `directory` (no recursion;
+/// other files and names starting with '.', such as temporary files of an interrupted atomic
+/// write, are ignored) with ReadDemoLog. Files are visited in file-name order, so the result does
+/// not depend on the file system's listing order.
+/// Throws InputError only when `directory` does not exist or is not a readable folder; a bad log
+/// goes to `rejected` with its reason.
+DemoDirectory ReadDemoDirectory(const std::filesystem::path& directory);
+
+}  // namespace graspsynth

@@ -1,0 +1,84 @@
+// Tests of reading a folder of demonstration logs: bad files are reported, good ones read.
+
+#include "learning_data/demo_directory.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "common/errors.hpp"
+#include "tests/learning_data/demo_csv_cases.hpp"
+#include "tests/learning_data/demo_fixtures.hpp"
+#include "tests/utils/eigen_matchers.hpp"
+
+namespace graspsynth {
+namespace {
+
+using ::testing::HasSubstr;
+using testing::TestFolder;
+
+void WriteFile(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
+
+TEST(DemoDirectory, ReportsEveryBadFileAndReadsTheGoodOnes) {
+  const TestFolder folder;
+  const auto& dir = folder.path();
+  // good files: two written by the writer, one by hand.
+  testing::TrialSpec spec;
+  spec.trial = "b";
+  WriteDemoLog(dir / "b_good.csv", testing::MakeTrial(spec));
+  spec.trial = "a";
+  WriteDemoLog(dir / "a_good.csv", testing::MakeTrial(spec));
+  WriteFile(dir / "z_good.csv", testing::GoodDemoText());
+  // ignored: other extensions, hidden files (e.g. an interrupted atomic write), folders.
+  WriteFile(dir / "notes.txt", "not a log");
+  WriteFile(dir / ".a_good.csv.tmp.123.csv", "half a file");
+  std::filesystem::create_directories(dir / "folder.csv");
+
+  const std::vector<testing::MalformedCase> cases = testing::MalformedDemoCases();
+  for (const testing::MalformedCase& c : cases) WriteFile(dir / ("m_" + c.name + ".csv"), c.text);
+
+  const DemoDirectory demos = ReadDemoDirectory(dir);
+  EXPECT_EQ(demos.directory, dir.string());
+  ASSERT_EQ(demos.logs.size(), 3u);
+  EXPECT_EQ(demos.logs[0].source, (dir / "a_good.csv").string());
+  EXPECT_EQ(demos.logs[1].source, (dir / "b_good.csv").string());
+  EXPECT_EQ(demos.logs[2].source, (dir / "z_good.csv").string());
+  EXPECT_EQ(demos.logs[0].metadata.trial, std::optional<std::string>("a"));
+  EXPECT_EQ(demos.logs[2].samples.size(), 4u);
+
+  ASSERT_EQ(demos.rejected.size(), cases.size());
+  for (size_t i = 1; i < demos.rejected.size(); ++i) {
+    EXPECT_LT(demos.rejected[i - 1].file, demos.rejected[i].file);  // sorted by name
+  }
+  for (const testing::MalformedCase& c : cases) {
+    SCOPED_TRACE(c.name);
+    const std::string file = (dir / ("m_" + c.name + ".csv")).string();
+    const auto it = std::find_if(demos.rejected.begin(), demos.rejected.end(),
+                                 [&](const RejectedDemoFile& r) { return r.file == file; });
+    ASSERT_NE(it, demos.rejected.end());
+    EXPECT_EQ(it->reason.rfind(file + ":", 0), 0u) << it->reason;
+    for (const std::string& part : c.message) EXPECT_THAT(it->reason, HasSubstr(part));
+  }
+}
+
+TEST(DemoDirectory, AnEmptyFolderGivesNothing) {
+  const TestFolder folder;
+  const DemoDirectory demos = ReadDemoDirectory(folder.path());
+  EXPECT_TRUE(demos.logs.empty());
+  EXPECT_TRUE(demos.rejected.empty());
+}
+
+TEST(DemoDirectory, AMissingFolderIsAnInputError) {
+  const TestFolder folder;
+  GS_EXPECT_THROW_WITH(ReadDemoDirectory(folder.path() / "missing"), InputError, "missing",
+                       "does not exist");
+  WriteFile(folder.path() / "file.csv", testing::GoodDemoText());
+  GS_EXPECT_THROW_WITH(ReadDemoDirectory(folder.path() / "file.csv"), InputError, "file.csv",
+                       "not a folder");
+}
+
+}  // namespace
+}  // namespace graspsynth
