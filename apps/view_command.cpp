@@ -1,0 +1,221 @@
+// graspsynth view: the browser viewer with a replay. The server and the drawing are the
+// teleoperation viewer's (teleop/viewer_server.hpp, teleop/viewer_scene.hpp); this command only
+// produces the frames: from a trajectory file (the samples' joints), a demonstration log (the
+// wrist poses through the analytic IK with a continuous arm angle) or, with neither, the robot
+// at rest.
+
+#include "apps/view_command.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "common/errors.hpp"
+#include "kinematics/robot_description.hpp"
+#include "kinematics/scene_model.hpp"
+#include "learning_data/demo_log.hpp"
+#include "motion/joint_trajectory.hpp"
+#include "teleop/viewer_replay.hpp"
+#include "teleop/viewer_scene.hpp"
+#include "teleop/viewer_server.hpp"
+
+namespace graspsynth::apps {
+namespace {
+
+struct ViewOptions {
+  std::string trajectory;
+  std::string log;
+  std::string robot;
+  std::string scene;
+  std::string address = "127.0.0.1";
+  int port = 8765;
+  std::string camera;
+  bool loop = false;
+  double speed = 1.0;
+  double rate_hz = 60.0;
+  bool no_wait = false;
+  double hold_s = 1.0;
+  double exit_after_s = 0.0;
+};
+
+volatile std::sig_atomic_t g_stop_signal = 0;
+void OnStopSignal(int signal) { g_stop_signal = signal; }
+
+// SIGINT and SIGTERM set g_stop_signal while it lives; the previous handlers come back after.
+class StopSignals {
+ public:
+  StopSignals() {
+    g_stop_signal = 0;
+    struct sigaction action {};
+    action.sa_handler = OnStopSignal;
+    sigemptyset(&action.sa_mask);
+    sigaction(SIGINT, &action, &old_int_);
+    sigaction(SIGTERM, &action, &old_term_);
+  }
+  ~StopSignals() {
+    sigaction(SIGINT, &old_int_, nullptr);
+    sigaction(SIGTERM, &old_term_, nullptr);
+  }
+  StopSignals(const StopSignals&) = delete;
+  StopSignals& operator=(const StopSignals&) = delete;
+  bool stopped() const { return g_stop_signal != 0; }
+
+ private:
+  struct sigaction old_int_ {};
+  struct sigaction old_term_ {};
+};
+
+int RunView(const ViewOptions& opts) {
+  if (!(opts.speed > 0.0) || !std::isfinite(opts.speed)) {
+    throw InputError("--speed " + std::to_string(opts.speed) + " is not a positive number");
+  }
+  if (!(opts.rate_hz > 0.0 && opts.rate_hz <= 1000.0)) {
+    throw InputError("--rate " + std::to_string(opts.rate_hz) + " is outside (0, 1000] Hz");
+  }
+  if (!(opts.hold_s >= 0.0) || !(opts.exit_after_s >= 0.0)) {
+    throw InputError("--hold and --exit-after take seconds >= 0");
+  }
+  const RobotModel robot = LoadRobotModel(opts.robot.empty() ? DefaultRobotDescriptionPath()
+                                                             : std::filesystem::path(opts.robot));
+  const SceneModel scene = LoadSceneModel(opts.scene.empty() ? DefaultSceneModelPath()
+                                                             : std::filesystem::path(opts.scene));
+  const teleop::ViewerCamera camera =
+      opts.camera.empty()
+          ? teleop::DefaultViewerCamera(scene)
+          : teleop::ParseViewerCamera(opts.camera, teleop::DefaultViewerCamera(scene));
+
+  teleop::ViewerReplay replay = teleop::RestReplay();
+  const bool ends = !opts.trajectory.empty() || !opts.log.empty();
+  if (!opts.trajectory.empty()) {
+    replay = teleop::ReplayOfTrajectory(LoadJointTrajectory(opts.trajectory, robot.arm, robot.hand),
+                                        opts.trajectory);
+  } else if (!opts.log.empty()) {
+    replay = teleop::ReplayOfLog(robot, ReadDemoLog(opts.log));
+    if (replay.unreached > 0) {
+      std::cerr << "graspsynth view: " << replay.unreached << " of "
+                << replay.trajectory.samples.size()
+                << " wrist poses of the log have no IK solution; the arm holds there\n";
+    }
+  }
+  // replay time runs from the first sample's time to the last one's.
+  const double t_first = replay.start_time();
+  const double t_last = replay.end_time();
+
+  teleop::ViewerServerOptions server_options;
+  server_options.address = opts.address;
+  server_options.port = opts.port;
+  teleop::ViewerServer server(teleop::ViewerSceneJson(robot, scene, camera), server_options);
+  for (const std::string& missing : server.missing_assets()) {
+    std::cerr << "graspsynth view: warning: " << missing
+              << " is missing; run scripts/setup.sh (npm ci --prefix viewer) and rebuild\n";
+  }
+  const StopSignals signals;
+  std::cerr << "graspsynth view: open " << server.url() << " in a browser (Ctrl-C to stop)"
+            << std::endl;
+
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point started = Clock::now();
+  const auto seconds_since = [](Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+  };
+  const auto out_of_time = [&] {
+    return signals.stopped() ||
+           (opts.exit_after_s > 0.0 && seconds_since(started) >= opts.exit_after_s);
+  };
+  const auto tick = std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(1.0 / opts.rate_hz));
+
+  // the first frame; the replay's clock starts when a page first gets it (unless --no-wait).
+  server.Publish(teleop::ViewerFrameJson(robot, teleop::ReplayStateAt(replay, scene, t_first)));
+  if (!opts.no_wait) {
+    std::cerr << "graspsynth view: waiting for a browser to open the page" << std::endl;
+    while (server.counters().frame_requests == 0 && !out_of_time()) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+  }
+
+  const Clock::time_point replay_start = Clock::now();
+  Clock::time_point next = replay_start;
+  std::optional<Clock::time_point> ended;
+  uint64_t published = 1;
+  while (!out_of_time()) {
+    const double elapsed = seconds_since(replay_start) * opts.speed;
+    double t = t_first + elapsed;
+    if (opts.loop && t_last > t_first) t = t_first + std::fmod(elapsed, t_last - t_first);
+    if (ends && !opts.loop && t >= t_last && !ended) ended = Clock::now();
+    teleop::ViewerState state = teleop::ReplayStateAt(replay, scene, t);
+    if (ended) state.text += " | replay done";
+    server.Publish(teleop::ViewerFrameJson(robot, state));
+    ++published;
+    if (ended && seconds_since(*ended) >= opts.hold_s) break;
+    next += tick;
+    const Clock::time_point now = Clock::now();
+    if (next < now) next = now;  // late (a slow machine): do not try to catch up
+    std::this_thread::sleep_until(next);
+  }
+  server.Stop();
+  const teleop::ViewerServerCounters counters = server.counters();
+  std::cerr << "graspsynth view: "
+            << (signals.stopped() ? "stopped by a signal"
+                : ended           ? "replay done"
+                                  : "stopped (--exit-after)")
+            << "; " << published << " frames published, " << counters.frame_requests
+            << " sent to the page, " << counters.requests << " requests (" << counters.bad_requests
+            << " bad)" << std::endl;
+  return 0;
+}
+
+}  // namespace
+
+void AddViewCommand(CLI::App& app, int* exit_code) {
+  auto opts = std::make_shared<ViewOptions>();
+  CLI::App* view = app.add_subcommand(
+      "view",
+      "Browser viewer: serves a page (three.js) on this machine and replays a file in it.\n"
+      "Open the URL printed on stderr. --trajectory plays a graspsynth-trajectory/1 file (a\n"
+      "grasp's joint trajectory); --log a demonstration log (its wrist poses through the\n"
+      "analytic IK with a continuous arm angle, the object at its logged position); with\n"
+      "neither, the robot is shown at rest. The replay starts when a page first asks for a\n"
+      "frame and runs at the file's rate (times --speed) until its end (plus --hold), or for\n"
+      "ever with --loop; Ctrl-C or SIGTERM stop it cleanly.");
+  auto* source = view->add_option_group("source", "What to replay");
+  source->add_option("--trajectory", opts->trajectory, "Trajectory file (graspsynth-trajectory/1)")
+      ->check(CLI::ExistingFile);
+  source->add_option("--log", opts->log, "Demonstration log (graspsynth-demo/1 CSV)")
+      ->check(CLI::ExistingFile);
+  source->require_option(0, 1);
+  view->add_option("--robot", opts->robot,
+                   "Robot description (URDF); default: models/pa10_gifu3.urdf of this checkout "
+                   "or $GRASPSYNTH_DATA_DIR");
+  view->add_option("--scene", opts->scene,
+                   "Scene description (graspsynth-scene/1); default: models/scene.json");
+  view->add_option("--address", opts->address,
+                   "IPv4 address to serve on; 0.0.0.0 opens the viewer to the network")
+      ->capture_default_str();
+  view->add_option("--port", opts->port, "TCP port; 0 picks a free one (printed)")
+      ->check(CLI::Range(0, 65535))
+      ->capture_default_str();
+  view->add_option("--camera", opts->camera,
+                   "Start camera: eye EX,EY,EZ and optionally target TX,TY,TZ (metres, world); "
+                   "default: a side view of the arm and the table");
+  view->add_flag("--loop", opts->loop, "Replay again and again until stopped");
+  view->add_option("--speed", opts->speed, "Replay speed factor (> 0)")->capture_default_str();
+  view->add_option("--rate", opts->rate_hz, "Frames published per second (Hz)")
+      ->capture_default_str();
+  view->add_flag("--no-wait", opts->no_wait,
+                 "Start the replay at once instead of when a page first asks for a frame");
+  view->add_option("--hold", opts->hold_s,
+                   "Seconds to keep serving the last frame after the end of the replay")
+      ->capture_default_str();
+  view->add_option("--exit-after", opts->exit_after_s,
+                   "Stop after this many seconds in any case (0: no limit; for scripts and tests)")
+      ->capture_default_str();
+  view->callback([opts, exit_code] { *exit_code = RunView(*opts); });
+}
+
+}  // namespace graspsynth::apps

@@ -1,0 +1,134 @@
+#include "teleop/viewer_replay.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <sstream>
+
+#include "common/demand.hpp"
+#include "kinematics/arm_ik.hpp"
+#include "motion/joint_space.hpp"
+
+namespace graspsynth::teleop {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+std::string ThetaText(double theta_deg) {
+  std::ostringstream out;
+  out.setf(std::ios::fixed);
+  out.precision(1);
+  out << "theta " << theta_deg << " deg";
+  return out.str();
+}
+
+// the first branch on which X_WH has a solution, at the middle of its widest feasible arc.
+std::optional<Vector7d> RestConfiguration(const RobotModel& robot, const Eigen::Isometry3d& X_WH) {
+  const Eigen::Isometry3d X_WF = X_WH * robot.X_FH.inverse();
+  for (int index = 0; index < 8; ++index) {
+    const ArmBranch branch = ArmBranch::FromIndex(index);
+    const ArmTargetForm form = PrepareArmTarget(robot.arm, X_WF, branch.gc4);
+    if (form.status != IkStatus::kOk) continue;
+    const std::vector<Interval> arcs = FeasibleArmAngles(robot.arm, form, branch.gc2, branch.gc6);
+    if (arcs.empty()) continue;
+    const Interval widest = *std::max_element(
+        arcs.begin(), arcs.end(),
+        [](const Interval& a, const Interval& b) { return a.width() < b.width(); });
+    const ArmIkSolution s = SolveArmIk(robot.arm, X_WF, 0.5 * (widest.lo + widest.hi), branch);
+    if (s.status == IkStatus::kOk) return s.q;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+ViewerReplay ReplayOfTrajectory(JointTrajectory trajectory, const std::string& source) {
+  GS_DEMAND(!trajectory.samples.empty(), "a replay needs at least one sample");
+  ViewerReplay replay;
+  replay.label = "trajectory " + source + " | " + ThetaText(trajectory.theta_deg);
+  replay.trajectory = std::move(trajectory);
+  return replay;
+}
+
+ViewerReplay ReplayOfLog(const RobotModel& robot, const DemoLog& log) {
+  GS_DEMAND(!log.samples.empty(), "a replay needs at least one sample");
+  ViewerReplay replay;
+  replay.label = "log " + log.source + " | " + ThetaText(log.metadata.theta_deg);
+  replay.trajectory.theta_deg = log.metadata.theta_deg;
+  std::optional<Vector7d> q;
+  std::optional<size_t> first_reached;
+  for (const DemoSample& s : log.samples) {
+    Eigen::Isometry3d X_WH = Eigen::Isometry3d::Identity();
+    X_WH.linear() = s.q_WH.normalized().toRotationMatrix();
+    X_WH.translation() = s.p_WH;
+    const std::optional<Vector7d> next =
+        q ? SolveWristPose(robot, X_WH, BranchOf(*q), ArmAngleOf(robot.arm, *q), *q)
+          : RestConfiguration(robot, X_WH);
+    if (next) {
+      q = next;
+      if (!first_reached) first_reached = replay.trajectory.samples.size();
+    } else {
+      ++replay.unreached;
+    }
+    replay.reached.push_back(next.has_value());
+    TrajectorySample sample;
+    sample.t = s.t;
+    sample.arm = q.value_or(Vector7d::Zero());
+    sample.hand = s.f;
+    replay.trajectory.samples.push_back(sample);
+    replay.p_WO.push_back(s.p_WO);
+    replay.events.push_back(s.event);
+  }
+  // the samples before the first reached pose take its configuration.
+  if (first_reached) {
+    for (size_t k = 0; k < *first_reached; ++k) {
+      replay.trajectory.samples[k].arm = replay.trajectory.samples[*first_reached].arm;
+    }
+  }
+  return replay;
+}
+
+ViewerReplay RestReplay() {
+  ViewerReplay replay;
+  replay.label = "robot at rest";
+  replay.trajectory.samples.push_back(TrajectorySample{});
+  return replay;
+}
+
+ViewerState ReplayStateAt(const ViewerReplay& replay, const SceneModel& scene, double t) {
+  const std::vector<TrajectorySample>& samples = replay.trajectory.samples;
+  t = std::clamp(t, replay.start_time(), replay.end_time());
+  const TrajectorySample s = SampleAt(replay.trajectory, t);
+  ViewerState state;
+  state.t = t;
+  state.arm = s.arm;
+  state.hand = s.hand;
+  state.X_WO = scene.ObjectPose(replay.trajectory.theta_deg * kDeg);
+  state.text = replay.label;
+  if (replay.p_WO.empty()) return state;
+
+  // i: the last sample at or before t; the object linear from it to the next.
+  const size_t i = std::upper_bound(samples.begin() + 1, samples.end(), t,
+                                    [](double time, const TrajectorySample& sample) {
+                                      return time < sample.t;
+                                    }) -
+                   samples.begin() - 1;
+  const size_t j = std::min(i + 1, samples.size() - 1);
+  const double span = samples[j].t - samples[i].t;
+  const double a = span > 0.0 ? (t - samples[i].t) / span : 0.0;
+  state.X_WO.translation() = (1.0 - a) * replay.p_WO[i] + a * replay.p_WO[j];
+  for (size_t k = i + 1; k-- > 0;) {
+    if (replay.events[k] == DemoEvent::kGrasp) {
+      state.text += " | grasp";
+      break;
+    }
+    if (replay.events[k] == DemoEvent::kEnd) {
+      state.text += " | end of trial";
+      break;
+    }
+  }
+  if (!replay.reached[i]) state.text += " | wrist pose out of reach: holding";
+  return state;
+}
+
+}  // namespace graspsynth::teleop

@@ -1,0 +1,462 @@
+#include "teleop/viewer_server.hpp"
+
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <string_view>
+
+#include "common/errors.hpp"
+
+namespace graspsynth::teleop {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// the files of the page, by the path they are served at.
+struct AssetFile {
+  const char* path;
+  const char* file;
+  const char* content_type;
+  bool vendored;  // from three.js (npm), not from viewer/
+};
+constexpr AssetFile kAssetFiles[] = {
+    {"/index.html", "index.html", "text/html; charset=utf-8", false},
+    {"/viewer.js", "viewer.js", "text/javascript; charset=utf-8", false},
+    {"/three.module.js", "three.module.js", "text/javascript; charset=utf-8", true},
+    {"/three.core.js", "three.core.js", "text/javascript; charset=utf-8", true},
+    {"/OrbitControls.js", "OrbitControls.js", "text/javascript; charset=utf-8", true},
+};
+
+std::string SystemError(const std::string& what) { return what + ": " + std::strerror(errno); }
+
+std::shared_ptr<const std::string> ReadWholeFile(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return nullptr;
+  std::ostringstream text;
+  text << in.rdbuf();
+  return std::make_shared<const std::string>(std::move(text).str());
+}
+
+std::string Lowercase(std::string_view text) {
+  std::string out(text);
+  std::transform(out.begin(), out.end(), out.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return out;
+}
+
+// RFC 9110 token characters (method and header names).
+bool IsToken(std::string_view text) {
+  if (text.empty()) return false;
+  return std::all_of(text.begin(), text.end(), [](unsigned char c) {
+    return std::isalnum(c) || std::strchr("!#$%&'*+-.^_`|~", c) != nullptr;
+  });
+}
+
+// the end of the request head (after its blank line), or npos; lines may end in CRLF or LF.
+size_t HeadEnd(const std::string& in) {
+  for (size_t i = in.find('\n'); i != std::string::npos; i = in.find('\n', i + 1)) {
+    if (i + 1 < in.size() && in[i + 1] == '\n') return i + 2;
+    if (i + 2 < in.size() && in[i + 1] == '\r' && in[i + 2] == '\n') return i + 3;
+  }
+  return std::string::npos;
+}
+
+std::vector<std::string_view> HeadLines(std::string_view head) {
+  std::vector<std::string_view> lines;
+  while (!head.empty()) {
+    const size_t eol = head.find('\n');
+    std::string_view line = head.substr(0, eol);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    lines.push_back(line);
+    if (eol == std::string_view::npos) break;
+    head.remove_prefix(eol + 1);
+  }
+  while (!lines.empty() && lines.back().empty()) lines.pop_back();
+  return lines;
+}
+
+std::string_view TrimSpaces(std::string_view text) {
+  while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
+  while (!text.empty() && (text.back() == ' ' || text.back() == '\t')) text.remove_suffix(1);
+  return text;
+}
+
+const char* ReasonPhrase(int status) {
+  switch (status) {
+    case 200:
+      return "OK";
+    case 204:
+      return "No Content";
+    case 400:
+      return "Bad Request";
+    case 404:
+      return "Not Found";
+    case 405:
+      return "Method Not Allowed";
+    case 431:
+      return "Request Header Fields Too Large";
+    case 503:
+      return "Service Unavailable";
+    default:
+      return "Unknown";
+  }
+}
+
+std::shared_ptr<const std::string> Text(std::string text) {
+  return std::make_shared<const std::string>(std::move(text) + "\n");
+}
+
+}  // namespace
+
+std::filesystem::path DefaultViewerAssetDirectory() { return GRASPSYNTH_VIEWER_DIR; }
+
+bool ViewerServerOptions::IsValid(std::string* why) const {
+  std::string reason;
+  if (address.empty()) {
+    reason = "address is empty";
+  } else if (port < 0 || port > 65535) {
+    reason = "port " + std::to_string(port) + " is outside 0..65535";
+  } else if (max_request_bytes < 64) {
+    reason = "max_request_bytes " + std::to_string(max_request_bytes) + " is below 64";
+  } else if (max_connections < 1) {
+    reason = "max_connections " + std::to_string(max_connections) + " is not positive";
+  } else if (!(idle_timeout_s > 0.0)) {
+    reason = "idle_timeout_s " + std::to_string(idle_timeout_s) + " is not positive";
+  }
+  if (why != nullptr) *why = reason;
+  return reason.empty();
+}
+
+struct ViewerServer::Connection {
+  int fd = -1;
+  std::string in;                           // received, not yet answered
+  std::string head;                         // response head being sent
+  std::shared_ptr<const std::string> body;  // response body being sent (may be null)
+  size_t sent = 0;                          // bytes of head + body sent
+  bool close_after_write = false;
+  Clock::time_point last_activity = Clock::now();
+
+  size_t pending() const { return head.size() + (body ? body->size() : 0) - sent; }
+};
+
+struct ViewerServer::Response {
+  int status = 200;
+  std::string content_type = "text/plain; charset=utf-8";
+  std::shared_ptr<const std::string> body;
+  bool close = false;
+};
+
+ViewerServer::ViewerServer(std::string scene_json, const ViewerServerOptions& options)
+    : address_(options.address),
+      options_(options),
+      scene_(std::make_shared<const std::string>(std::move(scene_json))) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError("viewer server: " + why);
+
+  for (const AssetFile& file : kAssetFiles) {
+    const std::filesystem::path path = options.asset_dir / file.file;
+    Asset asset{file.content_type, ReadWholeFile(path), ""};
+    if (!asset.body) {
+      missing_assets_.push_back(path.string());
+      asset.missing_message =
+          file.vendored
+              ? "graspsynth viewer: three.js is not vendored: " + path.string() +
+                    " is missing. Run scripts/setup.sh (it runs 'npm ci --prefix viewer'), then "
+                    "rebuild graspsynth: the build copies three.js into " +
+                    options.asset_dir.string() + "."
+              : "graspsynth viewer: " + path.string() +
+                    " is missing. Rebuild graspsynth: the build copies viewer/ into " +
+                    options.asset_dir.string() + ".";
+    }
+    assets_.emplace_back(file.path, std::move(asset));
+  }
+
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(static_cast<uint16_t>(options.port));
+  if (inet_pton(AF_INET, options.address.c_str(), &addr.sin_addr) != 1) {
+    throw InputError("viewer server: address '" + options.address +
+                     "' is not an IPv4 address (e.g. 127.0.0.1)");
+  }
+  const std::string where = options.address + ":" + std::to_string(options.port);
+  listen_fd_ = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
+  if (listen_fd_ < 0) throw InputError(SystemError("viewer server: socket"));
+  const int one = 1;
+  ::setsockopt(listen_fd_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof(one));
+  if (::bind(listen_fd_, reinterpret_cast<const sockaddr*>(&addr), sizeof(addr)) != 0 ||
+      ::listen(listen_fd_, 64) != 0) {
+    const std::string message = SystemError("viewer server: cannot listen on " + where);
+    ::close(listen_fd_);
+    listen_fd_ = -1;
+    throw InputError(message);
+  }
+  socklen_t length = sizeof(addr);
+  ::getsockname(listen_fd_, reinterpret_cast<sockaddr*>(&addr), &length);
+  port_ = ntohs(addr.sin_port);
+  if (::pipe2(wake_fds_, O_NONBLOCK | O_CLOEXEC) != 0) {
+    const std::string message = SystemError("viewer server: pipe");
+    ::close(listen_fd_);
+    listen_fd_ = -1;
+    throw InputError(message);
+  }
+  thread_ = std::thread([this] { Serve(); });
+}
+
+ViewerServer::~ViewerServer() { Stop(); }
+
+std::string ViewerServer::url() const {
+  const std::string host = address_ == "0.0.0.0" ? "127.0.0.1" : address_;
+  return "http://" + host + ":" + std::to_string(port_) + "/";
+}
+
+void ViewerServer::Publish(std::string frame_json) {
+  auto frame = std::make_shared<const std::string>(std::move(frame_json));
+  const std::lock_guard<std::mutex> lock(frame_mutex_);
+  frame_.swap(frame);
+}
+
+ViewerServerCounters ViewerServer::counters() const {
+  const std::lock_guard<std::mutex> lock(counters_mutex_);
+  return counters_;
+}
+
+void ViewerServer::Stop() {
+  if (thread_.joinable()) {
+    stopping_ = true;
+    const char byte = 0;
+    while (::write(wake_fds_[1], &byte, 1) < 0 && errno == EINTR) {
+    }
+    thread_.join();
+  }
+  for (int* fd : {&listen_fd_, &wake_fds_[0], &wake_fds_[1]}) {
+    if (*fd >= 0) ::close(*fd);
+    *fd = -1;
+  }
+}
+
+void ViewerServer::Serve() {
+  std::vector<Connection> connections;
+  std::vector<pollfd> fds;
+  char buffer[16384];
+  while (!stopping_) {
+    // wake pipe, listening socket, then one entry per connection (in order).
+    fds.assign({{wake_fds_[0], POLLIN, 0}, {listen_fd_, POLLIN, 0}});
+    for (const Connection& c : connections) {
+      fds.push_back({c.fd, static_cast<short>(c.pending() > 0 ? POLLOUT : POLLIN), 0});
+    }
+    if (::poll(fds.data(), fds.size(), 200) < 0) {
+      if (errno == EINTR) continue;
+      break;
+    }
+    if (fds[0].revents != 0) break;
+    const size_t count = connections.size();
+    for (size_t i = 0; i < count; ++i) {
+      Connection& c = connections[i];
+      const short events = fds[i + 2].revents;
+      if (events == 0) continue;
+      bool keep = true;
+      try {
+        if (c.pending() > 0) {
+          // send what is left of the response; once it is out, answer what is queued.
+          const size_t head_left = c.sent < c.head.size() ? c.head.size() - c.sent : 0;
+          const char* data =
+              head_left > 0 ? c.head.data() + c.sent : c.body->data() + (c.sent - c.head.size());
+          const size_t size = head_left > 0 ? head_left : c.pending();
+          const ssize_t n = ::send(c.fd, data, size, MSG_NOSIGNAL);
+          if (n > 0) {
+            c.sent += static_cast<size_t>(n);
+            c.last_activity = Clock::now();
+            if (c.pending() == 0) {
+              keep = !c.close_after_write;
+              if (keep) HandleInput(&c);
+            }
+          } else if (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR) {
+            keep = false;
+          } else if (events & (POLLERR | POLLHUP)) {
+            keep = false;
+          }
+        } else {
+          const ssize_t n = ::recv(c.fd, buffer, sizeof(buffer), 0);
+          if (n > 0) {
+            c.in.append(buffer, static_cast<size_t>(n));
+            c.last_activity = Clock::now();
+            HandleInput(&c);
+          } else if (n == 0 || (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR)) {
+            keep = false;  // closed by the peer, or broken
+          }
+        }
+      } catch (const std::exception&) {
+        keep = false;  // out of memory while answering: drop this connection only
+      }
+      if (!keep) {
+        ::close(c.fd);
+        c.fd = -1;
+      }
+    }
+    // idle connections (no complete request, or a reader that stopped reading) are closed.
+    const Clock::time_point now = Clock::now();
+    const auto idle = std::chrono::duration<double>(options_.idle_timeout_s);
+    for (Connection& c : connections) {
+      if (c.fd >= 0 && now - c.last_activity > idle) {
+        ::close(c.fd);
+        c.fd = -1;
+      }
+    }
+    std::erase_if(connections, [](const Connection& c) { return c.fd < 0; });
+    if (fds[1].revents != 0) Accept(&connections);
+  }
+  for (const Connection& c : connections) ::close(c.fd);
+}
+
+void ViewerServer::Accept(std::vector<Connection>* connections) {
+  for (;;) {
+    const int fd = ::accept4(listen_fd_, nullptr, nullptr, SOCK_NONBLOCK | SOCK_CLOEXEC);
+    if (fd < 0) return;  // EAGAIN: none left (or a transient error: poll again)
+    if (static_cast<int>(connections->size()) >= options_.max_connections) {
+      ::close(fd);
+      continue;
+    }
+    Connection c;
+    c.fd = fd;
+    connections->push_back(std::move(c));
+    const std::lock_guard<std::mutex> lock(counters_mutex_);
+    ++counters_.connections;
+  }
+}
+
+void ViewerServer::HandleInput(Connection* c) {
+  const size_t end = HeadEnd(c->in);
+  Response response;
+  std::string method;
+  if (end == std::string::npos) {
+    if (c->in.size() <= options_.max_request_bytes) return;  // wait for the rest
+    response = {431, "text/plain; charset=utf-8", Text("request head too large"), true};
+  } else if (end > options_.max_request_bytes) {
+    response = {431, "text/plain; charset=utf-8", Text("request head too large"), true};
+  } else {
+    const std::string head = c->in.substr(0, end);
+    c->in.erase(0, end);
+    const std::vector<std::string_view> lines = HeadLines(head);
+    // request line: METHOD SP TARGET SP HTTP/1.x
+    std::string_view target;
+    std::string_view version;
+    bool valid = !lines.empty();
+    if (valid) {
+      const std::string_view line = lines[0];
+      const size_t a = line.find(' ');
+      const size_t b = a == std::string_view::npos ? a : line.find(' ', a + 1);
+      valid = b != std::string_view::npos && line.find(' ', b + 1) == std::string_view::npos;
+      if (valid) {
+        method = line.substr(0, a);
+        target = line.substr(a + 1, b - a - 1);
+        version = line.substr(b + 1);
+        valid = IsToken(method) && (version == "HTTP/1.1" || version == "HTTP/1.0") &&
+                !target.empty() && target.front() == '/' &&
+                std::none_of(target.begin(), target.end(),
+                             [](unsigned char ch) { return ch <= 0x20 || ch >= 0x7f; });
+      }
+    }
+    bool keep_alive = version == "HTTP/1.1";
+    bool has_body = false;
+    for (size_t i = 1; valid && i < lines.size(); ++i) {
+      const size_t colon = lines[i].find(':');
+      if (colon == std::string_view::npos || !IsToken(lines[i].substr(0, colon))) {
+        valid = false;
+        break;
+      }
+      const std::string name = Lowercase(lines[i].substr(0, colon));
+      const std::string value = Lowercase(TrimSpaces(lines[i].substr(colon + 1)));
+      if (name == "connection") {
+        if (value.find("close") != std::string::npos) keep_alive = false;
+        if (value.find("keep-alive") != std::string::npos) keep_alive = true;
+      } else if ((name == "content-length" && value != "0") || name == "transfer-encoding") {
+        has_body = true;
+      }
+    }
+    if (!valid) {
+      response = {400, "text/plain; charset=utf-8", Text("malformed request"), true};
+    } else if (has_body) {
+      response = {400, "text/plain; charset=utf-8", Text("request bodies are not accepted"), true};
+    } else if (method != "GET" && method != "HEAD") {
+      response = {405, "text/plain; charset=utf-8", Text("only GET and HEAD"), !keep_alive};
+    } else {
+      response = Answer(std::string(target));
+      response.close = !keep_alive;
+    }
+  }
+
+  {
+    const std::lock_guard<std::mutex> lock(counters_mutex_);
+    ++counters_.requests;
+    if (response.status == 400 || response.status == 405 || response.status == 431) {
+      ++counters_.bad_requests;
+    }
+  }
+  const size_t length = response.body ? response.body->size() : 0;
+  std::string head =
+      "HTTP/1.1 " + std::to_string(response.status) + " " + ReasonPhrase(response.status) + "\r\n";
+  if (response.status != 204) {
+    head += "Content-Type: " + response.content_type +
+            "\r\nContent-Length: " + std::to_string(length) + "\r\n";
+  }
+  if (response.status == 405) head += "Allow: GET, HEAD\r\n";
+  head += "Cache-Control: no-store\r\nX-Content-Type-Options: nosniff\r\nConnection: ";
+  head += response.close ? "close\r\n\r\n" : "keep-alive\r\n\r\n";
+  c->head = std::move(head);
+  c->body = method == "HEAD" || response.status == 204 ? nullptr : std::move(response.body);
+  c->sent = 0;
+  c->close_after_write = response.close;
+  if (response.close) c->in.clear();
+}
+
+ViewerServer::Response ViewerServer::Answer(const std::string& target) {
+  const std::string path = target.substr(0, target.find_first_of("?#"));
+  Response response;
+  if (path == "/frame") {
+    {
+      const std::lock_guard<std::mutex> lock(frame_mutex_);
+      response.body = frame_;
+    }
+    if (!response.body) {
+      response.status = 204;
+      return response;
+    }
+    response.content_type = "application/json";
+    const std::lock_guard<std::mutex> lock(counters_mutex_);
+    ++counters_.frame_requests;
+    return response;
+  }
+  if (path == "/scene.json") {
+    response.content_type = "application/json";
+    response.body = scene_;
+    return response;
+  }
+  const std::string asset_path = path == "/" ? "/index.html" : path;
+  for (const auto& [served_at, asset] : assets_) {
+    if (served_at != asset_path) continue;
+    if (!asset.body) {
+      response.status = 503;
+      response.body = Text(asset.missing_message);
+      return response;
+    }
+    response.content_type = asset.content_type;
+    response.body = asset.body;
+    return response;
+  }
+  response.status = 404;
+  response.body = Text("not found: " + path);
+  return response;
+}
+
+}  // namespace graspsynth::teleop
