@@ -6,8 +6,11 @@
 #include <exception>
 #include <iostream>
 
+#include "apps/analyze_command.hpp"
 #include "apps/kinematics_commands.hpp"
 #include "apps/run_command.hpp"
+#include "apps/simulate_command.hpp"
+#include "apps/view_command.hpp"
 #include "collision/library_info.hpp"
 #include "simulation/library_info.hpp"
 #include "solver/library_info.hpp"
@@ -21,6 +24,9 @@ int main(int argc, char** argv) {
 
   graspsynth::apps::AddRunCommand(app, &exit_code);
   graspsynth::apps::AddKinematicsCommands(app, &exit_code);
+  graspsynth::apps::AddAnalyzeCommand(app, &exit_code);
+  graspsynth::apps::AddSimulateCommand(app, &exit_code);
+  graspsynth::apps::AddViewCommand(app, &exit_code);
 
   auto* version = app.add_subcommand("version", "Print the versions of the linked libraries");
   version->callback([] {

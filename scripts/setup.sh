@@ -12,7 +12,12 @@ packages=(
   libeigen3-dev libceres-dev libnlopt-cxx-dev libfcl-dev libode-dev libcgal-dev
   liburdfdom-dev libcli11-dev nlohmann-json3-dev libspdlog-dev
   libgtest-dev libgmock-dev libbenchmark-dev liborocos-kdl-dev
+  python3 chromium
 )
+# node and npm vendor three.js for the browser viewer (viewer/package.json). Debian's nodejs and
+# npm are used only when no npm is on the PATH: a node from elsewhere (NodeSource) ships its own
+# npm and conflicts with Debian's npm package.
+if ! command -v npm >/dev/null 2>&1; then packages+=(nodejs npm); fi
 
 missing=()
 for p in "${packages[@]}"; do
@@ -29,6 +34,15 @@ if ((${#missing[@]})); then
     "${missing[@]}"
 else
   echo "setup: all dependencies are installed" >&2
+fi
+
+# three.js for the viewer, at the version pinned in viewer/package-lock.json; the build copies it.
+pinned=$(node -p "require('./viewer/package-lock.json').packages['node_modules/three'].version")
+vendored=$(node -p "try { require('./viewer/node_modules/three/package.json').version }
+                    catch (e) { 'none' }")
+if [[ $pinned != "$vendored" ]]; then
+  echo "setup: vendoring three.js $pinned for the viewer (npm ci --prefix viewer)" >&2
+  npm ci --prefix viewer --no-audit --no-fund
 fi
 
 if [[ ${1:-} == --deps-only ]]; then exit 0; fi
