@@ -502,14 +502,8 @@ CollisionModel::CollisionModel(const RobotModel& robot, const SceneModel& scene,
   // the pan in its frame O (origin at the body centre, x along the handle).
   const ObjectModel& o = scene.object;
   const int object_body = new_body(-1);
-  CollisionShape pan_body;
-  pan_body.kind = CollisionShape::Kind::kCylinder;
-  pan_body.size << o.body_radius, o.body_height, 0.0;
-  CollisionShape handle;
-  handle.kind = CollisionShape::Kind::kBox;
-  handle.size << o.handle_end_radius - o.handle_start_radius, o.handle_width, o.handle_thickness;
-  handle.X_LG.translation() << 0.5 * (o.handle_start_radius + o.handle_end_radius), 0.0,
-      o.handle_axis_height - o.rest_height();
+  const CollisionShape pan_body = o.BodyShape();
+  const CollisionShape handle = o.HandleShape();
   m->shapes.push_back({o.name + "/body", o.name, CollisionGroup::kObject, object_body, pan_body});
   m->sources.push_back({FrameKind::kObject, 0, 0});
   m->shapes.push_back({o.name + "/handle", o.name, CollisionGroup::kObject, object_body, handle});

@@ -76,6 +76,22 @@ class FieldReader {
 
 }  // namespace
 
+CollisionShape ObjectModel::BodyShape() const {
+  CollisionShape body;
+  body.kind = CollisionShape::Kind::kCylinder;
+  body.size << body_radius, body_height, 0.0;
+  return body;
+}
+
+CollisionShape ObjectModel::HandleShape() const {
+  CollisionShape handle;
+  handle.kind = CollisionShape::Kind::kBox;
+  handle.size << handle_end_radius - handle_start_radius, handle_width, handle_thickness;
+  handle.X_LG.translation() << 0.5 * (handle_start_radius + handle_end_radius), 0.0,
+      handle_axis_height - rest_height();
+  return handle;
+}
+
 Eigen::Isometry3d SceneModel::ObjectPose(double theta) const {
   Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
   X_WO.translation() << object.centre_xy, table.top_z + object.rest_height();

@@ -13,6 +13,7 @@
 #include <string>
 #include <string_view>
 
+#include "kinematics/arm_model.hpp"
 #include "kinematics/types.hpp"
 
 namespace graspsynth {
@@ -43,6 +44,14 @@ struct ObjectModel {
 
   /// Height of the object centre above the table when the pan rests on it.
   double rest_height() const { return 0.5 * body_height; }
+
+  /// The pan's body in the object frame O: a cylinder of body_radius and body_height centred
+  /// at O, axis z. Every module that builds the pan (collision, simulation, viewer) uses it.
+  CollisionShape BodyShape() const;
+  /// The handle in O: a box from handle_start_radius to handle_end_radius along x,
+  /// handle_width across and handle_thickness high, its axis handle_axis_height above the
+  /// table.
+  CollisionShape HandleShape() const;
 };
 
 /// Where the grasping motion starts: the pre-grasp pose is the first wrist sample inside it.

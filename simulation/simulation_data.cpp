@@ -391,14 +391,8 @@ struct SimulationData::Impl {
     object.body = dBodyCreate(world);
     object.p_LC = oi.p_OC;
     SetMass(object.body, oi.mass, oi.I_C);
-    CollisionShape pan;
-    pan.kind = CollisionShape::Kind::kCylinder;
-    pan.size = Eigen::Vector3d(o.body_radius, o.body_height, 0.0);
-    CollisionShape handle;
-    handle.size = Eigen::Vector3d(o.handle_end_radius - o.handle_start_radius, o.handle_width,
-                                  o.handle_thickness);
-    handle.X_LG.translation() = Eigen::Vector3d(0.5 * (o.handle_start_radius + o.handle_end_radius),
-                                                0.0, o.handle_axis_height - o.rest_height());
+    const CollisionShape pan = o.BodyShape();
+    const CollisionShape handle = o.HandleShape();
     // ODE's cylinder-box contact rocks (3-4 contacts that jump around the rim; measured: the
     // pan tilted 0.8 deg and crept 3 mm in 10 s). The pan therefore stands on a "foot" of two
     // boxes inscribed in its cylinder, turned 45 deg to each other (an eight-pointed star whose

@@ -40,16 +40,14 @@ Eigen::Matrix3d Shift(double m, const Eigen::Vector3d& d) {
 }
 
 ObjectInertia ComputeObjectInertia(const ObjectModel& o) {
-  const double len = o.handle_end_radius - o.handle_start_radius;
+  const CollisionShape handle = o.HandleShape();
   const Eigen::Vector3d p_body = Eigen::Vector3d::Zero();
-  const Eigen::Vector3d p_handle(0.5 * (o.handle_start_radius + o.handle_end_radius), 0.0,
-                                 o.handle_axis_height - o.rest_height());
+  const Eigen::Vector3d p_handle = handle.X_LG.translation();
   ObjectInertia out;
   out.mass = o.body_mass + o.handle_mass;
   out.p_OC = (o.body_mass * p_body + o.handle_mass * p_handle) / out.mass;
   out.I_C = CylinderInertia(o.body_mass, o.body_radius, o.body_height) +
-            Shift(o.body_mass, p_body - out.p_OC) +
-            BoxInertia(o.handle_mass, Eigen::Vector3d(len, o.handle_width, o.handle_thickness)) +
+            Shift(o.body_mass, p_body - out.p_OC) + BoxInertia(o.handle_mass, handle.size) +
             Shift(o.handle_mass, p_handle - out.p_OC);
   return out;
 }

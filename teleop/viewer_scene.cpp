@@ -134,16 +134,8 @@ std::vector<ViewerBody> ViewerRobotBodies(const RobotModel& robot) {
 
 ViewerBody ViewerObjectBody(const ObjectModel& o) {
   ViewerBody body{o.name, "object", {}};
-  CollisionShape pan;
-  pan.kind = CollisionShape::Kind::kCylinder;
-  pan.size << o.body_radius, o.body_height, 0.0;
-  body.shapes.push_back(pan);
-  CollisionShape handle;
-  handle.kind = CollisionShape::Kind::kBox;
-  handle.size << o.handle_end_radius - o.handle_start_radius, o.handle_width, o.handle_thickness;
-  handle.X_LG.translation() << 0.5 * (o.handle_start_radius + o.handle_end_radius), 0.0,
-      o.handle_axis_height - o.rest_height();
-  body.shapes.push_back(handle);
+  body.shapes.push_back(o.BodyShape());
+  body.shapes.push_back(o.HandleShape());
   return body;
 }
 

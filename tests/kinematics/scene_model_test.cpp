@@ -42,6 +42,19 @@ TEST(SceneModel, ObjectPoseTurnsTheHandleWithTheta) {
   EXPECT_TRUE(testing::MatricesNear(X_WO.linear().col(2), Eigen::Vector3d::UnitZ(), 1e-15));
 }
 
+TEST(SceneModel, ObjectShapesFollowTheDescription) {
+  const SceneModel scene = LoadSceneModel(DefaultSceneModelPath());
+  const CollisionShape body = scene.object.BodyShape();
+  EXPECT_EQ(body.kind, CollisionShape::Kind::kCylinder);
+  EXPECT_TRUE(testing::MatricesNear(body.size, Eigen::Vector3d(0.08, 0.05, 0.0), 0.0));
+  const CollisionShape handle = scene.object.HandleShape();
+  EXPECT_EQ(handle.kind, CollisionShape::Kind::kBox);
+  EXPECT_TRUE(testing::MatricesNear(handle.size, Eigen::Vector3d(0.26, 0.024, 0.024), 1e-15));
+  // from r 0.08 to 0.34 along x, axis 0.045 m above the table = 0.02 m above the centre.
+  EXPECT_TRUE(testing::MatricesNear(handle.X_LG.translation(), Eigen::Vector3d(0.21, 0.0, 0.02),
+                                    1e-15));
+}
+
 TEST(SceneModel, RejectsBadFieldsNamingThem) {
   GS_EXPECT_THROW_WITH(ParseSceneModel(SceneWith("/format", "graspsynth-scene/2"), "s.json"),
                        InputError, "s.json.format", "graspsynth-scene/2");
