@@ -84,11 +84,8 @@ int RunKinematicsStudy(const RunOptions& opts) {
     const ArmTargetForm form = PrepareArmTarget(arm, X_WF, +1);
     const std::vector<Interval> feasible = FeasibleArmAngles(arm, form, +1, +1);
     double width = 0.0;
-    const Interval* widest = nullptr;
-    for (const Interval& iv : feasible) {
-      width += iv.width();
-      if (!widest || iv.width() > widest->width()) widest = &iv;
-    }
+    for (const Interval& iv : feasible) width += iv.width();
+    const std::optional<Interval> widest = WidestInterval(feasible);
     if (!widest) {
       ++failures;
       std::printf(" %5.0f  %.3f  %6.1f  | unreachable: %s\n", row.theta_deg, row.d, row.eta_deg,

@@ -41,21 +41,9 @@ HandVector RandomHand(std::mt19937_64* rng) {
 // an in-limit IK solution for hand-mount pose X_WH (arm angle mid-way in the widest feasible
 // interval of the first branch that has one).
 std::optional<Vector7d> SolveWrist(const Eigen::Isometry3d& X_WH) {
-  const ArmModel& arm = Robot().arm;
-  const Eigen::Isometry3d X_WF = X_WH * Robot().X_FH.inverse();
-  for (int index = 0; index < 8; ++index) {
-    const ArmBranch branch = ArmBranch::FromIndex(index);
-    const ArmTargetForm form = PrepareArmTarget(arm, X_WF, branch.gc4);
-    if (form.status != IkStatus::kOk) continue;
-    std::optional<Interval> widest;
-    for (const Interval& iv : FeasibleArmAngles(arm, form, branch.gc2, branch.gc6)) {
-      if (!widest || iv.width() > widest->width()) widest = iv;
-    }
-    if (!widest) continue;
-    const ArmIkSolution s = SolveArmIk(arm, X_WF, 0.5 * (widest->lo + widest->hi), branch);
-    if (s.status == IkStatus::kOk) return s.q;
-  }
-  return std::nullopt;
+  const auto s = SolveArmIkMidArc(Robot().arm, X_WH * Robot().X_FH.inverse());
+  if (!s) return std::nullopt;
+  return s->q;
 }
 
 // approach states: the hand palm down across the handle (pan at theta = 60 deg), its mount

@@ -568,4 +568,29 @@ std::optional<Vector7d> NearestEquivalent(const ArmModel& arm, const Eigen::Ref<
   return out;
 }
 
+std::optional<Interval> WidestInterval(const std::vector<Interval>& intervals) {
+  std::optional<Interval> widest;
+  for (const Interval& iv : intervals) {
+    if (!widest || iv.width() > widest->width()) widest = iv;
+  }
+  return widest;
+}
+
+std::optional<MidArcSolution> SolveArmIkMidArc(const ArmModel& arm, const Eigen::Isometry3d& X_WF,
+                                               std::optional<ArmBranch> branch) {
+  for (int index = 0; index < 8; ++index) {
+    const ArmBranch b = branch ? *branch : ArmBranch::FromIndex(index);
+    if (branch && index > 0) break;
+    const ArmTargetForm form = PrepareArmTarget(arm, X_WF, b.gc4);
+    if (form.status != IkStatus::kOk) continue;
+    const std::optional<Interval> widest =
+        WidestInterval(FeasibleArmAngles(arm, form, b.gc2, b.gc6));
+    if (!widest) continue;
+    const double psi = 0.5 * (widest->lo + widest->hi);
+    const ArmIkSolution s = SolveArmIk(arm, X_WF, psi, b);
+    if (s.status == IkStatus::kOk) return MidArcSolution{s.q, psi, b};
+  }
+  return std::nullopt;
+}
+
 }  // namespace graspsynth

@@ -107,6 +107,23 @@ double ArmAngleOf(const ArmModel& arm, const Eigen::Ref<const Vector7d>& q);
 std::vector<Interval> FeasibleArmAngles(const ArmModel& arm, const ArmTargetForm& form, int gc2,
                                         int gc6);
 
+/// The widest of `intervals` (the first of equal widths); std::nullopt when there is none.
+std::optional<Interval> WidestInterval(const std::vector<Interval>& intervals);
+
+/// A solution chosen for its joint-limit margin: see SolveArmIkMidArc.
+struct MidArcSolution {
+  Vector7d q = Vector7d::Zero();  ///< in-limit configuration
+  double psi = 0.0;               ///< its arm angle: the middle of the widest feasible arc, rad
+  ArmBranch branch;               ///< its branch
+};
+
+/// The in-limit solution of X_WF whose arm angle is the middle of the widest feasible arc of
+/// its branch, trying the branches in index order (elbow-up (+1, +1, +1) first), or only
+/// `branch` when given. A good start configuration when nothing else fixes the arm angle.
+/// std::nullopt when no branch tried has a feasible arm angle.
+std::optional<MidArcSolution> SolveArmIkMidArc(const ArmModel& arm, const Eigen::Isometry3d& X_WF,
+                                               std::optional<ArmBranch> branch = std::nullopt);
+
 /// The value equivalent to `angle` modulo 2*pi that lies in [lower, upper] and is closest to
 /// `reference`; std::nullopt when no equivalent lies in the range.
 std::optional<double> NearestEquivalentAngle(double angle, double reference, double lower,

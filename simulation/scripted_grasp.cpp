@@ -130,16 +130,9 @@ Vector7d DefaultRestConfiguration(const RobotModel& robot, const SceneModel& sce
   const Eigen::Matrix3d R = R_WH * Eigen::AngleAxisd(30.0 * kDeg, Eigen::Vector3d::UnitY());
   const Eigen::Vector3d p(0.60 * toward.x(), 0.60 * toward.y(), scene.table.top_z + 0.30);
   const Eigen::Isometry3d X_WF = Pose(R, p) * robot.X_FH.inverse();
-  const ArmTargetForm form = PrepareArmTarget(robot.arm, X_WF, +1);
-  const std::vector<Interval> feasible = FeasibleArmAngles(robot.arm, form, +1, +1);
-  GS_DEMAND(!feasible.empty(), "the default rest pose is not reachable");
-  const Interval* widest = &feasible.front();
-  for (const Interval& iv : feasible) {
-    if (iv.width() > widest->width()) widest = &iv;
-  }
-  const ArmIkSolution s = SolveArmIk(robot.arm, X_WF, 0.5 * (widest->lo + widest->hi), ArmBranch{});
-  GS_DEMAND(s.status == IkStatus::kOk, "the default rest pose has no IK solution");
-  return s.q;
+  const std::optional<MidArcSolution> s = SolveArmIkMidArc(robot.arm, X_WF, ArmBranch{});
+  GS_DEMAND(s.has_value(), "the default rest pose is not reachable on the elbow-up branch");
+  return s->q;
 }
 
 ScriptedGraspResult BuildScriptedGrasp(const RobotModel& robot, const SceneModel& scene,

@@ -24,20 +24,9 @@ std::string ThetaText(double theta_deg) {
 
 // the first branch on which X_WH has a solution, at the middle of its widest feasible arc.
 std::optional<Vector7d> RestConfiguration(const RobotModel& robot, const Eigen::Isometry3d& X_WH) {
-  const Eigen::Isometry3d X_WF = X_WH * robot.X_FH.inverse();
-  for (int index = 0; index < 8; ++index) {
-    const ArmBranch branch = ArmBranch::FromIndex(index);
-    const ArmTargetForm form = PrepareArmTarget(robot.arm, X_WF, branch.gc4);
-    if (form.status != IkStatus::kOk) continue;
-    const std::vector<Interval> arcs = FeasibleArmAngles(robot.arm, form, branch.gc2, branch.gc6);
-    if (arcs.empty()) continue;
-    const Interval widest = *std::max_element(
-        arcs.begin(), arcs.end(),
-        [](const Interval& a, const Interval& b) { return a.width() < b.width(); });
-    const ArmIkSolution s = SolveArmIk(robot.arm, X_WF, 0.5 * (widest.lo + widest.hi), branch);
-    if (s.status == IkStatus::kOk) return s.q;
-  }
-  return std::nullopt;
+  const auto s = SolveArmIkMidArc(robot.arm, X_WH * robot.X_FH.inverse());
+  if (!s) return std::nullopt;
+  return s->q;
 }
 
 }  // namespace

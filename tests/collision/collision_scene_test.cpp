@@ -357,28 +357,8 @@ int Shape(const std::string& name) {
 
 // an in-limit IK solution for the hand-mount pose X_WH: branch (+, +, +) first, then the
 // others; the arm angle in the middle of the widest feasible interval.
-struct WristSolution {
-  Vector7d q;
-  double psi = 0.0;
-  ArmBranch branch;
-};
-std::optional<WristSolution> SolveWrist(const Eigen::Isometry3d& X_WH) {
-  const ArmModel& arm = Robot().arm;
-  const Eigen::Isometry3d X_WF = X_WH * Robot().X_FH.inverse();
-  for (int index = 0; index < 8; ++index) {
-    const ArmBranch branch = ArmBranch::FromIndex(index);
-    const ArmTargetForm form = PrepareArmTarget(arm, X_WF, branch.gc4);
-    if (form.status != IkStatus::kOk) continue;
-    std::optional<Interval> widest;
-    for (const Interval& iv : FeasibleArmAngles(arm, form, branch.gc2, branch.gc6)) {
-      if (!widest || iv.width() > widest->width()) widest = iv;
-    }
-    if (!widest) continue;
-    const double psi = 0.5 * (widest->lo + widest->hi);
-    const ArmIkSolution s = SolveArmIk(arm, X_WF, psi, branch);
-    if (s.status == IkStatus::kOk) return WristSolution{s.q, psi, branch};
-  }
-  return std::nullopt;
+std::optional<MidArcSolution> SolveWrist(const Eigen::Isometry3d& X_WH) {
+  return SolveArmIkMidArc(Robot().arm, X_WH * Robot().X_FH.inverse());
 }
 
 // the hand's shapes at hand-mount pose X_WH and fingers f, computed here from the hand model
@@ -575,7 +555,7 @@ TEST(CollisionScene, HandPushedIntoTheTableCollidesWithIt) {
   // the hand's lowest point 1 cm below the table top, well inside the table's outline.
   const Eigen::Isometry3d X_WH =
       WristPoseWithLowestPointAt(R_WH, f, {0.05, 0.75, Scene().table.top_z - 0.01});
-  const std::optional<WristSolution> ik = SolveWrist(X_WH);
+  const std::optional<MidArcSolution> ik = SolveWrist(X_WH);
   ASSERT_TRUE(ik.has_value());
   CollisionData data(m);
   SetState(m, ik->q, f, theta, &data);
@@ -644,7 +624,7 @@ TEST(CollisionScene, HandHoveringAboveTheHandleHasTheAnalyticClearance) {
   ASSERT_LT(std::abs(p_G.x()), h.half.x() - 0.01);
   ASSERT_LT(std::abs(p_G.y()), h.half.y() - 1e-3);
   ASSERT_LT(Scene().object.body_height, h.top_z());
-  const std::optional<WristSolution> ik = SolveWrist(X_WH);
+  const std::optional<MidArcSolution> ik = SolveWrist(X_WH);
   ASSERT_TRUE(ik.has_value());
 
   CollisionData data(m);
@@ -666,7 +646,7 @@ TEST(CollisionScene, HandHoveringAboveTheHandleHasTheAnalyticClearance) {
   // 10 cm lower the hand passes through the handle.
   Eigen::Isometry3d X_WH_low = X_WH;
   X_WH_low.translation().z() -= 0.10;
-  const std::optional<WristSolution> ik_low = SolveWrist(X_WH_low);
+  const std::optional<MidArcSolution> ik_low = SolveWrist(X_WH_low);
   ASSERT_TRUE(ik_low.has_value());
   SetState(m, ik_low->q, f, theta, &data);
   const CollisionReport low = Collide(m, CollisionGroup::kHand, CollisionGroup::kObject, &data);
@@ -686,7 +666,7 @@ TEST(CollisionScene, ClearanceOfAStraightDescentIsMonotone) {
   constexpr int kSteps = 12;
   std::vector<RobotState> states;
   std::vector<double> heights;
-  std::optional<WristSolution> first;
+  std::optional<MidArcSolution> first;
   for (int s = 0; s < kSteps; ++s) {
     const double height = 0.10 + (0.005 - 0.10) * s / (kSteps - 1);
     const Eigen::Isometry3d X_WH = HoverPose(theta, f, height);

@@ -561,3 +561,42 @@ TEST(ArmIk, TangentJointDerivativeMatchesFiniteDifferences) {
 
 }  // namespace
 }  // namespace graspsynth
+
+namespace graspsynth {
+namespace {
+
+TEST(WidestInterval, PicksTheFirstWidest) {
+  EXPECT_FALSE(WidestInterval({}));
+  const auto w = WidestInterval({{-1.0, -0.5}, {0.0, 1.0}, {2.0, 3.0}});
+  ASSERT_TRUE(w);
+  EXPECT_EQ(w->lo, 0.0);
+}
+
+TEST(SolveArmIkMidArc, SolvesAtTheMiddleOfTheWidestArc) {
+  const ArmModel arm = testing::Pa10FromDh();
+  Vector7d q;
+  q << 0.4, 0.6, -0.3, 1.2, 0.5, -0.9, 0.3;
+  const Eigen::Isometry3d X_WF = ArmFlangePose(arm, q);
+  const auto s = SolveArmIkMidArc(arm, X_WF);
+  ASSERT_TRUE(s);
+  EXPECT_EQ(s->branch.index(), 0);  // elbow-up (+, +, +) is tried first
+  EXPECT_TRUE(arm.WithinLimits(s->q));
+  EXPECT_TRUE(testing::PosesNear(ArmFlangePose(arm, s->q), X_WF, 1e-9));
+  const ArmTargetForm form = PrepareArmTarget(arm, X_WF, +1);
+  const auto widest = WidestInterval(FeasibleArmAngles(arm, form, +1, +1));
+  ASSERT_TRUE(widest);
+  EXPECT_DOUBLE_EQ(s->psi, 0.5 * (widest->lo + widest->hi));
+  EXPECT_NEAR(ArmAngleOf(arm, s->q), s->psi, 1e-9);
+  // a given branch is the only one tried.
+  const ArmBranch other{1, 1, -1};
+  const auto t = SolveArmIkMidArc(arm, X_WF, other);
+  ASSERT_TRUE(t);
+  EXPECT_EQ(t->branch, other);
+  // out of reach: nothing.
+  Eigen::Isometry3d far = X_WF;
+  far.translation() = Eigen::Vector3d(2.0, 0.0, 0.5);
+  EXPECT_FALSE(SolveArmIkMidArc(arm, far));
+}
+
+}  // namespace
+}  // namespace graspsynth
