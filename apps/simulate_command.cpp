@@ -37,16 +37,17 @@ struct SimulateOptions {
   std::string record;
   double record_interval = 0.01;
   int perturb = 0;
-  uint64_t seed = 1;
-  int threads = 0;
+  // the defaults are the library's, so that the command and the library cannot drift apart.
+  uint64_t seed = RobustnessOptions{}.seed;
+  int threads = RobustnessOptions{}.threads;
   std::string fidelity = "fast";
-  double time_step = 0.0;
-  double hold = 1.0;
-  double time_scale_min = 0.7;
-  double time_scale_max = 1.3;
-  double position_noise = 0.005;
-  double orientation_noise_deg = 2.0;
-  double finger_noise_deg = 2.0;
+  double time_step = TrialOptions{}.time_step;
+  double hold = TrialOptions{}.hold;
+  double time_scale_min = PerturbationOptions{}.time_scale_min;
+  double time_scale_max = PerturbationOptions{}.time_scale_max;
+  double position_noise = PerturbationOptions{}.position_sigma;
+  double orientation_noise_deg = PerturbationOptions{}.orientation_sigma / kDeg;
+  double finger_noise_deg = PerturbationOptions{}.finger_sigma / kDeg;
   std::string robot;
   std::string scene;
 };
