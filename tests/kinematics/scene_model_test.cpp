@@ -49,10 +49,10 @@ TEST(SceneModel, ObjectShapesFollowTheDescription) {
   EXPECT_TRUE(testing::MatricesNear(body.size, Eigen::Vector3d(0.08, 0.05, 0.0), 0.0));
   const CollisionShape handle = scene.object.HandleShape();
   EXPECT_EQ(handle.kind, CollisionShape::Kind::kBox);
-  EXPECT_TRUE(testing::MatricesNear(handle.size, Eigen::Vector3d(0.26, 0.024, 0.024), 1e-15));
-  // from r 0.08 to 0.34 along x, axis 0.045 m above the table = 0.02 m above the centre.
-  EXPECT_TRUE(testing::MatricesNear(handle.X_LG.translation(), Eigen::Vector3d(0.21, 0.0, 0.02),
-                                    1e-15));
+  EXPECT_TRUE(testing::MatricesNear(handle.size, Eigen::Vector3d(0.30, 0.024, 0.024), 1e-15));
+  // from r 0.08 to 0.38 along x, axis 0.045 m above the table = 0.02 m above the centre.
+  EXPECT_TRUE(
+      testing::MatricesNear(handle.X_LG.translation(), Eigen::Vector3d(0.23, 0.0, 0.02), 1e-15));
 }
 
 TEST(SceneModel, RejectsBadFieldsNamingThem) {
