@@ -1,0 +1,252 @@
+// graspsynth demos: the synthetic operator (learning_data/synthetic_operator.hpp) from the
+// command line - generate a demonstration set, or calibrate the operator against Table I.
+
+#include "apps/demos_command.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/errors.hpp"
+#include "kinematics/robot_description.hpp"
+#include "kinematics/scene_model.hpp"
+#include "learning_data/segmentation.hpp"
+#include "learning_data/synthetic_operator.hpp"
+#include "simulation/simulation_model.hpp"
+#include "solver/analysis_report.hpp"
+#include "solver/table_analysis.hpp"
+
+namespace graspsynth::apps {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr double kDeg = M_PI / 180.0;
+
+struct DemosOptions {
+  std::string out;
+  std::string config;
+  std::string robot;
+  std::string scene;
+  uint64_t seed = 0;
+  bool seed_given = false;
+  int trials = 0;  // 0: the config's
+  int threads = 0;
+  int iterations = 3;
+  double damping = 0.7;
+  bool quiet = false;
+};
+
+// A one-line progress bar on stderr.
+void ShowProgress(const std::string& what, int done, int total, bool quiet) {
+  if (quiet) return;
+  const int width = 30;
+  const int filled = total > 0 ? done * width / total : width;
+  std::fprintf(stderr, "\r%s [%s%s] %d/%d", what.c_str(), std::string(filled, '#').c_str(),
+               std::string(width - filled, '.').c_str(), done, total);
+  if (done == total) std::fprintf(stderr, "\n");
+  std::fflush(stderr);
+}
+
+OperatorOptions LoadOperator(const DemosOptions& o) {
+  OperatorOptions options =
+      ReadOperatorOptions(o.config.empty() ? DefaultOperatorOptionsPath() : fs::path(o.config));
+  if (o.seed_given) options.seed = o.seed;
+  if (o.trials > 0) {  // the same count everywhere
+    options.trials_per_orientation = o.trials;
+    for (OrientationPlan& plan : options.plans) plan.trials = 0;
+  }
+  return options;
+}
+
+std::unique_ptr<SimulationModel> LoadModel(const DemosOptions& o) {
+  RobotModel robot =
+      LoadRobotModel(o.robot.empty() ? DefaultRobotDescriptionPath() : fs::path(o.robot));
+  SceneModel scene = LoadSceneModel(o.scene.empty() ? DefaultSceneModelPath() : fs::path(o.scene));
+  return std::make_unique<SimulationModel>(std::move(robot), std::move(scene));
+}
+
+TableAnalysis Analyze(const SimulationModel& model, const std::vector<OperatorTrial>& trials) {
+  SegmentationOptions segmentation;
+  segmentation.region = model.scene().grasp_region;
+  std::vector<SegmentedTrial> segmented;
+  for (const OperatorTrial& t : trials) segmented.push_back(Segment(t.log, segmentation));
+  return AnalyzeTable(segmented);
+}
+
+// Prints the per-orientation summary: successes, and the means beside the paper's.
+void PrintSummary(const TableAnalysis& table, const std::vector<OperatorTrial>& trials) {
+  std::map<double, std::pair<int, int>> counts;  // theta -> (trials, successes)
+  std::map<double, std::map<std::string, int>> failures;
+  for (const OperatorTrial& t : trials) {
+    ++counts[t.theta_deg].first;
+    if (t.success) {
+      ++counts[t.theta_deg].second;
+    } else {
+      ++failures[t.theta_deg][t.outcome];
+    }
+  }
+  std::map<double, PaperTableRow> paper;
+  for (const PaperTableRow& r : PaperTableI()) paper[r.theta_deg] = r;
+  std::printf(
+      "theta  trials  ok   grasp d  (paper)   eta    (paper)  pre-grasp eta (paper)  failures\n");
+  for (const auto& [theta, c] : counts) {
+    std::printf("%5.0f  %6d  %2d", theta, c.first, c.second);
+    const OrientationStats* row = nullptr;
+    for (const OrientationStats& s : table.orientations) {
+      if (s.theta_deg == theta) row = &s;
+    }
+    if (row && paper.count(theta)) {
+      const PaperTableRow& p = paper[theta];
+      std::printf("   %.3f  (%.3f)  %6.1f  (%6.1f)  %6.1f  (%6.1f)     ", row->grasp.d, p.grasp_d,
+                  row->grasp.eta_deg, p.grasp_eta_deg, row->pregrasp.eta_deg, p.pregrasp_eta_deg);
+    } else {
+      std::printf("   %-54s", "-");
+    }
+    for (const auto& [outcome, n] : failures[theta]) std::printf(" %s %d", outcome.c_str(), n);
+    std::printf("\n");
+  }
+}
+
+int Generate(const DemosOptions& o) {
+  const OperatorOptions options = LoadOperator(o);
+  const std::unique_ptr<SimulationModel> model = LoadModel(o);
+  const std::vector<OperatorTrial> trials = GenerateDemonstrations(
+      *model, options, o.threads,
+      [&](int done, int total) { ShowProgress("simulating trials", done, total, o.quiet); });
+  fs::create_directories(o.out);
+  for (const OperatorTrial& t : trials) WriteDemoLog(fs::path(o.out) / t.log.source, t.log);
+  OperatorOptions used = options;
+  WriteOperatorOptions(used, fs::path(o.out) / "operator.json");
+  PrintSummary(Analyze(*model, trials), trials);
+  std::printf("wrote %zu logs and operator.json to %s\n", trials.size(), o.out.c_str());
+  return 0;
+}
+
+// Moves every strategy of `plan` by the horizontal offset (dx, dy).
+void Shift(OrientationPlan* plan, const Eigen::Vector2d& delta) {
+  for (GraspStrategy& s : plan->strategies) {
+    Eigen::Vector2d p(s.d * std::cos(s.eta_deg * kDeg), s.d * std::sin(s.eta_deg * kDeg));
+    p += delta;
+    s.d = p.norm();
+    s.eta_deg = std::atan2(p.y(), p.x()) / kDeg;
+  }
+}
+
+// How far an orientation's row is from the paper's, in units of the tolerances (5 mm, 2 deg),
+// with a penalty when its number of successful trials is outside 5..10. Lower is better.
+double RowError(const OrientationStats& s, const PaperTableRow& p) {
+  const double error =
+      std::max({std::abs(s.grasp.d - p.grasp_d) / 0.005,
+                std::abs(std::remainder(s.grasp.eta_deg - p.grasp_eta_deg, 360.0)) / 2.0,
+                std::abs(std::remainder(s.pregrasp.eta_deg - p.pregrasp_eta_deg, 360.0)) / 2.0});
+  return error + (s.n < 5 || s.n > 10 ? 10.0 : 0.0);
+}
+
+// Each orientation's trials depend only on its own plan (and the seed), so every plan is
+// calibrated on its own: after each round, the plan's strategies are shifted by a damped
+// difference between the paper's row and the mean of its successful trials, and the best plan
+// seen (RowError) is kept.
+int Calibrate(const DemosOptions& o) {
+  OperatorOptions options = LoadOperator(o);
+  const std::unique_ptr<SimulationModel> model = LoadModel(o);
+  std::map<double, PaperTableRow> paper;
+  for (const PaperTableRow& r : PaperTableI()) paper[r.theta_deg] = r;
+  std::vector<OrientationPlan> best = options.plans;
+  std::vector<double> best_error(options.plans.size(), 1e300);
+  for (int iteration = 1; iteration <= o.iterations; ++iteration) {
+    const std::vector<OperatorTrial> trials =
+        GenerateDemonstrations(*model, options, o.threads, [&](int done, int total) {
+          ShowProgress("round " + std::to_string(iteration), done, total, o.quiet);
+        });
+    const TableAnalysis table = Analyze(*model, trials);
+    PrintSummary(table, trials);
+    for (size_t k = 0; k < options.plans.size(); ++k) {
+      OrientationPlan& plan = options.plans[k];
+      if (!paper.count(plan.theta_deg)) continue;
+      const PaperTableRow& p = paper[plan.theta_deg];
+      for (const OrientationStats& s : table.orientations) {
+        if (s.theta_deg != plan.theta_deg || s.n == 0) continue;
+        const double error = RowError(s, p);
+        if (error < best_error[k]) {
+          best_error[k] = error;
+          best[k] = plan;
+        }
+        const Eigen::Vector2d target(p.grasp_d * std::cos(p.grasp_eta_deg * kDeg),
+                                     p.grasp_d * std::sin(p.grasp_eta_deg * kDeg));
+        Shift(&plan, o.damping * (target - s.grasp.mean_xy));
+        plan.pregrasp_eta_deg += o.damping * (p.pregrasp_eta_deg - s.pregrasp.eta_deg);
+      }
+    }
+  }
+  options.plans = best;
+  WriteOperatorOptions(options, o.out);
+  std::printf("best error per orientation (1 = at the tolerance):");
+  for (size_t k = 0; k < best.size(); ++k) {
+    std::printf(" %g: %.2f", best[k].theta_deg, best_error[k]);
+  }
+  std::printf("\nwrote the calibrated operator to %s\n", o.out.c_str());
+  return 0;
+}
+
+void AddCommonOptions(CLI::App* cmd, DemosOptions* o) {
+  cmd->add_option("--config", o->config,
+                  "Operator file (graspsynth-operator/1); default: the shipped, calibrated "
+                  "learning_data/demos/operator.json");
+  cmd->add_option("--seed", o->seed, "Seed (default: the config's)")->each([o](const std::string&) {
+    o->seed_given = true;
+  });
+  cmd->add_option(
+         "--trials-per-orientation", o->trials,
+         "Trials at every orientation (default: the config's, which may differ per orientation)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--threads", o->threads,
+                  "Worker threads (0: all cores); the output does not "
+                  "depend on it")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--robot", o->robot, "Robot description (URDF)");
+  cmd->add_option("--scene", o->scene, "Scene description (JSON)");
+  cmd->add_flag("--quiet", o->quiet, "No progress bar");
+}
+
+}  // namespace
+
+void AddDemosCommand(CLI::App& app, int* exit_code) {
+  auto* demos = app.add_subcommand(
+      "demos",
+      "The synthetic operator: a model of the paper's human operator that makes teleoperation "
+      "trials (60 Hz logs, format graspsynth-demo/1) for the orientations of its config, runs "
+      "each one in the ODE simulation through the arm's IK and labels it with what happened to "
+      "the pan there.");
+  demos->require_subcommand(1);
+  auto o = std::make_shared<DemosOptions>();
+
+  auto* generate = demos->add_subcommand(
+      "generate",
+      "Generate a demonstration set: one CSV log per trial (theta020_trial01.csv, ...) and the "
+      "operator.json that made it, into --out. The same config and seed give the same bytes.\n"
+      "Example:\n  graspsynth demos generate --out demos/ --seed 7 --trials-per-orientation 10");
+  generate->add_option("--out", o->out, "Output folder")->required();
+  AddCommonOptions(generate, o.get());
+  generate->callback([o, exit_code] { *exit_code = Generate(*o); });
+
+  auto* calibrate = demos->add_subcommand(
+      "calibrate",
+      "Shift each orientation's intended grasp positions and entry angle by the difference "
+      "between the paper's Table I and the mean of the successful trials, --iterations times, "
+      "and write the calibrated operator file.");
+  calibrate->add_option("--out", o->out, "Calibrated operator file to write")->required();
+  calibrate->add_option("--iterations", o->iterations, "Generate-and-correct rounds")
+      ->check(CLI::PositiveNumber);
+  calibrate->add_option("--damping", o->damping, "Fraction of the difference corrected per round")
+      ->check(CLI::Range(0.05, 1.0));
+  AddCommonOptions(calibrate, o.get());
+  calibrate->callback([o, exit_code] { *exit_code = Calibrate(*o); });
+}
+
+}  // namespace graspsynth::apps

@@ -1,0 +1,544 @@
+#include "learning_data/synthetic_operator.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <fstream>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <thread>
+
+#include "common/atomic_file.hpp"
+#include "common/data_dir.hpp"
+#include "common/errors.hpp"
+#include "kinematics/hand_model.hpp"
+#include "learning_data/demo_replay.hpp"
+#include "simulation/random.hpp"
+#include "simulation/trial.hpp"
+
+namespace graspsynth {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+constexpr int kMaxAttempts = 5;
+using json = nlohmann::ordered_json;
+
+double MinimumJerk(double u) {
+  u = std::clamp(u, 0.0, 1.0);
+  return u * u * u * (10.0 - 15.0 * u + 6.0 * u * u);
+}
+
+// One sub-movement of the wrist and fingers: minimum-jerk in position, slerp in orientation,
+// a linear finger blend on the same profile, and a bow (offset * sin(pi s)) off the straight
+// line.
+struct Segment {
+  double duration = 0.0;
+  Eigen::Vector3d p0, p1;
+  Eigen::Quaterniond q0, q1;
+  HandVector f0, f1;
+  Eigen::Vector3d bow = Eigen::Vector3d::Zero();
+};
+
+struct PlannedTrial {
+  std::vector<Segment> segments;
+  double grasp_time = 0.0;  // end of the settle: the grasp button
+};
+
+// The hand's frame at the grasp for wrist position w (world) and hand direction z (horizontal).
+Eigen::Matrix3d HandFrame(const Eigen::Vector3d& z_horizontal) {
+  const Eigen::Vector3d x = -Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d z = z_horizontal.normalized();
+  Eigen::Matrix3d R;
+  R.col(0) = x;
+  R.col(1) = z.cross(x);
+  R.col(2) = z;
+  return R;
+}
+
+Eigen::Vector3d Polar(const Eigen::Vector2d& c, double d, double eta, double z) {
+  return Eigen::Vector3d(c.x() + d * std::cos(eta), c.y() + d * std::sin(eta), z);
+}
+
+PlannedTrial PlanTrial(const SceneModel& scene, const HandModel& hand, const OperatorOptions& o,
+                       const OrientationPlan& plan, const GraspStrategy& strategy, bool sloppy,
+                       SplitMix64& rng) {
+  const double k = sloppy ? o.sloppy_scale : 1.0;
+  const Eigen::Isometry3d X_WO = scene.ObjectPose(plan.theta_deg * kDeg);
+  const Eigen::Vector2d c = scene.object.centre_xy;
+  const Eigen::Vector3d h = X_WO.linear().col(0);
+  const Eigen::Vector3d n = Eigen::Vector3d::UnitZ().cross(h);
+  const double handle_z = scene.table.top_z + scene.object.handle_axis_height;
+
+  // the wrist at the grasp, and the grip point on the handle hook_reach ahead of it.
+  Eigen::Vector3d w = Polar(c, strategy.d, strategy.eta_deg * kDeg,
+                            handle_z + o.wrist_above_handle + k * o.height_noise * rng.Normal());
+  w.x() += k * o.position_noise * rng.Normal();
+  w.y() += k * o.position_noise * rng.Normal();
+  const Eigen::Vector3d rel(w.x() - c.x(), w.y() - c.y(), 0.0);
+  const double a = rel.dot(h);
+  const double l = std::clamp(rel.dot(n), -0.98 * o.hook_reach, 0.98 * o.hook_reach);
+  const double r = a - std::sqrt(o.hook_reach * o.hook_reach - l * l);
+  Eigen::Vector3d grip(c.x(), c.y(), 0.0);
+  grip += r * h;
+  Eigen::Vector3d z_dir = grip - Eigen::Vector3d(w.x(), w.y(), 0.0);
+  z_dir.z() = 0.0;
+  z_dir = Eigen::AngleAxisd(k * o.yaw_noise * rng.Normal(), Eigen::Vector3d::UnitZ()) * z_dir;
+  const Eigen::Matrix3d R_grasp = HandFrame(z_dir);
+  const Eigen::Quaterniond q_grasp(R_grasp);
+
+  // rest: toward the object from the base, the hand turned like the grasp and pitched 30 deg.
+  const Eigen::Vector2d toward = Eigen::Rotation2Dd(o.rest_turn) * c.normalized();
+  const Eigen::Vector3d p_rest(o.rest_distance * toward.x(), o.rest_distance * toward.y(),
+                               scene.table.top_z + o.rest_height);
+  const Eigen::Quaterniond q_rest(R_grasp *
+                                  Eigen::AngleAxisd(30.0 * kDeg, Eigen::Vector3d::UnitY()));
+
+  const double eta_pg = plan.pregrasp_eta_deg * kDeg;
+  const double travel_z = w.z() + o.travel_height;
+  const Eigen::Vector3d p_out = Polar(c, o.entry_out, eta_pg, travel_z);
+  const Eigen::Vector3d p_in = Polar(c, o.entry_in, eta_pg, travel_z - 0.01);
+  const Eigen::Vector3d p_above = w + o.above_height * Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d p_lift = w + o.lift_height * Eigen::Vector3d::UnitZ();
+
+  // the closed shape with noise, kept 2 deg inside the joint ranges (a target at a stop makes
+  // the motor fight the stop).
+  HandVector closed = o.closed_hand;
+  const double inset = 2.0 * kDeg;
+  for (int j = 0; j < kHandDof; ++j) {
+    closed[j] = std::clamp(closed[j] + k * o.finger_noise * rng.Normal(), hand.lower()[j] + inset,
+                           hand.upper()[j] - inset);
+  }
+  const HandVector& open = o.open_hand;
+
+  auto scaled = [&](double duration) {
+    return duration * rng.Uniform(1.0 - o.timing_spread, 1.0 + o.timing_spread);
+  };
+  Eigen::Vector3d bow(rng.Normal(), rng.Normal(), rng.Normal());
+  bow *= k * o.path_noise;
+
+  PlannedTrial t;
+  auto add = [&](double duration, const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                 const Eigen::Quaterniond& q0, const Eigen::Quaterniond& q1, const HandVector& f0,
+                 const HandVector& f1, const Eigen::Vector3d& b = Eigen::Vector3d::Zero()) {
+    t.segments.push_back(Segment{duration, p0, p1, q0, q1, f0, f1, b});
+  };
+  add(scaled(o.rest_duration), p_rest, p_rest, q_rest, q_rest, open, open);
+  add(scaled(o.reach_duration), p_rest, p_out, q_rest, q_grasp, open, open, bow);
+  add(scaled(o.entry_duration), p_out, p_in, q_grasp, q_grasp, open, open);
+  add(scaled(o.approach_duration), p_in, p_above, q_grasp, q_grasp, open, open);
+  add(scaled(o.descent_duration), p_above, w, q_grasp, q_grasp, open, open);
+  add(scaled(o.close_duration), w, w, q_grasp, q_grasp, open, closed);
+  add(scaled(o.settle_duration), w, w, q_grasp, q_grasp, closed, closed);
+  for (const Segment& s : t.segments) t.grasp_time += s.duration;
+  add(scaled(o.lift_duration), w, p_lift, q_grasp, q_grasp, closed, closed);
+  add(scaled(o.hold_duration), p_lift, p_lift, q_grasp, q_grasp, closed, closed);
+  return t;
+}
+
+DemoSample SampleAt(const PlannedTrial& plan, double t) {
+  double t0 = 0.0;
+  size_t i = 0;
+  while (i + 1 < plan.segments.size() && t > t0 + plan.segments[i].duration) {
+    t0 += plan.segments[i].duration;
+    ++i;
+  }
+  const Segment& s = plan.segments[i];
+  const double u = std::clamp((t - t0) / s.duration, 0.0, 1.0);
+  const double m = MinimumJerk(u);
+  DemoSample sample;
+  sample.t = t;
+  sample.p_WH = (1.0 - m) * s.p0 + m * s.p1 + std::sin(M_PI * m) * s.bow;
+  sample.q_WH = s.q0.slerp(m, s.q1).normalized();
+  if (sample.q_WH.w() < 0.0) sample.q_WH.coeffs() *= -1.0;
+  sample.f = (1.0 - m) * s.f0 + m * s.f1;
+  return sample;
+}
+
+// The log of a planned trial at the sample rate, object columns at rest.
+DemoLog SampleTrial(const PlannedTrial& plan, const OperatorOptions& o, const SceneModel& scene,
+                    double theta_deg, int index) {
+  DemoLog log;
+  char name[64];
+  std::snprintf(name, sizeof name, "theta%03d_trial%02d.csv",
+                static_cast<int>(std::lround(theta_deg)), index);
+  log.source = name;
+  log.metadata.theta_deg = theta_deg;
+  const Eigen::Isometry3d X_WO = scene.ObjectPose(theta_deg * kDeg);
+  log.metadata.object_position = X_WO.translation();
+  log.metadata.trial = std::to_string(index);
+  log.metadata.operator_name = "synthetic (graspsynth operator model)";
+  log.metadata.sample_rate_hz = o.sample_rate_hz;
+  double total = 0.0;
+  for (const Segment& s : plan.segments) total += s.duration;
+  const double dt = 1.0 / o.sample_rate_hz;
+  const int n = static_cast<int>(std::ceil(total / dt - 1e-9));
+  bool grasp_marked = false;
+  for (int i = 0; i <= n; ++i) {
+    DemoSample s = SampleAt(plan, i * dt);
+    s.p_WO = X_WO.translation();
+    if (!grasp_marked && s.t >= plan.grasp_time - 1e-9) {
+      s.event = DemoEvent::kGrasp;
+      grasp_marked = true;
+    }
+    log.samples.push_back(s);
+  }
+  log.samples.back().event = DemoEvent::kEnd;
+  return log;
+}
+
+// Runs the log through the IK and the simulation and writes the object's simulated centre
+// into its object columns. Returns false when the arm cannot execute it.
+bool Simulate(const SimulationModel& model, OperatorTrial* trial) {
+  DemoLog& log = trial->log;
+  const DemoReplay replay = ReplayDemoLog(model.robot(), log);
+  if (!replay.ok) {
+    trial->outcome = "not_executable";
+    trial->reason = replay.message;
+    return false;
+  }
+  TrialOptions options;
+  options.hold = 0.05;  // the log holds the lifted pan itself
+  options.record_interval = 0.5 / log.metadata.sample_rate_hz.value_or(60.0);
+  const TrialResult result = RunTrial(model, replay.trajectory, options);
+  trial->outcome = std::string(ToString(result.outcome));
+  trial->reason = result.reason;
+  // the object at each sample's (possibly re-timed) trajectory time; past the end of the
+  // simulation (a trial stopped early) it stays where it was last.
+  const std::vector<TrialState>& states = result.states;
+  size_t j = 0;
+  for (size_t i = 0; i < log.samples.size(); ++i) {
+    const double t = replay.trajectory.samples[i].t;
+    while (j + 1 < states.size() && states[j + 1].t <= t) ++j;
+    Eigen::Vector3d p = states.empty() ? log.samples[i].p_WO : states[j].X_WO.translation();
+    if (j + 1 < states.size() && states[j + 1].t > states[j].t && t > states[j].t) {
+      const double u = (t - states[j].t) / (states[j + 1].t - states[j].t);
+      p = (1.0 - u) * p + u * states[j + 1].X_WO.translation();
+    }
+    log.samples[i].p_WO = p;
+  }
+  trial->success = log.samples.back().p_WO.z() - log.samples.front().p_WO.z() >= 0.05 - 1e-9;
+  return true;
+}
+
+uint64_t StreamIndex(double theta_deg, int index, int attempt) {
+  return static_cast<uint64_t>(std::llround(theta_deg * 1000.0)) * 1000003ull +
+         static_cast<uint64_t>(index) * 101ull + static_cast<uint64_t>(attempt);
+}
+
+OperatorTrial MakeTrial(const SimulationModel& model, const OperatorOptions& o,
+                        const OrientationPlan& plan, int index) {
+  OperatorTrial trial;
+  trial.theta_deg = plan.theta_deg;
+  trial.index = index;
+  for (int attempt = 0; attempt < kMaxAttempts; ++attempt) {
+    SplitMix64 rng = SplitMix64::ForStream(o.seed, StreamIndex(plan.theta_deg, index, attempt));
+    double total = 0.0;
+    for (const GraspStrategy& s : plan.strategies) total += s.weight;
+    double pick = rng.Uniform(0.0, total);
+    trial.strategy = 0;
+    while (trial.strategy + 1 < static_cast<int>(plan.strategies.size()) &&
+           pick >= plan.strategies[trial.strategy].weight) {
+      pick -= plan.strategies[trial.strategy].weight;
+      ++trial.strategy;
+    }
+    trial.sloppy = rng.Uniform() < o.sloppy_fraction;
+    const PlannedTrial planned = PlanTrial(model.scene(), model.robot().hand, o, plan,
+                                           plan.strategies[trial.strategy], trial.sloppy, rng);
+    trial.log = SampleTrial(planned, o, model.scene(), plan.theta_deg, index);
+    trial.attempts = attempt + 1;
+    if (Simulate(model, &trial)) break;
+  }
+  auto& extra = trial.log.metadata.extra;
+  extra.emplace_back("generator", "graspsynth demos generate");
+  extra.emplace_back("strategy", std::to_string(trial.strategy));
+  extra.emplace_back("simulated_outcome", trial.outcome);
+  extra.emplace_back("simulated_reason", trial.reason);
+  return trial;
+}
+
+// JSON helpers for the options file.
+[[noreturn]] void Bad(const std::string& source, const std::string& field, const std::string& why) {
+  throw InputError(source + ": field '" + field + "': " + why);
+}
+
+double Number(const json& j, const std::string& source, const std::string& field) {
+  if (!j.is_number()) Bad(source, field, "expected a number, got " + j.dump());
+  const double v = j.get<double>();
+  if (!std::isfinite(v)) Bad(source, field, "not finite");
+  return v;
+}
+
+HandVector HandDeg(const json& j, const std::string& source, const std::string& field) {
+  if (!j.is_array() || j.size() != kHandDof) {
+    Bad(source, field, "expected 16 joint angles in degrees");
+  }
+  HandVector f;
+  for (int i = 0; i < kHandDof; ++i) {
+    f[i] = Number(j[i], source, field + "[" + std::to_string(i) + "]") * kDeg;
+  }
+  return f;
+}
+
+json HandToDeg(const HandVector& f) {
+  json a = json::array();
+  for (int i = 0; i < kHandDof; ++i) a.push_back(f[i] / kDeg);
+  return a;
+}
+
+// Scalar fields of OperatorOptions: name, member, and whether the file holds degrees.
+struct ScalarField {
+  const char* name;
+  double OperatorOptions::*member;
+  bool degrees;
+};
+constexpr ScalarField kScalars[] = {
+    {"sample_rate_hz", &OperatorOptions::sample_rate_hz, false},
+    {"hook_reach", &OperatorOptions::hook_reach, false},
+    {"wrist_above_handle", &OperatorOptions::wrist_above_handle, false},
+    {"rest_distance", &OperatorOptions::rest_distance, false},
+    {"rest_turn_deg", &OperatorOptions::rest_turn, true},
+    {"rest_height", &OperatorOptions::rest_height, false},
+    {"entry_out", &OperatorOptions::entry_out, false},
+    {"entry_in", &OperatorOptions::entry_in, false},
+    {"travel_height", &OperatorOptions::travel_height, false},
+    {"above_height", &OperatorOptions::above_height, false},
+    {"lift_height", &OperatorOptions::lift_height, false},
+    {"rest_duration", &OperatorOptions::rest_duration, false},
+    {"reach_duration", &OperatorOptions::reach_duration, false},
+    {"entry_duration", &OperatorOptions::entry_duration, false},
+    {"approach_duration", &OperatorOptions::approach_duration, false},
+    {"descent_duration", &OperatorOptions::descent_duration, false},
+    {"close_duration", &OperatorOptions::close_duration, false},
+    {"settle_duration", &OperatorOptions::settle_duration, false},
+    {"lift_duration", &OperatorOptions::lift_duration, false},
+    {"hold_duration", &OperatorOptions::hold_duration, false},
+    {"timing_spread", &OperatorOptions::timing_spread, false},
+    {"position_noise", &OperatorOptions::position_noise, false},
+    {"height_noise", &OperatorOptions::height_noise, false},
+    {"yaw_noise_deg", &OperatorOptions::yaw_noise, true},
+    {"path_noise", &OperatorOptions::path_noise, false},
+    {"finger_noise_deg", &OperatorOptions::finger_noise, true},
+    {"sloppy_fraction", &OperatorOptions::sloppy_fraction, false},
+    {"sloppy_scale", &OperatorOptions::sloppy_scale, false},
+};
+
+}  // namespace
+
+HandVector OperatorOptions::DefaultOpenHook() {
+  HandVector f = HandVector::Zero();
+  f.head<4>() << 0.0, 40.0 * kDeg, -10.0 * kDeg, 0.0;
+  f[4] = -20.0 * kDeg;  // index spread toward the thumb
+  f[10] = 20.0 * kDeg;  // ring and little the other way
+  f[13] = 20.0 * kDeg;
+  return f;
+}
+
+HandVector OperatorOptions::DefaultClosedHook() {
+  HandVector f = DefaultOpenHook();
+  for (int finger = 0; finger < 4; ++finger) {
+    f[5 + 3 * finger] = 15.0 * kDeg;  // MCP
+    f[6 + 3 * finger] = 85.0 * kDeg;  // PIP (the DIP follows)
+  }
+  return f;
+}
+
+bool OperatorOptions::IsValid(std::string* why) const {
+  auto fail = [&](const std::string& what) {
+    if (why) *why = what;
+    return false;
+  };
+  if (trials_per_orientation < 1) return fail("trials_per_orientation must be >= 1");
+  if (plans.empty()) return fail("there must be at least one orientation plan");
+  for (const ScalarField& f : kScalars) {
+    const double v = this->*f.member;
+    if (!std::isfinite(v) || (v < 0.0 && f.member != &OperatorOptions::rest_turn)) {
+      return fail(std::string(f.name) + " must be finite and >= 0");
+    }
+  }
+  if (!(sample_rate_hz >= 10.0 && sample_rate_hz <= 1000.0)) {
+    return fail("sample_rate_hz must be in [10, 1000]");
+  }
+  if (!(hook_reach > 0.0)) return fail("hook_reach must be > 0");
+  if (timing_spread >= 0.9) return fail("timing_spread must be < 0.9");
+  if (sloppy_fraction > 1.0) return fail("sloppy_fraction must be <= 1");
+  if (!(entry_out > entry_in)) return fail("entry_out must be larger than entry_in");
+  for (double d :
+       {rest_duration, reach_duration, entry_duration, approach_duration, descent_duration,
+        close_duration, settle_duration, lift_duration, hold_duration}) {
+    if (!(d > 0.0)) return fail("every duration must be > 0");
+  }
+  if (!open_hand.allFinite() || !closed_hand.allFinite()) return fail("hand shapes not finite");
+  for (const OrientationPlan& p : plans) {
+    const std::string at = "plan theta " + std::to_string(p.theta_deg);
+    if (!std::isfinite(p.theta_deg) || !std::isfinite(p.pregrasp_eta_deg)) {
+      return fail(at + ": angles must be finite");
+    }
+    if (p.strategies.empty()) return fail(at + ": needs at least one strategy");
+    if (p.trials < 0) return fail(at + ": trials must be >= 0");
+    for (const GraspStrategy& s : p.strategies) {
+      if (!(s.weight > 0.0) || !std::isfinite(s.weight)) return fail(at + ": weight must be > 0");
+      if (!(s.d > 0.0) || !std::isfinite(s.d) || !std::isfinite(s.eta_deg)) {
+        return fail(at + ": strategy d must be > 0 and eta finite");
+      }
+    }
+  }
+  return true;
+}
+
+OperatorOptions ReadOperatorOptions(const std::filesystem::path& path) {
+  const std::string source = path.string();
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(source + ": cannot open the operator file");
+  json root;
+  try {
+    root = json::parse(in);
+  } catch (const json::parse_error& e) {
+    throw InputError(source + ": not valid JSON: " + e.what());
+  }
+  if (!root.is_object()) Bad(source, "(root)", "expected a JSON object");
+  if (root.value("format", std::string()) != "graspsynth-operator/1") {
+    Bad(source, "format",
+        "expected \"graspsynth-operator/1\", got " +
+            (root.contains("format") ? root["format"].dump() : "nothing"));
+  }
+  OperatorOptions o;
+  if (root.contains("seed")) {
+    if (!root["seed"].is_number_unsigned()) Bad(source, "seed", "expected an unsigned integer");
+    o.seed = root["seed"].get<uint64_t>();
+  }
+  if (root.contains("trials_per_orientation")) {
+    if (!root["trials_per_orientation"].is_number_integer()) {
+      Bad(source, "trials_per_orientation", "expected an integer");
+    }
+    o.trials_per_orientation = root["trials_per_orientation"].get<int>();
+  }
+  for (const ScalarField& f : kScalars) {
+    if (!root.contains(f.name)) continue;
+    o.*f.member = Number(root[f.name], source, f.name) * (f.degrees ? kDeg : 1.0);
+  }
+  if (root.contains("open_hand_deg"))
+    o.open_hand = HandDeg(root["open_hand_deg"], source, "open_hand_deg");
+  if (root.contains("closed_hand_deg")) {
+    o.closed_hand = HandDeg(root["closed_hand_deg"], source, "closed_hand_deg");
+  }
+  if (!root.contains("plans") || !root["plans"].is_array()) {
+    Bad(source, "plans", "required: an array of orientation plans");
+  }
+  for (size_t i = 0; i < root["plans"].size(); ++i) {
+    const json& p = root["plans"][i];
+    const std::string at = "plans[" + std::to_string(i) + "]";
+    if (!p.is_object()) Bad(source, at, "expected an object");
+    OrientationPlan plan;
+    for (const char* key : {"theta_deg", "pregrasp_eta_deg", "strategies"}) {
+      if (!p.contains(key)) Bad(source, at + "." + key, "missing");
+    }
+    plan.theta_deg = Number(p["theta_deg"], source, at + ".theta_deg");
+    plan.pregrasp_eta_deg = Number(p["pregrasp_eta_deg"], source, at + ".pregrasp_eta_deg");
+    if (p.contains("trials")) {
+      if (!p["trials"].is_number_integer()) Bad(source, at + ".trials", "expected an integer");
+      plan.trials = p["trials"].get<int>();
+    }
+    if (!p["strategies"].is_array()) Bad(source, at + ".strategies", "expected an array");
+    for (size_t k = 0; k < p["strategies"].size(); ++k) {
+      const json& s = p["strategies"][k];
+      const std::string sat = at + ".strategies[" + std::to_string(k) + "]";
+      if (!s.is_object()) Bad(source, sat, "expected an object");
+      GraspStrategy g;
+      for (const char* key : {"weight", "d", "eta_deg"}) {
+        if (!s.contains(key)) Bad(source, sat + "." + key, "missing");
+      }
+      g.weight = Number(s["weight"], source, sat + ".weight");
+      g.d = Number(s["d"], source, sat + ".d");
+      g.eta_deg = Number(s["eta_deg"], source, sat + ".eta_deg");
+      plan.strategies.push_back(g);
+    }
+    o.plans.push_back(plan);
+  }
+  std::string why;
+  if (!o.IsValid(&why)) throw InputError(source + ": invalid operator options: " + why);
+  return o;
+}
+
+void WriteOperatorOptions(const OperatorOptions& o, const std::filesystem::path& path) {
+  json root;
+  root["format"] = "graspsynth-operator/1";
+  root["comment"] =
+      "The synthetic operator of learning_data/synthetic_operator.hpp: lengths in m, times in s, "
+      "angles in deg. plans: per orientation, where the reach enters the grasp region and the "
+      "intended wrist grasp positions (polar, around the object centre), calibrated with "
+      "'graspsynth demos calibrate' so that the successful trials reproduce the paper's Table I.";
+  root["seed"] = o.seed;
+  root["trials_per_orientation"] = o.trials_per_orientation;
+  for (const ScalarField& f : kScalars) {
+    root[f.name] = o.*f.member / (f.degrees ? kDeg : 1.0);
+  }
+  root["open_hand_deg"] = HandToDeg(o.open_hand);
+  root["closed_hand_deg"] = HandToDeg(o.closed_hand);
+  json plans = json::array();
+  for (const OrientationPlan& p : o.plans) {
+    json jp;
+    jp["theta_deg"] = p.theta_deg;
+    jp["pregrasp_eta_deg"] = p.pregrasp_eta_deg;
+    jp["trials"] = p.trials;
+    jp["strategies"] = json::array();
+    for (const GraspStrategy& s : p.strategies) {
+      jp["strategies"].push_back({{"weight", s.weight}, {"d", s.d}, {"eta_deg", s.eta_deg}});
+    }
+    plans.push_back(jp);
+  }
+  root["plans"] = plans;
+  WriteFileAtomically(path, root.dump(2) + "\n");
+}
+
+std::filesystem::path DefaultOperatorOptionsPath() {
+  return DataDirectory() / "learning_data" / "demos" / "operator.json";
+}
+
+std::vector<OperatorTrial> GenerateDemonstrations(const SimulationModel& model,
+                                                  const OperatorOptions& options, int threads,
+                                                  const OperatorProgress& progress) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError("invalid operator options: " + why);
+  std::vector<std::pair<size_t, int>> jobs;
+  for (size_t p = 0; p < options.plans.size(); ++p) {
+    const int n =
+        options.plans[p].trials > 0 ? options.plans[p].trials : options.trials_per_orientation;
+    for (int i = 1; i <= n; ++i) jobs.emplace_back(p, i);
+  }
+  std::vector<OperatorTrial> trials(jobs.size());
+  const int workers =
+      std::max(1, std::min<int>(threads > 0 ? threads : std::thread::hardware_concurrency(),
+                                static_cast<int>(jobs.size())));
+  std::atomic<size_t> next{0};
+  std::atomic<int> done{0};
+  std::mutex progress_mutex;
+  std::exception_ptr error;
+  auto work = [&] {
+    for (size_t j = next++; j < jobs.size(); j = next++) {
+      try {
+        trials[j] = MakeTrial(model, options, options.plans[jobs[j].first], jobs[j].second);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(progress_mutex);
+        if (!error) error = std::current_exception();
+        next = jobs.size();
+        return;
+      }
+      const int d = ++done;
+      if (progress) {
+        std::lock_guard<std::mutex> lock(progress_mutex);
+        progress(d, static_cast<int>(jobs.size()));
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int w = 1; w < workers; ++w) pool.emplace_back(work);
+  work();
+  for (std::thread& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
+  return trials;
+}
+
+}  // namespace graspsynth
