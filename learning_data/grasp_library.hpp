@@ -1,0 +1,70 @@
+#pragma once
+
+/// @file
+/// The grasp library (format `graspsynth-library/1`): the robustness score of every successful
+/// demonstration of a directory, the most robust demonstration per orientation (paper III-C),
+/// and where each came from. `graspsynth select` writes it; `graspsynth synthesize` reads it.
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "motion/grasping_motion.hpp"
+
+namespace graspsynth {
+
+/// The robustness score of one successful demonstration.
+struct DemoScore {
+  std::string file;        ///< the log's file name, relative to the library's demo directory
+  std::string trial;       ///< the log's `trial` metadata (empty when absent)
+  double theta_deg = 0.0;  ///< object orientation, deg
+  int trials = 0;          ///< perturbed replays
+  int successes = 0;       ///< of which succeeded
+  double score = 0.0;      ///< successes / trials
+  double ci_low = 0.0;     ///< Wilson 95% interval of the success probability
+  double ci_high = 1.0;
+  bool nominal_success = false;  ///< the unperturbed replay succeeded
+  uint64_t seed = 0;             ///< seed of this demonstration's perturbation stream
+  std::string failures;          ///< failure outcomes and counts, e.g. "dropped 3, not_lifted 1"
+  bool selected = false;         ///< the representative of its orientation
+};
+
+/// The representative (most robust) demonstration of one orientation.
+struct LibraryEntry {
+  double theta_deg = 0.0;  ///< deg
+  std::string file;        ///< as in DemoScore
+  std::string trial;
+  double score = 0.0;
+  /// Its grasping motion, pre-grasp to grasp (segmentation.hpp), times from the pre-grasp.
+  GraspingMotion motion;
+  /// The wrist's lift after the grasp as the operator made it: wrist height gained from the
+  /// grasp sample to the end of the trial, m, and the time it took, s.
+  double lift_height = 0.0;
+  double lift_duration = 0.0;
+};
+
+/// A grasp library.
+struct GraspLibrary {
+  std::string demo_directory;         ///< the directory the demonstrations were read from
+  uint64_t seed = 0;                  ///< seed of the selection
+  int perturbations = 0;              ///< perturbed replays per demonstration
+  std::string tie_rule;               ///< how ties in score were broken, in words
+  std::vector<DemoScore> scores;      ///< every successful demonstration, by theta then file
+  std::vector<LibraryEntry> entries;  ///< one per orientation, theta strictly increasing
+};
+
+/// Writes `library` as JSON (format graspsynth-library/1) to `path`, atomically.
+void WriteGraspLibrary(const GraspLibrary& library, const std::filesystem::path& path);
+
+/// Reads a library file. Throws InputError naming the file and the field for a missing file,
+/// malformed JSON, another format or version, a missing or ill-typed field, non-finite numbers,
+/// non-unit quaternions, a motion that breaks IsWellFormed, or entries whose theta does not
+/// strictly increase.
+GraspLibrary ReadGraspLibrary(const std::filesystem::path& path);
+
+/// Path of the shipped library (learning_data/library.json of the source tree or the data
+/// directory).
+std::filesystem::path DefaultGraspLibraryPath();
+
+}  // namespace graspsynth

@@ -1,0 +1,245 @@
+#include "learning_data/representative_selection.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <sstream>
+#include <utility>
+
+#include "common/errors.hpp"
+#include "learning_data/demo_replay.hpp"
+#include "simulation/random.hpp"
+#include "simulation/robustness.hpp"
+
+namespace graspsynth {
+namespace {
+
+std::string FileName(const std::string& source) {
+  return std::filesystem::path(source).filename().string();
+}
+
+// "dropped 3, not_lifted 1": the failed replays by outcome, in the outcome enum's order.
+std::string FailureSummary(const RobustnessResult& result) {
+  std::map<TrialOutcome, int> counts;
+  for (const RobustnessTrial& t : result.trials) {
+    if (!t.success()) ++counts[t.outcome];
+  }
+  std::string text;
+  for (const auto& [outcome, n] : counts) {
+    if (!text.empty()) text += ", ";
+    text += std::string(ToString(outcome)) + " " + std::to_string(n);
+  }
+  return text;
+}
+
+// A segmented, successful demonstration and what its replays gave.
+struct Scored {
+  const DemoLog* log = nullptr;
+  SegmentedTrial segmented;
+  SelectionCandidate candidate;
+};
+
+}  // namespace
+
+bool SelectionOptions::IsValid(std::string* why) const {
+  const auto fail = [why](const std::string& text) {
+    if (why) *why = text;
+    return false;
+  };
+  if (perturbations < 1) {
+    return fail("perturbations must be >= 1, not " + std::to_string(perturbations));
+  }
+  if (threads < 0) return fail("threads must be >= 0, not " + std::to_string(threads));
+  if (!(min_score >= 0.0 && min_score < 1.0)) {
+    std::ostringstream s;
+    s << "min_score must be in [0, 1), not " << min_score;
+    return fail(s.str());
+  }
+  std::string nested;
+  if (!segmentation.IsValid(&nested)) return fail("segmentation: " + nested);
+  if (!trial.IsValid(&nested)) return fail("trial: " + nested);
+  if (!perturbation.IsValid(&nested)) return fail("perturbation: " + nested);
+  return true;
+}
+
+const char* ToString(SelectionIssueKind kind) {
+  switch (kind) {
+    case SelectionIssueKind::kUnreadable:
+      return "unreadable";
+    case SelectionIssueKind::kNotSegmented:
+      return "not segmented";
+    case SelectionIssueKind::kNotReplayable:
+      return "not replayable";
+  }
+  return "?";
+}
+
+uint64_t DemoSeed(uint64_t seed, std::string_view file_name) {
+  // FNV-1a, 64 bit: a fixed, portable hash of the name (std::hash is neither).
+  uint64_t h = 0xcbf29ce484222325ull;
+  for (const char c : file_name) {
+    h ^= static_cast<unsigned char>(c);
+    h *= 0x100000001b3ull;
+  }
+  return SplitMix64::ForStream(seed, h).Next();
+}
+
+bool PreferredRepresentative(const SelectionCandidate& a, const SelectionCandidate& b) {
+  if (a.score.score != b.score.score) return a.score.score > b.score.score;
+  if (a.score.ci_low != b.score.ci_low) return a.score.ci_low > b.score.ci_low;
+  if (a.score.nominal_success != b.score.nominal_success) return a.score.nominal_success;
+  if (a.motion_duration != b.motion_duration) return a.motion_duration < b.motion_duration;
+  return a.score.file < b.score.file;
+}
+
+SelectionResult SelectRepresentatives(const SimulationModel& model,
+                                      const std::vector<DemoLog>& logs,
+                                      const std::string& directory, const SelectionOptions& options,
+                                      const SelectionProgress& progress) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError("bad selection option: " + why);
+  std::set<std::string> names;
+  for (const DemoLog& log : logs) {
+    if (!names.insert(FileName(log.source)).second) {
+      throw InputError(log.source + ": another log has the same file name '" +
+                       FileName(log.source) + "'");
+    }
+  }
+
+  SelectionResult result;
+  result.logs = static_cast<int>(logs.size());
+  GraspLibrary& library = result.library;
+  library.demo_directory = directory;
+  library.seed = options.seed;
+  library.perturbations = options.perturbations;
+  library.tie_rule = std::string(kTieRule);
+
+  // segment every log; only successful, segmented trials are ranked.
+  std::vector<Scored> scored;
+  for (const DemoLog& log : logs) {
+    SegmentedTrial segmented = Segment(log, options.segmentation);
+    if (!segmented.success) {
+      ++result.unsuccessful;
+      continue;
+    }
+    if (!segmented.ok()) {
+      result.issues.push_back(
+          {FileName(log.source), SelectionIssueKind::kNotSegmented, segmented.message});
+      continue;
+    }
+    Scored s;
+    s.log = &log;
+    s.segmented = std::move(segmented);
+    scored.push_back(std::move(s));
+  }
+
+  RobustnessOptions robustness;
+  robustness.trials = options.perturbations;
+  robustness.threads = options.threads;
+  robustness.perturbation = options.perturbation;
+  robustness.trial = options.trial;
+  const int per_demo = options.perturbations + 1;
+  const int total = static_cast<int>(scored.size()) * per_demo;
+  int done = 0;
+  for (Scored& s : scored) {
+    const DemoLog& log = *s.log;
+    DemoScore& score = s.candidate.score;
+    score.file = FileName(log.source);
+    score.trial = log.metadata.trial.value_or("");
+    score.theta_deg = log.metadata.theta_deg;
+    score.seed = DemoSeed(options.seed, score.file);
+    s.candidate.motion_duration = s.segmented.motion.duration();
+
+    const DemoReplay replay = ReplayDemoLog(model.robot(), log);
+    if (!replay.ok) {
+      // a demonstration the robot cannot play scores 0; nothing is known about it.
+      score.failures = "not replayable: " + replay.message;
+      score.ci_low = 0.0;
+      score.ci_high = 1.0;
+      result.issues.push_back({score.file, SelectionIssueKind::kNotReplayable, replay.message});
+      done += per_demo;
+      if (progress) progress(done, total, score.file);
+      continue;
+    }
+    const TrialResult nominal = RunTrial(model, replay.trajectory, options.trial);
+    score.nominal_success = nominal.success();
+    ++done;
+    if (progress) progress(done, total, score.file);
+
+    robustness.seed = score.seed;
+    const int before = done;
+    const RobustnessResult r =
+        EvaluateRobustness(model, replay.trajectory, robustness, [&](int k, int) {
+          if (progress) progress(before + k, total, score.file);
+        });
+    done = before + options.perturbations;
+    score.trials = options.perturbations;
+    score.successes = r.successes;
+    score.score = r.score;
+    score.ci_low = r.ci95.lo;
+    score.ci_high = r.ci95.hi;
+    score.failures = FailureSummary(r);
+  }
+
+  // the scores by theta, then file; the representative of each theta by the tie rule.
+  std::sort(scored.begin(), scored.end(), [](const Scored& a, const Scored& b) {
+    if (a.candidate.score.theta_deg != b.candidate.score.theta_deg) {
+      return a.candidate.score.theta_deg < b.candidate.score.theta_deg;
+    }
+    return a.candidate.score.file < b.candidate.score.file;
+  });
+  for (size_t begin = 0; begin < scored.size();) {
+    size_t end = begin;
+    Scored* best = &scored[begin];
+    while (end < scored.size() &&
+           scored[end].candidate.score.theta_deg == scored[begin].candidate.score.theta_deg) {
+      if (PreferredRepresentative(scored[end].candidate, best->candidate)) best = &scored[end];
+      ++end;
+    }
+    const DemoScore& b = best->candidate.score;
+    if (b.score > options.min_score) {
+      best->candidate.score.selected = true;
+      const DemoLog& log = *best->log;
+      const SegmentedTrial& seg = best->segmented;
+      LibraryEntry entry;
+      entry.theta_deg = b.theta_deg;
+      entry.file = b.file;
+      entry.trial = b.trial;
+      entry.score = b.score;
+      entry.motion = seg.motion;
+      entry.lift_height = log.samples[seg.end].p_WH.z() - log.samples[seg.grasp].p_WH.z();
+      entry.lift_duration = log.samples[seg.end].t - log.samples[seg.grasp].t;
+      library.entries.push_back(std::move(entry));
+    } else {
+      result.unselected_thetas.push_back(b.theta_deg);
+    }
+    begin = end;
+  }
+  for (const Scored& s : scored) library.scores.push_back(s.candidate.score);
+  std::stable_sort(
+      result.issues.begin(), result.issues.end(),
+      [](const SelectionIssue& a, const SelectionIssue& b) { return a.file < b.file; });
+  return result;
+}
+
+SelectionResult SelectRepresentatives(const SimulationModel& model,
+                                      const std::filesystem::path& directory,
+                                      const SelectionOptions& options,
+                                      const SelectionProgress& progress) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError("bad selection option: " + why);
+  const DemoDirectory demos = ReadDemoDirectory(directory);
+  SelectionResult result =
+      SelectRepresentatives(model, demos.logs, directory.string(), options, progress);
+  for (const RejectedDemoFile& rejected : demos.rejected) {
+    result.issues.push_back(
+        {FileName(rejected.file), SelectionIssueKind::kUnreadable, rejected.reason});
+  }
+  std::stable_sort(
+      result.issues.begin(), result.issues.end(),
+      [](const SelectionIssue& a, const SelectionIssue& b) { return a.file < b.file; });
+  return result;
+}
+
+}  // namespace graspsynth

@@ -1,0 +1,99 @@
+// Tests of `graspsynth select` through the built binary, on a temporary folder of logs made
+// from the scripted grasp.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "learning_data/grasp_library.hpp"
+#include "tests/learning_data/demo_fixtures.hpp"
+#include "tests/utils/run_command.hpp"
+#include "tests/utils/scripted_demos.hpp"
+#include "tests/utils/simulation_fixtures.hpp"
+
+namespace graspsynth {
+namespace {
+
+using nlohmann::json;
+using ::testing::HasSubstr;
+using testing::ReadFileText;
+using testing::RunGraspsynth;
+using testing::ShippedSimulationModel;
+
+TEST(SelectCommand, SelectsPerOrientationWritesTheLibraryAndNamesTheBadFile) {
+  const testing::TestFolder folder;
+  const auto demos = folder.path() / "demos";
+  std::filesystem::create_directories(demos);
+  for (double theta : {40.0, 80.0}) {
+    const std::string name = "demo_0" + std::to_string(static_cast<int>(theta)) + ".csv";
+    WriteDemoLog(demos / name, testing::ScriptedDemoLog(ShippedSimulationModel(), theta, name));
+  }
+  std::ofstream(demos / "broken.csv") << "not a log\n";
+  const auto out = folder.path() / "out" / "library.json";
+  const int perturb = testing::Scaled(3, 1);
+  const auto r = RunGraspsynth("select " + demos.string() + " --out " + out.string() +
+                               " --perturb " + std::to_string(perturb) + " --seed 5 --threads 2");
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_THAT(r.out, HasSubstr("read 2 demonstration log(s)"));
+  EXPECT_THAT(r.out, HasSubstr("(1 rejected)"));
+  EXPECT_THAT(r.out, HasSubstr("theta_deg"));
+  EXPECT_THAT(r.out, ::testing::ContainsRegex("40.00 +1 +demo_040.csv"));
+  EXPECT_THAT(r.out, ::testing::ContainsRegex("80.00 +1 +demo_080.csv"));
+  EXPECT_THAT(r.out, HasSubstr("broken.csv (unreadable)"));
+  EXPECT_THAT(r.out, HasSubstr("wrote " + out.string() + ": 2 orientation(s) selected"));
+  EXPECT_THAT(r.err, HasSubstr("rejected broken.csv"));
+  EXPECT_THAT(r.err, HasSubstr("replays"));
+
+  const GraspLibrary library = ReadGraspLibrary(out);
+  EXPECT_EQ(library.seed, 5u);
+  EXPECT_EQ(library.perturbations, perturb);
+  ASSERT_EQ(library.entries.size(), 2u);
+  EXPECT_EQ(library.entries[0].theta_deg, 40.0);
+  EXPECT_EQ(library.entries[1].file, "demo_080.csv");
+  const json j = json::parse(ReadFileText(out));
+  EXPECT_EQ(j.at("format"), "graspsynth-library/1");
+
+  // one thread: the same bytes.
+  const auto out1 = folder.path() / "out" / "library1.json";
+  const auto r1 = RunGraspsynth("select " + demos.string() + " --out " + out1.string() +
+                                " --perturb " + std::to_string(perturb) + " --seed 5 --threads 1");
+  EXPECT_EQ(r1.exit_code, 0) << r1.err;
+  EXPECT_EQ(ReadFileText(out), ReadFileText(out1));
+}
+
+TEST(SelectCommand, FailsWhenNoOrientationCanBeSelected) {
+  const testing::TestFolder folder;
+  DemoLog log = testing::ScriptedDemoLog(ShippedSimulationModel(), 60.0, "demo_060.csv");
+  for (DemoSample& s : log.samples) s.p_WO = log.samples.front().p_WO;  // the pan never rose
+  WriteDemoLog(folder.path() / "demo_060.csv", log);
+  const auto out = folder.path() / "library.json";
+  const auto r =
+      RunGraspsynth("select " + folder.path().string() + " --out " + out.string() + " --perturb 1");
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_THAT(r.out, HasSubstr("1 unsuccessful (skipped)"));
+  EXPECT_THAT(r.err, HasSubstr("no orientation could be selected"));
+  // the library is written all the same, empty.
+  EXPECT_TRUE(ReadGraspLibrary(out).entries.empty());
+}
+
+TEST(SelectCommand, RejectsBadInputAndExplainsItself) {
+  const auto help = RunGraspsynth("select --help");
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_THAT(help.out, HasSubstr("graspsynth-library/1"));
+  EXPECT_THAT(help.out, HasSubstr("ties go to"));
+  EXPECT_THAT(help.out, HasSubstr("--perturb"));
+  EXPECT_THAT(help.out, HasSubstr("whatever --threads is"));
+  const auto missing = RunGraspsynth("select /nonexistent/folder --out /tmp/x.json");
+  EXPECT_NE(missing.exit_code, 0);
+  EXPECT_THAT(missing.err, HasSubstr("/nonexistent/folder"));
+  const testing::TestFolder folder;
+  const auto zero = RunGraspsynth("select " + folder.path().string() + " --out " +
+                                  (folder.path() / "l.json").string() + " --perturb 0");
+  EXPECT_NE(zero.exit_code, 0);
+  EXPECT_THAT(zero.err, HasSubstr("--perturb"));
+}
+
+}  // namespace
+}  // namespace graspsynth
