@@ -15,6 +15,7 @@
 #include <string>
 #include <thread>
 
+#include "apps/stop_signals.hpp"
 #include "common/errors.hpp"
 #include "kinematics/robot_description.hpp"
 #include "kinematics/scene_model.hpp"
@@ -41,33 +42,6 @@ struct ViewOptions {
   bool no_wait = false;
   double hold_s = 1.0;
   double exit_after_s = 0.0;
-};
-
-volatile std::sig_atomic_t g_stop_signal = 0;
-void OnStopSignal(int signal) { g_stop_signal = signal; }
-
-// SIGINT and SIGTERM set g_stop_signal while it lives; the previous handlers come back after.
-class StopSignals {
- public:
-  StopSignals() {
-    g_stop_signal = 0;
-    struct sigaction action {};
-    action.sa_handler = OnStopSignal;
-    sigemptyset(&action.sa_mask);
-    sigaction(SIGINT, &action, &old_int_);
-    sigaction(SIGTERM, &action, &old_term_);
-  }
-  ~StopSignals() {
-    sigaction(SIGINT, &old_int_, nullptr);
-    sigaction(SIGTERM, &old_term_, nullptr);
-  }
-  StopSignals(const StopSignals&) = delete;
-  StopSignals& operator=(const StopSignals&) = delete;
-  bool stopped() const { return g_stop_signal != 0; }
-
- private:
-  struct sigaction old_int_ {};
-  struct sigaction old_term_ {};
 };
 
 int RunView(const ViewOptions& opts) {

@@ -20,8 +20,9 @@
 /// 3.1) followed by two zeros, in joint mode the finger joints f0..f15 in radians.
 /// Robot state payload (256 bytes): arm joints (7 doubles, rad), finger joints f0..f15
 /// (16 doubles), object position (3 doubles, m, world) and quaternion w, x, y, z (4 doubles),
-/// object orientation theta (1 double, deg), trial index (uint32), flags (uint32: 1 holding
-/// still after a silence, 2 recording, 4 last trial succeeded).
+/// object orientation theta (1 double, deg), trial index (uint32), flags (uint32, StateFlag:
+/// 1 holding still after a silence, 2 recording, 4 last trial succeeded, 8 the wrist target is
+/// out of reach and the arm holds, 16 judging a trial (the hold after the end-of-trial button)).
 /// End-of-session payload: empty.
 
 #include <array>
@@ -47,6 +48,15 @@ enum class PacketKind : uint16_t { kCommand = 1, kState = 2, kEndOfSession = 3 }
 
 /// Button bits of an operator command.
 enum Button : uint8_t { kGraspButton = 1, kEndTrialButton = 2, kNextOrientationButton = 4 };
+
+/// Flag bits of a robot state.
+enum StateFlag : uint32_t {
+  kHoldingStill = 1,        ///< no operator command for longer than the timeout
+  kRecording = 2,           ///< a trial is being recorded
+  kLastTrialSucceeded = 4,  ///< the last judged trial was a success
+  kOutOfReach = 8,          ///< the last wrist target had no IK solution: the arm holds
+  kJudging = 16,            ///< the hold after the end-of-trial button, before the judgement
+};
 
 /// How the finger values of a command are to be read.
 enum class HandMode : uint8_t { kGlove = 0, kJoints = 1 };

@@ -73,6 +73,16 @@ std::vector<uint8_t> Reseal(std::vector<uint8_t> bytes) {
   return bytes;
 }
 
+TEST(Protocol, StateFlagsAreDistinctBitsAndRoundTrip) {
+  const uint32_t all = kHoldingStill | kRecording | kLastTrialSucceeded | kOutOfReach | kJudging;
+  EXPECT_EQ(all, 31u);
+  RobotState s;
+  s.flags = kHoldingStill | kOutOfReach | kJudging;
+  const DecodeResult r = Decode(EncodeState(s));
+  ASSERT_TRUE(r.packet);
+  EXPECT_EQ(r.packet->state.flags, 25u);
+}
+
 TEST(Protocol, EachDefectHasItsReason) {
   const std::vector<uint8_t> good = EncodeCommand(SampleCommand());
   EXPECT_EQ(Decode(std::span(good).first(20)).reason, DropReason::kShort);

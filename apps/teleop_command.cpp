@@ -1,0 +1,377 @@
+// graspsynth teleop: the live teleoperation loop. One thread runs the control tick at --rate:
+// it drains the UDP socket, steps the TeleopSession (teleop/teleop_session.hpp), sends the
+// robot state back to the operator and publishes a viewer frame; the viewer's HTTP server has
+// its own thread (teleop/viewer_server.hpp). graspsynth teleop-client: replays a demonstration
+// log over UDP at its own rate, as a tracker and a glove would, and counts the states it gets.
+
+#include "apps/teleop_command.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include "apps/stop_signals.hpp"
+#include "common/atomic_file.hpp"
+#include "common/errors.hpp"
+#include "common/text_input.hpp"
+#include "learning_data/demo_log.hpp"
+#include "simulation/simulation_model.hpp"
+#include "teleop/calibration.hpp"
+#include "teleop/protocol.hpp"
+#include "teleop/teleop_session.hpp"
+#include "teleop/udp_link.hpp"
+#include "teleop/viewer_scene.hpp"
+#include "teleop/viewer_server.hpp"
+
+namespace graspsynth::apps {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// "20,30,40": orientations in degrees.
+std::vector<double> ParseOrientations(const std::string& text) {
+  std::vector<double> values;
+  for (std::string_view field : SplitFields(text, ',')) {
+    const std::optional<double> v = ParseFiniteDouble(TrimBlanks(field));
+    if (!v) {
+      throw InputError("--orientations: \"" + std::string(field) +
+                       "\" is not a number (expected degrees, e.g. 20,30,40)");
+    }
+    values.push_back(*v);
+  }
+  if (values.empty()) throw InputError("--orientations is empty");
+  return values;
+}
+
+struct ServerOptions {
+  int port = 9870;
+  std::string bind = "127.0.0.1";
+  std::string orientations = "20,30,40,50,60,70,80,90,100";
+  std::string record_dir;
+  double rate_hz = 60.0;
+  std::string config;
+  double timeout_ms = 200.0;
+  int viewer_port = -1;
+  std::string camera;
+  std::string summary;
+  std::string port_file;
+  double end_hold_s = 1.0;
+  std::string operator_name;
+  double exit_after_s = 0.0;
+};
+
+int RunServer(const ServerOptions& opts) {
+  if (!(opts.timeout_ms > 0.0) || !std::isfinite(opts.timeout_ms)) {
+    throw InputError("--timeout-ms " + std::to_string(opts.timeout_ms) + " is not positive");
+  }
+  if (!(opts.exit_after_s >= 0.0)) throw InputError("--exit-after takes seconds >= 0");
+  const SimulationModel model = LoadDefaultSimulationModel();
+  teleop::TeleopOptions options;
+  options.rate_hz = opts.rate_hz;
+  options.timeout_s = opts.timeout_ms * 1e-3;
+  options.end_hold_s = opts.end_hold_s;
+  options.orientations_deg = ParseOrientations(opts.orientations);
+  options.record_dir = opts.record_dir;
+  options.operator_name = opts.operator_name;
+  options.calibration =
+      teleop::LoadTeleopCalibration(opts.config.empty() ? teleop::DefaultTeleopCalibrationPath()
+                                                        : std::filesystem::path(opts.config));
+  teleop::TeleopSession session(model, options);
+
+  teleop::UdpLinkOptions link_options;
+  link_options.address = opts.bind;
+  link_options.port = opts.port;
+  teleop::UdpLink link(link_options);
+  if (!opts.port_file.empty()) WriteFileAtomically(opts.port_file, std::to_string(link.port()));
+
+  std::unique_ptr<teleop::ViewerServer> viewer;
+  if (opts.viewer_port >= 0) {
+    const teleop::ViewerCamera camera =
+        opts.camera.empty()
+            ? teleop::DefaultViewerCamera(model.scene())
+            : teleop::ParseViewerCamera(opts.camera, teleop::DefaultViewerCamera(model.scene()));
+    teleop::ViewerServerOptions viewer_options;
+    viewer_options.port = opts.viewer_port;
+    viewer = std::make_unique<teleop::ViewerServer>(
+        teleop::ViewerSceneJson(model.robot(), model.scene(), camera), viewer_options);
+    for (const std::string& missing : viewer->missing_assets()) {
+      std::cerr << "graspsynth teleop: warning: " << missing
+                << " is missing; run scripts/setup.sh (npm ci --prefix viewer) and rebuild\n";
+    }
+    std::cerr << "graspsynth teleop: viewer at " << viewer->url() << std::endl;
+  }
+  std::cerr << "graspsynth teleop: listening on udp " << opts.bind << ":" << link.port() << " at "
+            << options.rate_hz << " Hz (" << session.steps_per_tick() << " physics steps of "
+            << session.physics_step() * 1e3 << " ms per tick); theta " << session.theta_deg()
+            << " deg; Ctrl-C ends the session" << std::endl;
+
+  const StopSignals signals;
+  const Clock::time_point start = Clock::now();
+  const auto tick = std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(1.0 / options.rate_hz));
+  Clock::time_point next = start;
+  std::string end_reason = "end_of_session";
+  bool end_asked = false;
+  uint64_t ticks = 0, late_ticks = 0;
+  double busy_s = 0.0, busy_max_s = 0.0;
+  std::vector<teleop::Datagram> incoming;
+  while (true) {
+    if (!end_asked && signals.stopped()) {
+      end_reason = "signal";
+      end_asked = true;
+      session.RequestEnd();
+    }
+    if (!end_asked && opts.exit_after_s > 0.0 && SecondsSince(start) >= opts.exit_after_s) {
+      end_reason = "exit_after";
+      end_asked = true;
+      session.RequestEnd();
+    }
+    const Clock::time_point tick_start = Clock::now();
+    incoming.clear();
+    link.Receive(&incoming);
+    const teleop::TickResult r =
+        session.Step(incoming, std::chrono::duration<double>(tick_start - start).count());
+    if (!r.state_packet.empty() && r.peer) link.Send(r.state_packet, *r.peer);
+    if (viewer) viewer->Publish(teleop::ViewerFrameJson(model.robot(), r.view));
+    const double busy = SecondsSince(tick_start);
+    busy_s += busy;
+    busy_max_s = std::max(busy_max_s, busy);
+    ++ticks;
+    if (r.trial) {
+      const teleop::TrialRecord& t = *r.trial;
+      std::cerr << "graspsynth teleop: trial " << t.index << " (theta " << t.theta_deg
+                << " deg): " << t.outcome << ": " << t.reason << "; "
+                << (t.file.empty() ? "not written: " + t.not_written
+                                   : "written to " + t.file.string())
+                << std::endl;
+    }
+    if (r.finished) break;
+    next += tick;
+    const Clock::time_point now = Clock::now();
+    if (next < now) {
+      ++late_ticks;
+      next = now;  // late (a slow machine): do not try to catch up
+    }
+    std::this_thread::sleep_until(next);
+  }
+  const double wall = SecondsSince(start);
+  if (viewer) viewer->Stop();
+  if (!opts.summary.empty())
+    WriteFileAtomically(opts.summary, session.SummaryJson(end_reason, wall));
+  const teleop::PacketCounters& c = session.counters();
+  std::cerr << "graspsynth teleop: session ended (" << end_reason << ") after " << wall
+            << " s: " << ticks << " ticks (" << late_ticks << " late; processing "
+            << (ticks ? busy_s / ticks * 1e3 : 0.0) << " ms mean, " << busy_max_s * 1e3
+            << " ms max), " << c.received << " packets received, " << c.accepted << " accepted, "
+            << c.dropped_total() << " dropped, " << c.states_sent << " states sent, "
+            << session.trials().size() << " trials" << std::endl;
+  return 0;
+}
+
+struct ClientOptions {
+  std::string replay;
+  std::string host = "127.0.0.1";
+  int port = 9870;
+  double speed = 1.0;
+  std::string config;
+  double linger_s = 2.0;
+};
+
+int RunClient(const ClientOptions& opts) {
+  if (!(opts.speed > 0.0) || !std::isfinite(opts.speed)) {
+    throw InputError("--speed " + std::to_string(opts.speed) + " is not a positive number");
+  }
+  if (!(opts.linger_s >= 0.0)) throw InputError("--linger takes seconds >= 0");
+  const DemoLog log = ReadDemoLog(opts.replay);
+  const teleop::TeleopCalibration calibration =
+      teleop::LoadTeleopCalibration(opts.config.empty() ? teleop::DefaultTeleopCalibrationPath()
+                                                        : std::filesystem::path(opts.config));
+  const uint64_t server = teleop::ParsePeer(opts.host, opts.port);
+  teleop::UdpLinkOptions link_options;
+  link_options.address = "0.0.0.0";
+  teleop::UdpLink link(link_options);
+
+  uint64_t states = 0, invalid = 0;
+  std::optional<teleop::RobotState> last;
+  std::vector<teleop::Datagram> incoming;
+  Clock::time_point last_state_time = Clock::now();
+  const auto drain = [&] {
+    incoming.clear();
+    link.Receive(&incoming);
+    for (const teleop::Datagram& d : incoming) {
+      const teleop::DecodeResult r = teleop::Decode(d.bytes);
+      if (r.packet && r.packet->kind == teleop::PacketKind::kState) {
+        ++states;
+        last = r.packet->state;
+        last_state_time = Clock::now();
+      } else {
+        ++invalid;
+      }
+    }
+  };
+
+  const Clock::time_point start = Clock::now();
+  const double t0 = log.samples.front().t;
+  uint32_t sequence = 0;
+  for (const DemoSample& s : log.samples) {
+    const auto due = start + std::chrono::duration_cast<Clock::duration>(
+                                 std::chrono::duration<double>((s.t - t0) / opts.speed));
+    while (Clock::now() < due) {
+      drain();
+      link.WaitReadable(std::chrono::duration<double>(due - Clock::now()).count());
+    }
+    Eigen::Isometry3d X_WH = Eigen::Isometry3d::Identity();
+    X_WH.linear() = s.q_WH.normalized().toRotationMatrix();
+    X_WH.translation() = s.p_WH;
+    const Eigen::Isometry3d X_TS = calibration.SensorInTracker(X_WH);
+    teleop::OperatorCommand c;
+    c.sequence = sequence++;
+    c.sender_time = s.t;
+    c.p_TW = X_TS.translation();
+    c.q_TW = Eigen::Quaterniond(X_TS.linear()).normalized();
+    c.hand_mode = teleop::HandMode::kJoints;
+    c.buttons = s.event == DemoEvent::kGrasp ? teleop::kGraspButton
+                : s.event == DemoEvent::kEnd ? teleop::kEndTrialButton
+                                             : 0;
+    c.fingers = s.f;
+    link.Send(teleop::EncodeCommand(c), server);
+  }
+  const uint64_t commands = sequence;
+  // end of session, three times (a lost datagram must not leave the server waiting).
+  const double t_end = log.samples.back().t;
+  for (int k = 0; k < 3; ++k) {
+    link.Send(teleop::EncodeEndOfSession(sequence++, t_end), server);
+    drain();
+  }
+  // the states of the server's last ticks (it judges the trial before it ends).
+  last_state_time = Clock::now();
+  while (SecondsSince(last_state_time) < opts.linger_s) {
+    link.WaitReadable(0.05);
+    drain();
+  }
+  nlohmann::json out = {{"commands_sent", commands},
+                        {"end_of_session_sent", 3},
+                        {"states_received", states},
+                        {"invalid_received", invalid},
+                        {"duration_s", SecondsSince(start)}};
+  if (last) {
+    out["last_state"] = {{"trial", last->trial},
+                         {"theta_deg", last->theta_deg},
+                         {"flags", last->flags},
+                         {"last_trial_succeeded", (last->flags & teleop::kLastTrialSucceeded) != 0},
+                         {"object_position", {last->p_WO.x(), last->p_WO.y(), last->p_WO.z()}}};
+  }
+  std::cout << out.dump() << std::endl;
+  std::cerr << "graspsynth teleop-client: sent " << commands << " commands from " << opts.replay
+            << " to " << teleop::PeerToString(server) << "; received " << states
+            << " state packets (" << invalid << " invalid)" << std::endl;
+  return states > 0 ? 0 : 1;
+}
+
+}  // namespace
+
+void AddTeleopCommands(CLI::App& app, int* exit_code) {
+  auto opts = std::make_shared<ServerOptions>();
+  CLI::App* teleop = app.add_subcommand(
+      "teleop",
+      "Live teleoperation: runs the ODE scene in real time at --rate and takes operator\n"
+      "commands over UDP (wire format GSTP v1, README 'Teleoperation'): a wrist pose in the\n"
+      "tracker's frame, mapped to the robot by the calibration file (--config), and 14 glove\n"
+      "values or 16 finger joints; buttons grasp, end of trial, next orientation. The arm\n"
+      "follows through the analytic IK with a continuous arm angle (an unreachable target\n"
+      "holds it), the hand through the glove map; every joint moves at most at its velocity\n"
+      "cap. The robot and object state goes back to the sender every tick. Bad packets are\n"
+      "dropped and counted by reason; a silence over --timeout-ms holds the robot still.\n"
+      "With --record DIR every trial is judged after a 1 s hold (object centre >= 5 cm up,\n"
+      "touching only the hand) and written as a v1 demonstration log. An end-of-session\n"
+      "packet, Ctrl-C or SIGTERM end the session; --summary then gets a\n"
+      "graspsynth-teleop-session/1 report (packet counters by reason, trials and outcomes).");
+  teleop->add_option("--port", opts->port, "UDP port to listen on; 0 picks a free one")
+      ->check(CLI::Range(0, 65535))
+      ->capture_default_str();
+  teleop
+      ->add_option("--bind", opts->bind,
+                   "IPv4 address to listen on; 0.0.0.0 accepts operators from the network")
+      ->capture_default_str();
+  teleop
+      ->add_option("--orientations", opts->orientations,
+                   "Object orientations theta (deg), in the order the session walks through "
+                   "them (the next-orientation button)")
+      ->capture_default_str();
+  teleop->add_option("--record", opts->record_dir,
+                     "Folder to write every trial to, as trial_NNN_thetaT.csv (v1 logs)");
+  teleop->add_option("--rate", opts->rate_hz, "Control rate, Hz (1..1000)")->capture_default_str();
+  teleop
+      ->add_option("--config", opts->config,
+                   "Calibration file (graspsynth-teleop-config/1); default: "
+                   "examples/teleop_calibration.json")
+      ->check(CLI::ExistingFile);
+  teleop
+      ->add_option("--timeout-ms", opts->timeout_ms,
+                   "A silence longer than this (ms) holds the robot still")
+      ->capture_default_str();
+  teleop
+      ->add_option("--end-hold", opts->end_hold_s,
+                   "Seconds the robot holds after the end-of-trial button before the judgement")
+      ->capture_default_str();
+  teleop
+      ->add_option("--viewer-port", opts->viewer_port,
+                   "Serve the browser viewer on this TCP port (0: a free one; default: no "
+                   "viewer); the URL is printed")
+      ->check(CLI::Range(-1, 65535));
+  teleop->add_option("--camera", opts->camera,
+                     "Viewer start camera: eye EX,EY,EZ and optionally target TX,TY,TZ (m)");
+  teleop->add_option(
+      "--summary", opts->summary,
+      "Write the session summary (graspsynth-teleop-session/1 JSON) here at the end");
+  teleop->add_option("--operator", opts->operator_name, "Operator name written into the logs");
+  teleop->add_option("--port-file", opts->port_file,
+                     "Write the UDP port listened on into this file once bound (for scripts)");
+  teleop
+      ->add_option("--exit-after", opts->exit_after_s,
+                   "End the session after this many seconds in any case (0: never; scripts)")
+      ->capture_default_str();
+  teleop->callback([opts, exit_code] { *exit_code = RunServer(*opts); });
+
+  auto copts = std::make_shared<ClientOptions>();
+  CLI::App* client = app.add_subcommand(
+      "teleop-client",
+      "Replays a demonstration log (v1) to a 'graspsynth teleop' server over UDP at the log's\n"
+      "rate (times --speed), as a tracker and a glove would: each wrist pose is mapped into\n"
+      "the tracker's frame with the inverse of the calibration (--config, the server's), the\n"
+      "fingers are sent as 16 joint values, the grasp and end events as button presses; then\n"
+      "end of session. Prints the count of state packets received (JSON on stdout); exit\n"
+      "status 1 when none came back.");
+  client->add_option("--replay", copts->replay, "Demonstration log (graspsynth-demo/1 CSV)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  client->add_option("--host", copts->host, "Server's IPv4 address")->capture_default_str();
+  client->add_option("--port", copts->port, "Server's UDP port")
+      ->check(CLI::Range(1, 65535))
+      ->capture_default_str();
+  client->add_option("--speed", copts->speed, "Replay speed factor (> 0)")->capture_default_str();
+  client
+      ->add_option("--config", copts->config,
+                   "Calibration file (graspsynth-teleop-config/1); default: "
+                   "examples/teleop_calibration.json")
+      ->check(CLI::ExistingFile);
+  client
+      ->add_option("--linger", copts->linger_s,
+                   "After the end of session, listen for states until none came for this long (s)")
+      ->capture_default_str();
+  client->callback([copts, exit_code] { *exit_code = RunClient(*copts); });
+}
+
+}  // namespace graspsynth::apps

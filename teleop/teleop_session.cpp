@@ -1,0 +1,531 @@
+#include "teleop/teleop_session.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <nlohmann/json.hpp>
+
+#include "common/errors.hpp"
+#include "kinematics/arm_ik.hpp"
+#include "motion/joint_space.hpp"
+#include "simulation/scripted_grasp.hpp"
+#include "simulation/simulation_data.hpp"
+
+namespace graspsynth::teleop {
+namespace {
+
+// instability thresholds of the hand and the object (simulation/trial.hpp's defaults).
+constexpr double kMaxSpeed = 5.0;           // m/s
+constexpr double kMaxAngularSpeed = 200.0;  // rad/s
+constexpr double kMaxKineticEnergy = 2.0;   // J
+
+std::string Format(const char* fmt, double a, double b = 0.0) {
+  char buf[160];
+  std::snprintf(buf, sizeof(buf), fmt, a, b);
+  return buf;
+}
+
+enum class Phase {
+  kWaiting,  // world reset, no command applied since: no trial open
+  kActive,   // a trial is open and recorded
+  kJudging,  // the hold after the end-of-trial button
+};
+
+}  // namespace
+
+uint64_t PacketCounters::dropped_total() const {
+  uint64_t total = 0;
+  for (uint64_t n : dropped) total += n;
+  return total;
+}
+
+bool TeleopOptions::IsValid(std::string* why) const {
+  auto fail = [&](const std::string& what) {
+    if (why) *why = what;
+    return false;
+  };
+  if (!(std::isfinite(rate_hz) && rate_hz >= 1.0 && rate_hz <= 1000.0)) {
+    return fail("rate_hz (Hz, in [1, 1000]) = " + std::to_string(rate_hz));
+  }
+  if (!(std::isfinite(max_physics_step) && max_physics_step > 0.0 && max_physics_step <= 0.02)) {
+    return fail("max_physics_step (s, in (0, 0.02]) = " + std::to_string(max_physics_step));
+  }
+  if (!(std::isfinite(timeout_s) && timeout_s > 0.0)) {
+    return fail("timeout_s (s, > 0) = " + std::to_string(timeout_s));
+  }
+  if (!(std::isfinite(end_hold_s) && end_hold_s >= 0.0 && end_hold_s <= 60.0)) {
+    return fail("end_hold_s (s, in [0, 60]) = " + std::to_string(end_hold_s));
+  }
+  if (!(std::isfinite(lift_threshold) && lift_threshold > 0.0)) {
+    return fail("lift_threshold (m, > 0) = " + std::to_string(lift_threshold));
+  }
+  if (orientations_deg.empty()) return fail("orientations_deg is empty");
+  for (double theta : orientations_deg) {
+    if (!(std::isfinite(theta) && std::abs(theta) <= 360.0)) {
+      return fail("orientation (deg, in [-360, 360]) = " + std::to_string(theta));
+    }
+  }
+  return true;
+}
+
+struct TeleopSession::Impl {
+  const SimulationModel& model;
+  TeleopOptions options;
+  GloveMap glove;
+  int steps = 1;                    // physics steps per tick
+  double h = 0.0;                   // physics step, s
+  double tick = 0.0;                // s
+  std::vector<Vector7d> rest_arms;  // per orientation
+
+  size_t orientation = 0;
+  std::unique_ptr<SimulationData> world;
+  bool kinematic = true;  // free space: no contact detail yet
+  Vector7d q_cmd, q_goal, q_ik;
+  HandVector f_cmd, f_goal;
+
+  SequenceFilter sequence;
+  uint8_t previous_buttons = 0;
+  std::optional<double> last_command_time;
+  std::optional<uint64_t> peer;
+  uint32_t state_sequence = 0;
+  bool out_of_reach = false;
+
+  Phase phase = Phase::kWaiting;
+  std::vector<DemoSample> samples;
+  std::optional<size_t> grasp_sample;
+  double trial_start = 0.0;
+  double judge_at = 0.0;
+  Eigen::Vector3d p_WO_rest = Eigen::Vector3d::Zero();
+  double max_lift = 0.0;
+  bool arm_hit_table = false;
+  std::string collision_link;
+
+  bool end_requested = false;
+  bool finished = false;
+  bool last_success = false;
+  PacketCounters counters;
+  std::vector<TrialRecord> trials;
+  uint64_t ticks = 0;
+  uint64_t ticks_holding = 0;
+  uint64_t ticks_out_of_reach = 0;
+  double simulated = 0.0;
+
+  Impl(const SimulationModel& m, TeleopOptions o) : model(m), options(std::move(o)) {
+    std::string why;
+    if (!options.IsValid(&why)) throw InputError("invalid teleoperation option: " + why);
+    glove = options.glove_map ? *options.glove_map : GloveMap::Default(model.robot().hand);
+    tick = 1.0 / options.rate_hz;
+    steps = std::max(1, static_cast<int>(std::ceil(tick / options.max_physics_step - 1e-9)));
+    h = tick / steps;
+    for (double theta : options.orientations_deg) {
+      rest_arms.push_back(RestArm(model.robot(), model.scene(), theta));
+    }
+    if (!options.record_dir.empty()) {
+      std::error_code ec;
+      std::filesystem::create_directories(options.record_dir, ec);
+      if (ec) {
+        throw InputError("record folder " + options.record_dir.string() +
+                         " cannot be created: " + ec.message());
+      }
+    }
+    Reset();
+  }
+
+  double theta_deg() const { return options.orientations_deg[orientation]; }
+
+  void Reset() {
+    WorldOptions world_options;
+    world_options.time_step = h;
+    world_options.arm_mode = ArmMode::kKinematic;
+    world_options.theta = theta_deg() * M_PI / 180.0;
+    const Vector7d& rest = rest_arms[orientation];
+    world = std::make_unique<SimulationData>(model, world_options, rest, RestHand());
+    kinematic = true;
+    q_cmd = q_goal = q_ik = rest;
+    f_cmd = f_goal = RestHand();
+    phase = Phase::kWaiting;
+    samples.clear();
+    grasp_sample.reset();
+    max_lift = 0.0;
+    arm_hit_table = false;
+    collision_link.clear();
+    out_of_reach = false;
+    p_WO_rest = world->object_pose().translation();
+  }
+
+  // a trial ends: judged (or not), written when it can be, listed.
+  TrialRecord EndTrial(const std::string& outcome, const std::string& reason) {
+    TrialRecord r;
+    r.index = static_cast<int>(trials.size()) + 1;
+    r.theta_deg = theta_deg();
+    r.outcome = outcome;
+    r.success = outcome == "success";
+    r.reason = reason;
+    r.lift_m =
+        world && world->IsFinite() ? world->object_pose().translation().z() - p_WO_rest.z() : 0.0;
+    r.duration_s = samples.empty() ? 0.0 : samples.back().t;
+    r.samples = samples.size();
+    r.has_grasp = grasp_sample.has_value();
+    if (options.record_dir.empty()) {
+      r.not_written = "not recording";
+    } else if (outcome == "abandoned" || outcome == "unstable") {
+      r.not_written = "the trial was " + outcome;
+    } else if (!grasp_sample) {
+      r.not_written = "the grasp button was never pressed (a v1 log needs one grasp event)";
+    } else if (*grasp_sample + 1 == samples.size()) {
+      r.not_written = "the grasp and the end fell on the same sample";
+    } else {
+      DemoLog log;
+      char name[64];
+      std::snprintf(name, sizeof(name), "trial_%03d_theta%g.csv", r.index, r.theta_deg);
+      log.source = (options.record_dir / name).string();
+      log.metadata.theta_deg = r.theta_deg;
+      log.metadata.object_position = p_WO_rest;
+      log.metadata.trial = std::to_string(r.index);
+      if (!options.operator_name.empty()) log.metadata.operator_name = options.operator_name;
+      log.metadata.sample_rate_hz = options.rate_hz;
+      log.metadata.extra = {{"outcome", outcome}, {"recorded_by", "graspsynth teleop"}};
+      log.samples = samples;
+      log.samples.back().event = DemoEvent::kEnd;
+      try {
+        WriteDemoLog(log.source, log);
+        r.file = log.source;
+      } catch (const std::exception& e) {
+        r.not_written = e.what();
+      }
+    }
+    last_success = r.success;
+    trials.push_back(r);
+    return r;
+  }
+
+  TrialRecord Judge() {
+    const ContactReport& c = world->contacts();
+    const double lift = world->object_pose().translation().z() - p_WO_rest.z();
+    if (arm_hit_table) {
+      return EndTrial("collision", collision_link + " hit the table during the trial");
+    }
+    if (lift >= options.lift_threshold && c.object_hand > 0 && c.object_table == 0 &&
+        c.object_arm == 0) {
+      return EndTrial("success", Format("lifted %.1f mm and held %.2f s, touching only the hand",
+                                        lift * 1e3, options.end_hold_s));
+    }
+    if (lift >= options.lift_threshold && c.object_arm > 0 && c.object_table == 0) {
+      return EndTrial("touches_other",
+                      Format("the object is %.1f mm up but rests on the arm", lift * 1e3));
+    }
+    if (max_lift >= options.lift_threshold) {
+      return EndTrial("dropped", Format("lifted up to %.1f mm, %.1f mm at the end", max_lift * 1e3,
+                                        lift * 1e3));
+    }
+    return EndTrial("not_lifted", Format("the object rose at most %.1f mm (needs %.0f mm)",
+                                         max_lift * 1e3, options.lift_threshold * 1e3));
+  }
+
+  // the newest valid command of the tick sets the targets.
+  void Apply(const OperatorCommand& command) {
+    const RobotModel& robot = model.robot();
+    Eigen::Isometry3d X_TS = Eigen::Isometry3d::Identity();
+    X_TS.linear() = command.q_TW.normalized().toRotationMatrix();
+    X_TS.translation() = command.p_TW;
+    const Eigen::Isometry3d X_WH = options.calibration.WristInWorld(X_TS);
+    const std::optional<Vector7d> q =
+        SolveWristPose(robot, X_WH, BranchOf(q_ik), ArmAngleOf(robot.arm, q_ik), q_ik);
+    out_of_reach = !q.has_value();
+    if (q) {
+      q_ik = *q;
+      q_goal = *q;
+    }
+    if (command.hand_mode == HandMode::kGlove) {
+      f_goal = GloveToJoints(glove, robot.hand, command.fingers.head<kGloveSensors>());
+    } else {
+      f_goal = command.fingers.cwiseMax(robot.hand.lower()).cwiseMin(robot.hand.upper());
+    }
+  }
+
+  // one tick of physics from the previous commands to the new ones; false when unstable.
+  bool Simulate(const Vector7d& q_from, const HandVector& f_from, std::string* why) {
+    const Vector7d dq = q_cmd - q_from;
+    const HandVector df = f_cmd - f_from;
+    try {
+      for (int k = 0; k < steps; ++k) {
+        const double a = static_cast<double>(k + 1) / steps;
+        world->SetArmCommand(ServoMode::kPosition, q_from + a * dq, dq / tick);
+        world->SetHandCommand(ServoMode::kPosition, f_from + a * df);
+        if (kinematic && world->HandNearObject()) kinematic = false;
+        if (kinematic) {
+          world->StepKinematically();
+          const ContactReport& c = world->contacts();
+          // anything touching ends free space; the contact is resolved from the next step on.
+          if (c.object_hand + c.object_arm + c.finger_table > 0) kinematic = false;
+        } else {
+          world->Step();
+        }
+        const ContactReport& c = world->contacts();
+        if (c.arm_table > 0 && !arm_hit_table && phase != Phase::kWaiting) {
+          arm_hit_table = true;
+          collision_link = c.arm_table_link;
+        }
+      }
+    } catch (const std::exception& e) {
+      *why = Format("numerical instability at t = %.3f s: ", world->time()) + e.what();
+      return false;
+    }
+    if (!world->IsFinite() || world->MaxDynamicSpeed() > kMaxSpeed ||
+        world->MaxDynamicAngularSpeed() > kMaxAngularSpeed ||
+        world->HandObjectKineticEnergy() > kMaxKineticEnergy) {
+      *why = Format("numerical instability at t = %.3f s: speed %.3g m/s", world->time(),
+                    world->IsFinite() ? world->MaxDynamicSpeed() : NAN);
+      return false;
+    }
+    return true;
+  }
+
+  TickResult MakeResult(double now, uint32_t flags) {
+    TickResult result;
+    result.flags = flags;
+    RobotState state;
+    state.sender_time = now;
+    state.arm = world->arm_positions();
+    state.hand = world->hand_positions();
+    const Eigen::Isometry3d X_WO = world->object_pose();
+    state.p_WO = X_WO.translation();
+    state.q_WO = Eigen::Quaterniond(X_WO.linear());
+    state.theta_deg = theta_deg();
+    state.trial = static_cast<uint32_t>(trials.size() + 1);
+    state.flags = flags;
+    if (peer) {
+      state.sequence = state_sequence++;
+      result.state_packet = EncodeState(state);
+      result.peer = peer;
+      ++counters.states_sent;
+    }
+    result.view.t = simulated;
+    result.view.arm = state.arm;
+    result.view.hand = state.hand;
+    result.view.X_WO = X_WO;
+    std::string text = Format("theta %.1f deg | trial %.0f", theta_deg(), trials.size() + 1.0);
+    if (phase == Phase::kActive)
+      text += grasp_sample ? " | recording, grasp marked" : " | recording";
+    if (phase == Phase::kJudging) text += " | judging the trial";
+    if (phase == Phase::kWaiting) text += " | waiting for the operator";
+    if (flags & kHoldingStill) text += " | no operator packets: holding still";
+    if (flags & kOutOfReach) text += " | wrist target out of reach: holding";
+    if (!trials.empty()) {
+      text += " | last trial: " + trials.back().outcome;
+    }
+    result.view.text = text;
+    result.finished = finished;
+    return result;
+  }
+
+  TickResult Step(std::span<const Datagram> datagrams, double now) {
+    // 1. decode and check every datagram; the newest valid command drives the robot.
+    std::optional<OperatorCommand> newest;
+    uint8_t pressed = 0;
+    for (const Datagram& d : datagrams) {
+      ++counters.received;
+      const DecodeResult decoded = Decode(d.bytes);
+      if (!decoded.packet) {
+        ++counters.dropped[static_cast<int>(decoded.reason)];
+        continue;
+      }
+      if (decoded.packet->kind == PacketKind::kState) {
+        ++counters.dropped[static_cast<int>(DropReason::kUnknownKind)];
+        continue;
+      }
+      if (const auto reason = sequence.Check(decoded.packet->sequence)) {
+        ++counters.dropped[static_cast<int>(*reason)];
+        continue;
+      }
+      ++counters.accepted;
+      if (decoded.packet->kind == PacketKind::kEndOfSession) {
+        end_requested = true;
+        continue;
+      }
+      const OperatorCommand& c = decoded.packet->command;
+      pressed |= static_cast<uint8_t>(c.buttons & ~previous_buttons);
+      previous_buttons = c.buttons;
+      newest = c;
+      peer = d.peer;
+      last_command_time = now;
+      if (phase == Phase::kJudging || finished) ++counters.ignored_while_judging;
+    }
+    if (finished) return MakeResult(now, kHoldingStill);
+    ++ticks;
+
+    // 2. buttons: next orientation first (it resets the world), then the trial's own.
+    std::optional<TrialRecord> ended;
+    if (phase != Phase::kJudging && (pressed & kNextOrientationButton)) {
+      if (phase == Phase::kActive) ended = EndTrial("abandoned", "the next orientation was chosen");
+      orientation = (orientation + 1) % options.orientations_deg.size();
+      Reset();
+      newest.reset();  // the command that pressed it must not start the new trial
+      pressed = 0;
+    }
+    if (newest && phase != Phase::kJudging) {
+      if (phase == Phase::kWaiting) {
+        phase = Phase::kActive;
+        trial_start = world->time();
+      }
+      Apply(*newest);
+      ++counters.commands_applied;
+    }
+    const bool grasp_now = phase == Phase::kActive && (pressed & kGraspButton);
+    if (phase == Phase::kActive && (pressed & kEndTrialButton)) {
+      phase = Phase::kJudging;
+      judge_at = world->time() + options.end_hold_s;
+    }
+
+    // 3. silence or judging freezes the commands; else they move toward the targets, capped.
+    const bool silent = !last_command_time || now - *last_command_time > options.timeout_s;
+    uint32_t flags = 0;
+    if (silent) {
+      flags |= kHoldingStill;
+      ++ticks_holding;
+    }
+    if (silent || phase == Phase::kJudging) {
+      q_goal = q_cmd;
+      f_goal = f_cmd;
+    }
+    if (out_of_reach) {
+      flags |= kOutOfReach;
+      ++ticks_out_of_reach;
+    }
+    const Vector7d q_from = q_cmd;
+    const HandVector f_from = f_cmd;
+    const Vector7d dq_max = model.robot().arm.max_velocity() * tick;
+    const HandVector df_max = model.robot().hand.max_velocity() * tick;
+    q_cmd += (q_goal - q_cmd).cwiseMax(-dq_max).cwiseMin(dq_max);
+    f_cmd += (f_goal - f_cmd).cwiseMax(-df_max).cwiseMin(df_max);
+
+    // 4. physics.
+    std::string why;
+    const bool stable = Simulate(q_from, f_from, &why);
+    simulated += tick;
+    if (!stable) {
+      if (phase != Phase::kWaiting) ended = EndTrial("unstable", why);
+      Reset();
+    } else if (phase != Phase::kWaiting) {
+      // 5. the sample of this tick.
+      DemoSample s;
+      s.t = world->time() - trial_start;
+      const Eigen::Isometry3d X_WH = world->wrist_pose();
+      s.p_WH = X_WH.translation();
+      s.q_WH = Eigen::Quaterniond(X_WH.linear());
+      s.f = f_cmd;
+      s.p_WO = world->object_pose().translation();
+      max_lift = std::max(max_lift, s.p_WO.z() - p_WO_rest.z());
+      if (grasp_now) {
+        if (grasp_sample) samples[*grasp_sample].event = DemoEvent::kNone;
+        grasp_sample = samples.size();
+        s.event = DemoEvent::kGrasp;
+      }
+      samples.push_back(s);
+      // 6. the judgement after the hold.
+      if (phase == Phase::kJudging && world->time() >= judge_at - 1e-9) {
+        ended = Judge();
+        Reset();
+      }
+    }
+    if (phase == Phase::kActive) flags |= kRecording;
+    if (phase == Phase::kJudging) flags |= kJudging;
+    if (last_success) flags |= kLastTrialSucceeded;
+
+    if (end_requested && phase != Phase::kJudging) {
+      if (phase == Phase::kActive) ended = EndTrial("abandoned", "the session ended first");
+      phase = Phase::kWaiting;
+      finished = true;
+    }
+    TickResult result = MakeResult(now, flags);
+    result.trial = ended;
+    return result;
+  }
+};
+
+TeleopSession::TeleopSession(const SimulationModel& model, TeleopOptions options)
+    : impl_(std::make_unique<Impl>(model, std::move(options))) {}
+TeleopSession::~TeleopSession() = default;
+
+TickResult TeleopSession::Step(std::span<const Datagram> datagrams, double now) {
+  return impl_->Step(datagrams, now);
+}
+void TeleopSession::RequestEnd() { impl_->end_requested = true; }
+bool TeleopSession::finished() const { return impl_->finished; }
+const PacketCounters& TeleopSession::counters() const { return impl_->counters; }
+const std::vector<TrialRecord>& TeleopSession::trials() const { return impl_->trials; }
+const TeleopOptions& TeleopSession::options() const { return impl_->options; }
+int TeleopSession::steps_per_tick() const { return impl_->steps; }
+double TeleopSession::physics_step() const { return impl_->h; }
+double TeleopSession::theta_deg() const { return impl_->theta_deg(); }
+Vector7d TeleopSession::arm() const { return impl_->world->arm_positions(); }
+HandVector TeleopSession::hand() const { return impl_->world->hand_positions(); }
+Eigen::Isometry3d TeleopSession::object_pose() const { return impl_->world->object_pose(); }
+Eigen::Isometry3d TeleopSession::wrist_pose() const { return impl_->world->wrist_pose(); }
+const Vector7d& TeleopSession::arm_command() const { return impl_->q_cmd; }
+const HandVector& TeleopSession::hand_command() const { return impl_->f_cmd; }
+
+Vector7d TeleopSession::RestArm(const RobotModel& robot, const SceneModel& scene,
+                                double theta_deg) {
+  ScriptedGraspOptions grasp;
+  grasp.theta_deg = theta_deg;
+  const Eigen::Isometry3d X_WH = GraspWristPose(scene, grasp);
+  return DefaultRestConfiguration(robot, scene, X_WH.linear());
+}
+
+HandVector TeleopSession::RestHand() { return ScriptedGraspOptions::DefaultOpenHand(); }
+
+std::string TeleopSession::SummaryJson(const std::string& end, double wall_s) const {
+  using nlohmann::json;
+  const Impl& s = *impl_;
+  json dropped = json::object();
+  for (int i = 0; i < kDropReasonCount; ++i) {
+    dropped[std::string(ToString(static_cast<DropReason>(i)))] = s.counters.dropped[i];
+  }
+  json trials = json::array();
+  int successes = 0;
+  for (const TrialRecord& t : s.trials) {
+    successes += t.success ? 1 : 0;
+    trials.push_back({{"index", t.index},
+                      {"theta_deg", t.theta_deg},
+                      {"outcome", t.outcome},
+                      {"success", t.success},
+                      {"reason", t.reason},
+                      {"lift_m", t.lift_m},
+                      {"duration_s", t.duration_s},
+                      {"samples", t.samples},
+                      {"grasp_marked", t.has_grasp},
+                      {"file", t.file.empty() ? json(nullptr) : json(t.file.string())},
+                      {"not_written", t.not_written}});
+  }
+  const json doc = {
+      {"format", kTeleopSessionFormat},
+      {"end", end},
+      {"wall_s", wall_s},
+      {"rate_hz", s.options.rate_hz},
+      {"physics_step_s", s.h},
+      {"steps_per_tick", s.steps},
+      {"timeout_s", s.options.timeout_s},
+      {"end_hold_s", s.options.end_hold_s},
+      {"orientations_deg", s.options.orientations_deg},
+      {"record_dir",
+       s.options.record_dir.empty() ? json(nullptr) : json(s.options.record_dir.string())},
+      {"ticks", s.ticks},
+      {"simulated_s", s.simulated},
+      {"ticks_holding_still", s.ticks_holding},
+      {"ticks_out_of_reach", s.ticks_out_of_reach},
+      {"packets",
+       {{"received", s.counters.received},
+        {"accepted", s.counters.accepted},
+        {"commands_applied", s.counters.commands_applied},
+        {"ignored_while_judging", s.counters.ignored_while_judging},
+        {"dropped_total", s.counters.dropped_total()},
+        {"dropped", dropped},
+        {"states_sent", s.counters.states_sent}}},
+      {"trials", trials},
+      {"successes", successes}};
+  return doc.dump(2) + "\n";
+}
+
+}  // namespace graspsynth::teleop

@@ -1,0 +1,165 @@
+// graspsynth teleop and teleop-client: the whole loop over loopback UDP. A synthetic trial (the
+// scripted grasp at theta = 60 deg as a 60 Hz log) is replayed by the client into a recording
+// server; the recorded trial must have the same outcome and a grasp pose within tolerance.
+
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "learning_data/demo_log.hpp"
+#include "learning_data/segmentation.hpp"
+#include "tests/teleop/teleop_fixtures.hpp"
+#include "tests/utils/run_command.hpp"
+
+extern char** environ;
+
+namespace graspsynth {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::RunGraspsynth;
+
+fs::path TempDir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() /
+                       ("graspsynth_teleop_cmd_" + name + "_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// `graspsynth args...` in the background.
+pid_t Spawn(const std::vector<std::string>& args) {
+  std::vector<std::string> all = {GRASPSYNTH_BINARY};
+  all.insert(all.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& a : all) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = -1;
+  EXPECT_EQ(posix_spawn(&pid, GRASPSYNTH_BINARY, nullptr, nullptr, argv.data(), environ), 0);
+  return pid;
+}
+
+// the exit status of `pid`, waiting at most `seconds` (then it is killed: -1).
+int WaitFor(pid_t pid, double seconds) {
+  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  int status = 0;
+  while (std::chrono::steady_clock::now() < until) {
+    if (waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  kill(pid, SIGKILL);
+  waitpid(pid, &status, 0);
+  return -1;
+}
+
+double AngleBetween(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
+  return a.normalized().angularDistance(b.normalized());
+}
+
+TEST(TeleopCommand, HelpExplainsTheLoopAndTheClient) {
+  const testing::CommandOutput server = RunGraspsynth("teleop --help");
+  EXPECT_EQ(server.exit_code, 0);
+  for (const char* word :
+       {"--port", "--bind", "--orientations", "--record", "--rate", "--config", "--timeout-ms",
+        "--viewer-port", "--summary", "graspsynth-teleop-session/1"}) {
+    EXPECT_NE(server.out.find(word), std::string::npos) << word;
+  }
+  const testing::CommandOutput client = RunGraspsynth("teleop-client --help");
+  EXPECT_EQ(client.exit_code, 0);
+  for (const char* word : {"--replay", "--port", "--host", "--speed"}) {
+    EXPECT_NE(client.out.find(word), std::string::npos) << word;
+  }
+}
+
+TEST(TeleopCommand, BadOptionsAreNamed) {
+  const testing::CommandOutput r = RunGraspsynth("teleop --orientations 20,abc --port 0");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--orientations: \"abc\" is not a number"), std::string::npos) << r.err;
+  const testing::CommandOutput t = RunGraspsynth("teleop --timeout-ms -5 --port 0");
+  EXPECT_EQ(t.exit_code, 2);
+  EXPECT_NE(t.err.find("--timeout-ms"), std::string::npos) << t.err;
+}
+
+TEST(TeleopCommand, SignalEndsTheSessionWithASummary) {
+  const fs::path dir = TempDir("signal");
+  const pid_t server =
+      Spawn({"teleop", "--port", "0", "--port-file", (dir / "port").string(), "--orientations",
+             "60", "--summary", (dir / "summary.json").string()});
+  for (int k = 0; k < 1500 && !fs::exists(dir / "port"); ++k) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  ASSERT_TRUE(fs::exists(dir / "port"));
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  kill(server, SIGTERM);
+  EXPECT_EQ(WaitFor(server, 30.0), 0);
+  const nlohmann::json summary = nlohmann::json::parse(testing::ReadFileText(dir / "summary.json"));
+  EXPECT_EQ(summary["format"], "graspsynth-teleop-session/1");
+  EXPECT_EQ(summary["end"], "signal");
+  EXPECT_EQ(summary["packets"]["received"], 0);
+  EXPECT_TRUE(summary["trials"].empty());
+  fs::remove_all(dir);
+}
+
+TEST(TeleopCommand, AReplayedTrialIsRecordedAgainWithTheSameOutcome) {
+  const fs::path dir = TempDir("loop");
+  TrialResult nominal;
+  const DemoLog original = testing::ScriptedDemoLog(60.0, 60.0, &nominal);
+  ASSERT_TRUE(nominal.success()) << nominal.BriefReport();
+  const SegmentedTrial original_segmented = Segment(original, SegmentationOptions{});
+  ASSERT_TRUE(original_segmented.success);
+  WriteDemoLog(dir / "original.csv", original);
+
+  const pid_t server = Spawn({"teleop", "--port", "0", "--port-file", (dir / "port").string(),
+                              "--orientations", "60", "--record", (dir / "recorded").string(),
+                              "--summary", (dir / "summary.json").string(), "--exit-after", "120"});
+  for (int k = 0; k < 1500 && !fs::exists(dir / "port"); ++k) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  ASSERT_TRUE(fs::exists(dir / "port")) << "the server did not start";
+  const std::string port = testing::ReadFileText(dir / "port");
+  // slower under the sanitizers, so that the server keeps its rate.
+  const std::string speed = testing::Scaled(1, 0) == 1 ? "1" : "0.5";
+  const testing::CommandOutput client =
+      RunGraspsynth("teleop-client --replay " + (dir / "original.csv").string() + " --port " +
+                    port + " --speed " + speed + " --linger 1.5");
+  EXPECT_EQ(client.exit_code, 0) << client.err;
+  EXPECT_EQ(WaitFor(server, 60.0), 0);
+
+  const nlohmann::json out = nlohmann::json::parse(client.out);
+  EXPECT_EQ(out["commands_sent"], original.samples.size());
+  // the server answers every tick once the first command came: about 60 per second.
+  EXPECT_GT(out["states_received"].get<double>(), 0.8 * 60.0 * original.samples.back().t);
+  EXPECT_EQ(out["invalid_received"], 0);
+
+  const nlohmann::json summary = nlohmann::json::parse(testing::ReadFileText(dir / "summary.json"));
+  EXPECT_EQ(summary["end"], "end_of_session");
+  EXPECT_EQ(summary["packets"]["dropped_total"], 0);
+  EXPECT_EQ(summary["packets"]["accepted"], original.samples.size() + 3);
+  ASSERT_EQ(summary["trials"].size(), 1u) << summary.dump(2);
+  const nlohmann::json& trial = summary["trials"][0];
+  EXPECT_EQ(trial["outcome"], "success") << trial.dump();
+  ASSERT_TRUE(trial["file"].is_string()) << trial.dump();
+
+  const DemoLog recorded = ReadDemoLog(trial["file"].get<std::string>());
+  const SegmentedTrial segmented = Segment(recorded, SegmentationOptions{});
+  EXPECT_EQ(segmented.success, original_segmented.success);
+  EXPECT_GE(segmented.lift, 0.05);
+  const size_t g0 = FindEvent(original, DemoEvent::kGrasp).value();
+  const size_t g1 = FindEvent(recorded, DemoEvent::kGrasp).value();
+  const DemoSample& a = original.samples[g0];
+  const DemoSample& b = recorded.samples[g1];
+  EXPECT_NEAR(b.t, a.t, 0.1);
+  EXPECT_LT((b.p_WH - a.p_WH).norm(), 0.01) << b.p_WH.transpose() << " vs " << a.p_WH.transpose();
+  EXPECT_LT(AngleBetween(b.q_WH, a.q_WH), 2.0 * M_PI / 180.0);
+  EXPECT_LT((b.f - a.f).cwiseAbs().maxCoeff(), 0.05);
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace graspsynth

@@ -1,0 +1,71 @@
+#include "teleop/calibration.hpp"
+
+#include <gtest/gtest.h>
+
+#include "common/errors.hpp"
+#include "tests/utils/eigen_matchers.hpp"
+
+namespace graspsynth::teleop {
+namespace {
+
+std::string ErrorOf(const std::string& text) {
+  try {
+    ParseTeleopCalibration(text, "calib.json");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(TeleopCalibration, TheShippedFileLoadsAndTheInverseRoundTrips) {
+  const TeleopCalibration c = LoadTeleopCalibration(DefaultTeleopCalibrationPath());
+  EXPECT_FALSE(c.X_WT.isApprox(Eigen::Isometry3d::Identity()));
+  Eigen::Isometry3d X_WH = Eigen::Isometry3d::Identity();
+  X_WH.linear() = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, -2, 0.5).normalized()).matrix();
+  X_WH.translation() = Eigen::Vector3d(-0.2, 0.6, 0.3);
+  const Eigen::Isometry3d back = c.WristInWorld(c.SensorInTracker(X_WH));
+  EXPECT_TRUE(testing::MatricesNear(back.matrix(), X_WH.matrix(), 1e-12));
+}
+
+TEST(TeleopCalibration, ComposesTrackerReadingAndWristOffset) {
+  const TeleopCalibration c = ParseTeleopCalibration(
+      R"({"format": "graspsynth-teleop-config/1",
+          "tracker_in_world": {"position": [1, 2, 3], "quaternion": [0, 0, 0, 1]},
+          "sensor_to_wrist": {"position": [0, 0, 0.1], "quaternion": [1, 0, 0, 0]}})",
+      "inline");
+  // a half turn about z: tracker x is world -x; the wrist sits 0.1 m along the sensor's z.
+  const Eigen::Isometry3d X_WH =
+      c.WristInWorld(Eigen::Isometry3d(Eigen::Translation3d(0.5, 0.0, 0.0)));
+  EXPECT_TRUE(testing::MatricesNear(X_WH.translation(), Eigen::Vector3d(0.5, 2, 3.1), 1e-12));
+  // sensor_to_wrist may be left out.
+  const TeleopCalibration d = ParseTeleopCalibration(
+      R"({"format": "graspsynth-teleop-config/1",
+          "tracker_in_world": {"position": [0, 0, 0], "quaternion": [1, 0, 0, 0]}})",
+      "inline");
+  EXPECT_TRUE(d.X_SH.isApprox(Eigen::Isometry3d::Identity()));
+}
+
+TEST(TeleopCalibration, BadFilesNameTheFieldAndTheValue) {
+  const std::string pose = R"({"position": [0, 0, 0], "quaternion": [1, 0, 0, 0]})";
+  EXPECT_NE(ErrorOf("{").find("calib.json: not valid JSON"), std::string::npos);
+  EXPECT_NE(ErrorOf(R"({"format": "other/1", "tracker_in_world": )" + pose + "}").find("other/1"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf(R"({"format": "graspsynth-teleop-config/1"})").find("tracker_in_world"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf(R"({"format": "graspsynth-teleop-config/1", "tracker_in_wrold": )" + pose + "}")
+                .find("unknown key \"tracker_in_wrold\""),
+            std::string::npos);
+  const std::string bad_q =
+      R"({"format": "graspsynth-teleop-config/1", "tracker_in_world": {"position": [0, 0, 0],
+          "quaternion": [1, 1, 0, 0]}})";
+  EXPECT_NE(ErrorOf(bad_q).find("tracker_in_world.quaternion [1,1,0,0] is not unit"),
+            std::string::npos);
+  const std::string bad_p =
+      R"({"format": "graspsynth-teleop-config/1", "tracker_in_world": {"position": [0, "a", 0],
+          "quaternion": [1, 0, 0, 0]}})";
+  EXPECT_NE(ErrorOf(bad_p).find("tracker_in_world.position holds \"a\""), std::string::npos);
+  EXPECT_THROW(LoadTeleopCalibration("/nonexistent/calib.json"), InputError);
+}
+
+}  // namespace
+}  // namespace graspsynth::teleop
