@@ -22,6 +22,7 @@
 #include "simulation/robustness.hpp"
 #include "simulation/scripted_grasp.hpp"
 #include "simulation/trial.hpp"
+#include "solver/grasp_file.hpp"
 
 namespace graspsynth::apps {
 namespace {
@@ -137,8 +138,9 @@ int RunSimulate(const SimulateOptions& o) {
     throw InputError("--fidelity must be 'fast' or 'full', not '" + o.fidelity + "'");
   }
   const SimulationModel model = LoadModel(o.robot, o.scene);
+  // a graspsynth-trajectory/1 file, or the "trajectory" member of a graspsynth-grasp/1 file.
   const JointTrajectory trajectory =
-      LoadJointTrajectory(o.trajectory, model.robot().arm, model.robot().hand);
+      LoadTrajectoryOrGraspFile(o.trajectory, model.robot().arm, model.robot().hand);
 
   TrialOptions trial;
   trial.fidelity = o.fidelity == "full" ? Fidelity::kFull : Fidelity::kFast;

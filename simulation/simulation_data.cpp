@@ -225,6 +225,7 @@ struct SimulationData::Impl {
   double time = 0.0;
   bool detect_only = false;
   ContactReport report;
+  std::vector<HandObjectContact> hand_object;  // points of the last pass, object-hand pairs
   StepStatistics stats;
   bool near_object = false;
   bool broken = false;  // ODE raised an error inside a step of this world
@@ -587,6 +588,7 @@ struct SimulationData::Impl {
   void Collide(bool only_detect) {
     detect_only = only_detect;
     report = ContactReport{};
+    hand_object.clear();
     dSpaceCollide(space, this, &Impl::NearCallback);
   }
 
@@ -625,6 +627,12 @@ struct SimulationData::Impl {
       report.object_hand += n;
       report.hand_links_on_object |= 1ul << ib->hand_index;
       mu = model->scene().object.friction;
+      // geom a is the object: ODE's normal points into body 1, the object.
+      for (int i = 0; i < n; ++i) {
+        hand_object.push_back({Eigen::Vector3d(cg[i].pos[0], cg[i].pos[1], cg[i].pos[2]),
+                               Eigen::Vector3d(cg[i].normal[0], cg[i].normal[1], cg[i].normal[2]),
+                               cg[i].depth, ib->hand_index});
+      }
     } else {
       return;
     }
@@ -848,6 +856,9 @@ Eigen::Isometry3d SimulationData::hand_link_pose(int j) const {
 }
 
 const ContactReport& SimulationData::contacts() const { return impl_->report; }
+const std::vector<HandObjectContact>& SimulationData::hand_object_contacts() const {
+  return impl_->hand_object;
+}
 int SimulationData::limit_violation() const { return impl_->violation; }
 double SimulationData::limit_violation_value() const { return impl_->violation_value; }
 

@@ -30,6 +30,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "simulation/simulation_model.hpp"
 
@@ -80,6 +81,15 @@ struct ContactReport {
   /// (HandJointVector order), bit 20 for the palm or the hand mount.
   unsigned long hand_links_on_object = 0;
   double max_object_penetration = 0.0;  ///< deepest contact involving the object, m
+};
+
+/// One contact point between the object and a finger or the palm, as the last collision pass
+/// made it (for grasp-quality evaluation).
+struct HandObjectContact {
+  Eigen::Vector3d p_WC = Eigen::Vector3d::Zero();  ///< contact point, world, m
+  Eigen::Vector3d n_W = Eigen::Vector3d::UnitZ();  ///< unit normal, world, pointing into the object
+  double depth = 0.0;                              ///< penetration depth, m
+  int hand_link = -1;  ///< HandJointVector index of the finger link, 20 for the palm or mount
 };
 
 /// Size of the world (the figures a benchmark reports).
@@ -158,6 +168,8 @@ class SimulationData {
   Eigen::Isometry3d hand_link_pose(int j) const;
   /// Contacts of the last collision pass.
   const ContactReport& contacts() const;
+  /// The object-hand contact points of the last collision pass (emptied by every pass).
+  const std::vector<HandObjectContact>& hand_object_contacts() const;
   /// Index (0..6) of an arm joint whose command was clamped to its limit in the last step,
   /// or -1; the commanded value is in limit_violation_value().
   int limit_violation() const;

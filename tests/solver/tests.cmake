@@ -7,3 +7,14 @@ graspsynth_test(solver/analysis_report_test.cpp LIBS graspsynth::solver
 graspsynth_test(apps/analyze_command_test.cpp LIBS graspsynth::solver
                 nlohmann_json::nlohmann_json)
 add_dependencies(apps_analyze_command_test graspsynth)
+# Tests of the synthesis half of solver/ and of `graspsynth synthesize`.
+graspsynth_test(solver/bracket_test.cpp LIBS graspsynth::solver)
+graspsynth_test(solver/line_principle_test.cpp LIBS graspsynth::solver)
+graspsynth_test(solver/refinement_test.cpp LIBS graspsynth::solver)
+graspsynth_test(solver/physics_gate_test.cpp LIBS graspsynth::solver)
+graspsynth_test(solver/synthesis_test.cpp LIBS graspsynth::solver)
+graspsynth_test(solver/grasp_file_test.cpp LIBS graspsynth::solver nlohmann_json::nlohmann_json)
+graspsynth_test(apps/synthesize_command_test.cpp LIBS graspsynth::solver
+                nlohmann_json::nlohmann_json)
+add_dependencies(apps_synthesize_command_test graspsynth)
+graspsynth_test(solver/shipped_demos_test.cpp LIBS graspsynth::solver)

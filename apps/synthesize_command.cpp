@@ -1,0 +1,161 @@
+// graspsynth synthesize: a grasp for an object orientation from the grasp library, through the
+// physics gate, written as a graspsynth-grasp/1 file.
+
+#include "apps/synthesize_command.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+
+#include "common/errors.hpp"
+#include "learning_data/grasp_library.hpp"
+#include "simulation/simulation_model.hpp"
+#include "solver/grasp_file.hpp"
+#include "solver/physics_gate.hpp"
+#include "solver/synthesis.hpp"
+
+namespace graspsynth::apps {
+namespace {
+
+struct SynthesizeOptions {
+  std::string library;
+  double theta = NAN;
+  std::string method = "interp";
+  bool no_refine = false;
+  std::string start;
+  uint64_t seed = PhysicsGateOptions{}.seed;
+  int perturb = PhysicsGateOptions{}.perturbations;
+  int threads = PhysicsGateOptions{}.threads;
+  double min_robustness = PhysicsGateOptions{}.min_robustness;
+  bool force = false;
+  std::string out;
+  std::string robot;
+  std::string scene;
+};
+
+Vector7d ParseStart(const std::string& text) {
+  Vector7d q;
+  std::stringstream ss(text);
+  std::string item;
+  int i = 0;
+  while (std::getline(ss, item, ',')) {
+    if (i >= kArmDof) break;
+    char* end = nullptr;
+    const double v = std::strtod(item.c_str(), &end);
+    if (item.empty() || end == item.c_str() || *end != '\0' || !std::isfinite(v)) {
+      throw InputError("--start: value " + std::to_string(i + 1) + " '" + item +
+                       "' is not a finite number (radians)");
+    }
+    q[i++] = v;
+  }
+  if (i != kArmDof || std::getline(ss, item, ',')) {
+    throw InputError("--start needs exactly 7 comma-separated joint values in radians, got '" +
+                     text + "'");
+  }
+  return q;
+}
+
+int RunSynthesize(const SynthesizeOptions& o) {
+  const SynthesisMethod method = ParseSynthesisMethod(o.method);
+  if (!std::isfinite(o.theta)) throw InputError("--theta must be a finite number of degrees");
+  const std::filesystem::path library_path =
+      o.library.empty() ? DefaultGraspLibraryPath() : std::filesystem::path(o.library);
+  GraspLibrary library = ReadGraspLibrary(library_path);
+  const SimulationModel sim(
+      LoadRobotModel(o.robot.empty() ? DefaultRobotDescriptionPath()
+                                     : std::filesystem::path(o.robot)),
+      LoadSceneModel(o.scene.empty() ? DefaultSceneModelPath() : std::filesystem::path(o.scene)));
+  SynthesisModel model(sim.robot(), sim.scene(), std::move(library));
+
+  SynthesisOptions so;
+  so.method = method;
+  so.refine = !o.no_refine;
+  if (!o.start.empty()) so.start = ParseStart(o.start);
+  CollisionData data(model.collision());
+  const SynthesisResult s = SynthesizeGrasp(model, o.theta, so, &data);
+  switch (s.status) {
+    case SynthesisStatus::kOk:
+      break;
+    case SynthesisStatus::kOutOfRange:
+    case SynthesisStatus::kBadStart:
+    case SynthesisStatus::kNoModel:
+      throw InputError(s.message);
+    case SynthesisStatus::kUnreachable:
+      std::cerr << "graspsynth synthesize: no grasp: " << s.message << " (nothing written)\n";
+      return 1;
+  }
+  std::cerr << "synthesized theta " << o.theta << " deg by " << ToString(s.used)
+            << (s.fallback ? " (fallback: " + s.fallback_reason + ")" : std::string()) << ": "
+            << s.trajectory.samples.size() << " samples, " << s.trajectory.duration() << " s; "
+            << "generate " << s.generate_s * 1e3 << " ms, refine " << s.refine_s * 1e3
+            << " ms, joints " << s.joints_s * 1e3 << " ms\n";
+  if (s.refined) std::cerr << "refinement: " << s.refinement.BriefReport() << "\n";
+  PhysicsGateOptions go;
+  go.perturbations = o.perturb;
+  go.seed = o.seed;
+  go.threads = o.threads;
+  go.min_robustness = o.min_robustness;
+  std::string why;
+  if (!go.IsValid(&why)) throw InputError("bad physics gate option: " + why);
+  const PhysicsGateResult gate = RunPhysicsGate(sim, s.trajectory, go);
+  std::cerr << "physics gate: " << (gate.passed ? "passed" : "FAILED") << ": " << gate.reason
+            << "; quality: epsilon " << gate.quality.epsilon << ", volume " << gate.quality.volume
+            << " (" << gate.contacts.size() << " contacts)\n";
+  if (!gate.passed) {
+    if (!o.force) {
+      std::cerr << "graspsynth synthesize: the grasp failed the physics gate: " << gate.reason
+                << " (nothing written; --force writes it with the failed validation)\n";
+      return 1;
+    }
+    WriteGraspFile(o.out, s, &gate, true);
+    std::cerr << "wrote " << o.out << " with the failed validation (--force)\n";
+    return 1;
+  }
+  WriteGraspFile(o.out, s, &gate, o.force);
+  std::cerr << "wrote " << o.out << "\n";
+  return 0;
+}
+
+}  // namespace
+
+void AddSynthesizeCommand(CLI::App& app, int* exit_code) {
+  auto opts = std::make_shared<SynthesizeOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "synthesize",
+      "Synthesize a grasp for an object orientation from the grasp library, check it in\n"
+      "physics and write it as a graspsynth-grasp/1 file (its \"trajectory\" member is a\n"
+      "graspsynth-trajectory/1 document; `graspsynth simulate grasp.json` plays it).\n"
+      "Methods: interp (the paper's blend of the two nearest demonstrations; a bracket that\n"
+      "cannot be blended falls back to the nearer demonstration turned with the object, then\n"
+      "the line principle), line (the line principle, also outside the library's range),\n"
+      "nearest (the nearest demonstration turned with the object).");
+  cmd->add_option("--library", opts->library, "Grasp library (graspsynth-library/1)");
+  cmd->add_option("--theta", opts->theta, "Object orientation, degrees")->required();
+  cmd->add_option("--method", opts->method, "interp, line or nearest")
+      ->check(CLI::IsMember({"interp", "line", "nearest"}))
+      ->capture_default_str();
+  cmd->add_flag("--no-refine", opts->no_refine, "Skip the Ceres and NLopt refinement");
+  cmd->add_option("--start", opts->start,
+                  "Start arm configuration q1,...,q7 in radians (default: the rest pose for the "
+                  "grasp orientation)");
+  cmd->add_option("--seed", opts->seed, "Seed of the perturbed trials")->capture_default_str();
+  cmd->add_option("--perturb", opts->perturb,
+                  "Perturbed trials of the physics gate (0: nominal only)")
+      ->capture_default_str();
+  cmd->add_option("--threads", opts->threads, "Worker threads of the gate (0: all cores)")
+      ->capture_default_str();
+  cmd->add_option("--min-robustness", opts->min_robustness,
+                  "Success fraction the gate needs under perturbation")
+      ->capture_default_str();
+  cmd->add_flag("--force", opts->force,
+                "Write the grasp even when it fails the gate (with the failed validation)");
+  cmd->add_option("--out", opts->out, "Output grasp file")->required();
+  cmd->add_option("--robot", opts->robot, "Robot description (default: the shipped URDF)");
+  cmd->add_option("--scene", opts->scene, "Scene description (default: models/scene.json)");
+  cmd->callback([opts, exit_code] { *exit_code = RunSynthesize(*opts); });
+}
+
+}  // namespace graspsynth::apps

@@ -1,0 +1,124 @@
+#include "solver/bracket.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "kinematics/pose_math.hpp"
+
+namespace graspsynth {
+
+namespace {
+constexpr double kDeg = M_PI / 180.0;
+}  // namespace
+
+bool BracketOptions::IsValid(std::string* why) const {
+  auto fail = [&](const char* what) {
+    if (why) *why = what;
+    return false;
+  };
+  if (!(std::isfinite(max_orientation_change) && max_orientation_change > 0.0)) {
+    return fail("max_orientation_change must be positive (rad)");
+  }
+  if (!(std::isfinite(side_dead_band) && side_dead_band >= 0.0)) {
+    return fail("side_dead_band must be >= 0 (m)");
+  }
+  if (!(std::isfinite(exact_tolerance) && exact_tolerance >= 0.0)) {
+    return fail("exact_tolerance must be >= 0 (deg)");
+  }
+  return true;
+}
+
+const char* ToString(BracketKind kind) {
+  switch (kind) {
+    case BracketKind::kExact:
+      return "exact";
+    case BracketKind::kInside:
+      return "inside";
+    case BracketKind::kBelowRange:
+      return "below_range";
+    case BracketKind::kAboveRange:
+      return "above_range";
+    case BracketKind::kEmpty:
+      return "empty";
+  }
+  return "?";
+}
+
+int HandleSide(const SceneModel& scene, double theta, const Eigen::Vector3d& p_WH,
+               double dead_band) {
+  const Eigen::Isometry3d X_WO = scene.ObjectPose(theta);
+  const Eigen::Vector3d h = X_WO.linear().col(0);
+  const Eigen::Vector3d right = h.cross(Eigen::Vector3d::UnitZ()).normalized();
+  const double lateral = right.dot(p_WH - X_WO.translation());
+  if (std::abs(lateral) <= dead_band) return 0;
+  return lateral > 0.0 ? 1 : -1;
+}
+
+Bracket SelectBracket(const GraspLibrary& library, const SceneModel& scene, double theta_deg,
+                      const BracketOptions& options) {
+  Bracket b;
+  const auto& e = library.entries;
+  const int n = static_cast<int>(e.size());
+  if (n == 0) {
+    b.reason = "the library has no entry";
+    return b;
+  }
+  // nearest entry (ties: the lower one).
+  b.nearest = 0;
+  for (int i = 1; i < n; ++i) {
+    if (std::abs(e[i].theta_deg - theta_deg) < std::abs(e[b.nearest].theta_deg - theta_deg)) {
+      b.nearest = i;
+    }
+  }
+  if (std::abs(e[b.nearest].theta_deg - theta_deg) <= options.exact_tolerance) {
+    b.kind = BracketKind::kExact;
+    b.lower = b.upper = b.nearest;
+    return b;
+  }
+  if (theta_deg < e.front().theta_deg) {
+    b.kind = BracketKind::kBelowRange;
+    b.lower = b.upper = 0;
+    return b;
+  }
+  if (theta_deg > e.back().theta_deg) {
+    b.kind = BracketKind::kAboveRange;
+    b.lower = b.upper = n - 1;
+    return b;
+  }
+  b.kind = BracketKind::kInside;
+  int i = 0;
+  while (i + 1 < n && e[i + 1].theta_deg < theta_deg) ++i;
+  b.lower = i;
+  b.upper = i + 1;
+  const LibraryEntry& a = e[b.lower];
+  const LibraryEntry& c = e[b.upper];
+  b.t = (theta_deg - a.theta_deg) / (c.theta_deg - a.theta_deg);
+  // grasp orientations relative to the object: the same hold gives the same R_OH.
+  const Eigen::Quaterniond R_OH_a =
+      Eigen::Quaterniond(scene.ObjectPose(a.theta_deg * kDeg).linear()).conjugate() *
+      a.motion.grasp().q_WH;
+  const Eigen::Quaterniond R_OH_c =
+      Eigen::Quaterniond(scene.ObjectPose(c.theta_deg * kDeg).linear()).conjugate() *
+      c.motion.grasp().q_WH;
+  b.orientation_change = AngleBetween(R_OH_a, R_OH_c);
+  b.side_lower =
+      HandleSide(scene, a.theta_deg * kDeg, a.motion.grasp().p_WH, options.side_dead_band);
+  b.side_upper =
+      HandleSide(scene, c.theta_deg * kDeg, c.motion.grasp().p_WH, options.side_dead_band);
+  std::ostringstream why;
+  if (b.side_lower != 0 && b.side_upper != 0 && b.side_lower != b.side_upper) {
+    b.blendable = false;
+    why << "the wrist changes sides of the handle between " << a.theta_deg << " and " << c.theta_deg
+        << " deg";
+  }
+  if (b.orientation_change > options.max_orientation_change) {
+    if (!b.blendable) why << "; ";
+    b.blendable = false;
+    why << "the grasp orientations relative to the object differ by " << b.orientation_change / kDeg
+        << " deg (more than " << options.max_orientation_change / kDeg << ")";
+  }
+  b.reason = why.str();
+  return b;
+}
+
+}  // namespace graspsynth

@@ -1,0 +1,181 @@
+#include "solver/grasp_file.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "common/atomic_file.hpp"
+#include "common/errors.hpp"
+#include "kinematics/pose_math.hpp"
+
+namespace graspsynth {
+
+namespace {
+
+using nlohmann::json;
+constexpr double kDeg = M_PI / 180.0;
+
+json Vec(const Eigen::VectorXd& v) {
+  json a = json::array();
+  for (int i = 0; i < v.size(); ++i) a.push_back(v[i]);
+  return a;
+}
+
+json Quat(const Eigen::Quaterniond& q) {
+  const Eigen::Quaterniond c = Canonical(q);
+  return json::array({c.w(), c.x(), c.y(), c.z()});
+}
+
+json Finite(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+json Constraints(const RefinementConstraints& c) {
+  return {{"approach_clearance_m", Finite(c.approach_clearance)},
+          {"grasp_clearance_m", Finite(c.grasp_clearance)},
+          {"closest_pair", c.closest_pair},
+          {"contact_error_m", Finite(c.contact_error)},
+          {"min_psi_width_deg", c.min_psi_width / kDeg},
+          {"reachable", c.reachable},
+          {"states", c.states},
+          {"feasible", c.feasible},
+          {"violation", c.violation}};
+}
+
+}  // namespace
+
+std::string GraspFileToJson(const SynthesisResult& s, const PhysicsGateResult* gate, bool forced) {
+  json j;
+  j["format"] = kGraspFileFormat;
+  j["theta_deg"] = s.theta_deg;
+  j["method"] = {{"requested", ToString(s.requested)},
+                 {"used", ToString(s.used)},
+                 {"fallback", s.fallback},
+                 {"reason", s.fallback_reason}};
+  if (s.side != 0) j["method"]["side"] = s.side;
+  const Bracket& b = s.bracket;
+  j["bracket"] = {{"kind", ToString(b.kind)},
+                  {"lower", b.lower},
+                  {"upper", b.upper},
+                  {"nearest", b.nearest},
+                  {"t", b.t},
+                  {"blendable", b.blendable},
+                  {"reason", b.reason},
+                  {"orientation_change_deg", b.orientation_change / kDeg},
+                  {"sides", json::array({b.side_lower, b.side_upper})}};
+  json sources = json::array();
+  for (const SourceDemo& d : s.sources) {
+    sources.push_back(
+        {{"theta_deg", d.theta_deg}, {"file", d.file}, {"trial", d.trial}, {"weight", d.weight}});
+  }
+  j["sources"] = sources;
+  j["start"] = Vec(s.start);
+  json waypoints = json::array();
+  for (const MotionWaypoint& w : s.motion.waypoints) {
+    waypoints.push_back({{"t", w.t},
+                         {"position", Vec(w.p_WH)},
+                         {"quaternion", Quat(w.q_WH)},
+                         {"fingers", Vec(w.f)}});
+  }
+  j["waypoints"] = waypoints;
+  j["trajectory"] = json::parse(JointTrajectoryToJson(s.trajectory));
+  const RefinementReport& r = s.refinement;
+  json ref = {{"refined", s.refined}};
+  if (s.refined) {
+    ref["kept"] = r.kept;
+    ref["time_s"] = r.time_s;
+    ref["before"] = Constraints(r.before);
+    ref["after_ceres"] = Constraints(r.after_ceres);
+    ref["after"] = Constraints(r.after);
+    ref["ceres"] = {{"run", r.ceres.run},
+                    {"initial_cost", r.ceres.initial_cost},
+                    {"final_cost", r.ceres.final_cost},
+                    {"terms",
+                     {{"fidelity", r.ceres.fidelity},
+                      {"smoothness", r.ceres.smoothness},
+                      {"line", r.ceres.line},
+                      {"reach", r.ceres.reach},
+                      {"reach_before", r.ceres.initial_reach}}},
+                    {"iterations", r.ceres.iterations},
+                    {"termination", r.ceres.termination},
+                    {"time_s", r.ceres.time_s}};
+    ref["nlopt"] = {{"run", r.nlopt.run},
+                    {"algorithm", r.nlopt.algorithm},
+                    {"fallback_used", r.nlopt.fallback_used},
+                    {"termination", r.nlopt.termination},
+                    {"evaluations", r.nlopt.evaluations},
+                    {"initial_objective", r.nlopt.initial_objective},
+                    {"final_objective", r.nlopt.final_objective},
+                    {"shift_m", Vec(r.nlopt.shift)},
+                    {"yaw_deg", r.nlopt.yaw / kDeg},
+                    {"closure", r.nlopt.closure},
+                    {"time_s", r.nlopt.time_s}};
+  }
+  j["refinement"] = ref;
+  json timing = {{"generate_s", s.generate_s}, {"refine_s", s.refine_s}, {"joints_s", s.joints_s}};
+  if (gate) {
+    const GraspQuality& q = gate->quality;
+    j["quality"] = {{"contacts", gate->contacts.size()},
+                    {"force_closure", q.force_closure},
+                    {"epsilon", q.epsilon},
+                    {"volume", q.volume},
+                    {"wrenches", q.wrenches},
+                    {"facets", q.facets},
+                    {"torque_scale_m", q.torque_scale},
+                    {"message", q.message}};
+    const TrialResult& n = gate->nominal;
+    json v = {{"passed", gate->passed},
+              {"forced", forced},
+              {"reason", gate->reason},
+              {"nominal",
+               {{"success", n.success()},
+                {"outcome", ToString(n.outcome)},
+                {"reason", n.reason},
+                {"lift_m", n.lift},
+                {"max_lift_m", n.max_lift},
+                {"max_penetration_m", n.max_penetration}}}};
+    if (gate->robustness_run) {
+      const RobustnessResult& rb = gate->robustness;
+      v["robustness"] = {{"trials", rb.trials.size()},
+                         {"successes", rb.successes},
+                         {"score", rb.score},
+                         {"ci95", json::array({rb.ci95.lo, rb.ci95.hi})}};
+    } else {
+      v["robustness"] = nullptr;
+    }
+    j["validation"] = v;
+    timing["gate_s"] = gate->time_s;
+  } else {
+    j["quality"] = nullptr;
+    j["validation"] = nullptr;
+  }
+  j["timing"] = timing;
+  return j.dump(1) + "\n";
+}
+
+void WriteGraspFile(const std::filesystem::path& path, const SynthesisResult& synthesis,
+                    const PhysicsGateResult* gate, bool forced) {
+  WriteFileAtomically(path, GraspFileToJson(synthesis, gate, forced));
+}
+
+JointTrajectory LoadTrajectoryOrGraspFile(const std::filesystem::path& path, const ArmModel& arm,
+                                          const HandModel& hand) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path.string() + ": cannot read the file");
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string source = path.string();
+  const json doc = json::parse(text.str(), nullptr, /*allow_exceptions=*/false);
+  if (doc.is_object() && doc.contains("format") && doc["format"] == kGraspFileFormat) {
+    if (!doc.contains("trajectory") || !doc["trajectory"].is_object()) {
+      throw InputError(source + ": a " + std::string(kGraspFileFormat) +
+                       " file without a \"trajectory\" object");
+    }
+    const std::string member = source + " (trajectory)";
+    JointTrajectory t = ParseJointTrajectory(doc["trajectory"].dump(), member);
+    CheckJointLimits(t, arm, hand, member);
+    return t;
+  }
+  return LoadJointTrajectory(path, arm, hand);
+}
+
+}  // namespace graspsynth

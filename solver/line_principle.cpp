@@ -1,0 +1,237 @@
+#include "solver/line_principle.hpp"
+
+#include <cmath>
+
+#include "motion/resample.hpp"
+#include "solver/bracket.hpp"
+
+namespace graspsynth {
+
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+double Wrap(double a) { return std::remainder(a, 2.0 * M_PI); }
+
+// The "palm down, long axis z_H along world x" orientation: x_H = -z_W, y_H = y_W, z_H = x_W.
+Eigen::Matrix3d CanonicalHand() {
+  Eigen::Matrix3d R;
+  R.col(0) = -Eigen::Vector3d::UnitZ();
+  R.col(1) = Eigen::Vector3d::UnitY();
+  R.col(2) = Eigen::Vector3d::UnitX();
+  return R;
+}
+
+Eigen::Matrix3d Rz(double yaw) { return Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).matrix(); }
+
+// Yaw of the hand's long axis z_H projected on the table, rad.
+double HandYaw(const Eigen::Matrix3d& R) { return std::atan2(R(1, 2), R(0, 2)); }
+
+Eigen::Vector3d RotationVector(const Eigen::Matrix3d& R) {
+  const Eigen::AngleAxisd aa(R);
+  return aa.angle() * aa.axis();
+}
+
+Eigen::Matrix3d FromRotationVector(const Eigen::Vector3d& r) {
+  const double angle = r.norm();
+  if (angle < 1e-12) return Eigen::Matrix3d::Identity();
+  return Eigen::AngleAxisd(angle, r / angle).matrix();
+}
+
+double HandleAngle(const SceneModel& scene, double theta) {
+  const Eigen::Vector3d h = scene.ObjectPose(theta).linear().col(0);
+  return std::atan2(h.y(), h.x());
+}
+
+LinearFit FitLinear(const std::vector<double>& x, const std::vector<double>& y) {
+  LinearFit fit;
+  const int n = static_cast<int>(x.size());
+  if (n == 0) return fit;
+  double mx = 0.0, my = 0.0;
+  for (int i = 0; i < n; ++i) {
+    mx += x[i] / n;
+    my += y[i] / n;
+  }
+  double sxx = 0.0, sxy = 0.0;
+  for (int i = 0; i < n; ++i) {
+    sxx += (x[i] - mx) * (x[i] - mx);
+    sxy += (x[i] - mx) * (y[i] - my);
+  }
+  fit.b = sxx > 1e-12 ? sxy / sxx : 0.0;
+  fit.a = my - fit.b * mx;
+  return fit;
+}
+
+}  // namespace
+
+bool LinePrincipleOptions::IsValid(std::string* why) const {
+  if (!line.IsValid(why)) return false;
+  if (waypoints < 2) {
+    if (why) *why = "waypoints must be >= 2";
+    return false;
+  }
+  if (!(std::isfinite(side_dead_band) && side_dead_band >= 0.0)) {
+    if (why) *why = "side_dead_band must be >= 0 (m)";
+    return false;
+  }
+  return true;
+}
+
+LinePrincipleModel FitLinePrinciple(const GraspLibrary& library, const SceneModel& scene,
+                                    const LinePrincipleOptions& options) {
+  LinePrincipleModel model;
+  const auto& entries = library.entries;
+  if (entries.size() < 2) {
+    model.message = "the line principle needs at least two library entries";
+    return model;
+  }
+  std::vector<double> theta;
+  std::vector<Eigen::Vector2d> points;
+  for (const LibraryEntry& e : entries) {
+    const Eigen::Isometry3d X_WO = scene.ObjectPose(e.theta_deg * kDeg);
+    theta.push_back(e.theta_deg * kDeg);
+    points.push_back((e.motion.grasp().p_WH - X_WO.translation()).head<2>());
+  }
+  model.theta_min = theta.front();
+  model.theta_max = theta.back();
+  model.wrist_line = FitWristLine(points, options.line);
+  if (!model.wrist_line.usable()) {
+    model.message = "the wrist line could not be fitted: " + model.wrist_line.message;
+    return model;
+  }
+  const Line2d& line = model.wrist_line.line;
+  std::vector<double> s, height, yaw_side[2], theta_side[2];
+  std::vector<Eigen::Vector3d> residual_side[2];
+  std::vector<double> finger_values[kHandDof];
+  model.finger_min = HandVector::Constant(INFINITY);
+  model.finger_max = HandVector::Constant(-INFINITY);
+  const int n = options.waypoints;
+  model.approach.assign(n, RelativeWaypoint{});
+  model.duration = 0.0;
+  const double inv = 1.0 / static_cast<double>(entries.size());
+  for (size_t k = 0; k < entries.size(); ++k) {
+    const LibraryEntry& e = entries[k];
+    const Eigen::Isometry3d X_WO = scene.ObjectPose(theta[k]);
+    const MotionWaypoint& g = e.motion.grasp();
+    s.push_back(line.direction.dot(points[k] - line.point));
+    height.push_back(g.p_WH.z() - X_WO.translation().z());
+    const Eigen::Matrix3d R_G = g.q_WH.toRotationMatrix();
+    const double yaw = HandYaw(R_G);
+    const double rel = Wrap(yaw - HandleAngle(scene, theta[k]));
+    int side = HandleSide(scene, theta[k], g.p_WH, options.side_dead_band);
+    if (side == 0) side = rel > 0.0 ? 1 : -1;
+    model.entry_sides.push_back(side);
+    const int si = side > 0 ? 1 : 0;
+    // unwrap about the side's nominal yaw (+-90 deg: z_H across the handle).
+    yaw_side[si].push_back(side * M_PI / 2 + Wrap(rel - side * M_PI / 2));
+    theta_side[si].push_back(theta[k]);
+    residual_side[si].push_back(RotationVector((Rz(yaw) * CanonicalHand()).transpose() * R_G));
+    for (int j = 0; j < kHandDof; ++j) finger_values[j].push_back(g.f[j]);
+    // the handle axis point nearest the wrist, in H.
+    const ObjectModel& o = scene.object;
+    const Eigen::Vector3d h = X_WO.linear().col(0);
+    const Eigen::Vector3d a0 =
+        X_WO.translation() + (o.handle_axis_height - o.rest_height()) * Eigen::Vector3d::UnitZ();
+    const double along =
+        std::clamp((g.p_WH - a0).dot(h), o.handle_start_radius, o.handle_end_radius);
+    model.handle_in_hand += inv * (R_G.transpose() * (a0 + along * h - g.p_WH));
+    // the approach relative to the grasp.
+    const GraspingMotion r = Resample(e.motion, n);
+    model.duration += inv * r.duration();
+    const Eigen::Matrix3d Ryaw = Rz(-yaw);
+    for (int i = 0; i < n; ++i) {
+      const MotionWaypoint& w = r.waypoints[i];
+      RelativeWaypoint& a = model.approach[i];
+      a.u = static_cast<double>(i) / (n - 1);
+      a.p += inv * (Ryaw * (w.p_WH - g.p_WH));
+      a.r += inv * RotationVector(R_G.transpose() * w.q_WH.toRotationMatrix());
+      a.df += inv * (w.f - g.f);
+      model.finger_min = model.finger_min.cwiseMin(w.f);
+      model.finger_max = model.finger_max.cwiseMax(w.f);
+    }
+  }
+  model.s = FitLinear(theta, s);
+  model.height = FitLinear(theta, height);
+  for (int si = 0; si < 2; ++si) {
+    SideOrientationModel& m = model.sides[si];
+    m.side = si == 1 ? 1 : -1;
+    m.entries = static_cast<int>(yaw_side[si].size());
+    m.yaw = FitLinear(theta_side[si], yaw_side[si]);
+    for (const Eigen::Vector3d& r : residual_side[si]) m.residual_rotation += r / m.entries;
+    // this side's own position model.
+    std::vector<Eigen::Vector2d> side_points;
+    std::vector<double> side_height;
+    for (size_t k = 0; k < entries.size(); ++k) {
+      if ((model.entry_sides[k] > 0 ? 1 : 0) != si) continue;
+      side_points.push_back(points[k]);
+      side_height.push_back(height[k]);
+    }
+    if (side_points.size() >= 2) {
+      const WristLineResult fit = FitWristLine(side_points, options.line);
+      if (fit.usable()) {
+        m.has_line = true;
+        m.line = fit.line;
+        std::vector<double> side_s;
+        for (const Eigen::Vector2d& p : side_points) {
+          side_s.push_back(m.line.direction.dot(p - m.line.point));
+        }
+        m.s = FitLinear(theta_side[si], side_s);
+        m.height = FitLinear(theta_side[si], side_height);
+      }
+    }
+  }
+  for (int j = 0; j < kHandDof; ++j) model.fingers[j] = FitLinear(theta, finger_values[j]);
+  if (!(model.duration > 0.0)) model.duration = 1.0;
+  model.valid = true;
+  return model;
+}
+
+Eigen::Isometry3d LinePrincipleGraspPose(const LinePrincipleModel& model, const SceneModel& scene,
+                                         double theta, int side) {
+  const Eigen::Isometry3d X_WO = scene.ObjectPose(theta);
+  const SideOrientationModel& own = model.side_model(side);
+  const Line2d& line = own.has_line ? own.line : model.wrist_line.line;
+  const double s = own.has_line ? own.s(theta) : model.s(theta);
+  const double z = own.has_line ? own.height(theta) : model.height(theta);
+  const Eigen::Vector2d p_xy = line.point + s * line.direction;
+  const SideOrientationModel* m = &own;
+  double turn = 0.0;
+  if (m->entries == 0) {
+    m = &model.side_model(-side);
+    turn = M_PI;
+  }
+  const double yaw = HandleAngle(scene, theta) + m->yaw(theta) + turn;
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = Rz(yaw) * CanonicalHand() * FromRotationVector(m->residual_rotation);
+  X.translation() = X_WO.translation() + Eigen::Vector3d(p_xy.x(), p_xy.y(), z);
+  return X;
+}
+
+GraspingMotion LinePrincipleMotion(const LinePrincipleModel& model, const SceneModel& scene,
+                                   double theta, int side) {
+  const Eigen::Isometry3d X_G = LinePrincipleGraspPose(model, scene, theta, side);
+  const Eigen::Matrix3d R_G = X_G.linear();
+  const Eigen::Matrix3d Ryaw = Rz(HandYaw(R_G));
+  HandVector f_G;
+  for (int j = 0; j < kHandDof; ++j) f_G[j] = model.fingers[j](theta);
+  f_G = f_G.cwiseMax(model.finger_min).cwiseMin(model.finger_max);
+  GraspingMotion motion;
+  motion.theta = theta;
+  motion.p_WO = scene.ObjectPose(theta).translation();
+  motion.source = "line principle";
+  for (const RelativeWaypoint& a : model.approach) {
+    MotionWaypoint w;
+    w.t = a.u * model.duration;
+    w.p_WH = X_G.translation() + Ryaw * a.p;
+    w.q_WH = Eigen::Quaterniond(R_G * FromRotationVector(a.r)).normalized();
+    w.f = (f_G + a.df).cwiseMax(model.finger_min).cwiseMin(model.finger_max);
+    motion.waypoints.push_back(w);
+  }
+  // the last waypoint is the modelled grasp exactly.
+  motion.waypoints.back().p_WH = X_G.translation();
+  motion.waypoints.back().q_WH = Eigen::Quaterniond(R_G).normalized();
+  motion.waypoints.back().f = f_G;
+  return motion;
+}
+
+}  // namespace graspsynth

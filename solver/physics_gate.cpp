@@ -1,0 +1,78 @@
+#include "solver/physics_gate.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "common/errors.hpp"
+
+namespace graspsynth {
+
+bool PhysicsGateOptions::IsValid(std::string* why) const {
+  if (perturbations < 0) {
+    if (why) *why = "perturbations must be >= 0";
+    return false;
+  }
+  if (!(std::isfinite(min_robustness) && min_robustness >= 0.0 && min_robustness <= 1.0)) {
+    if (why) *why = "min_robustness must be in [0, 1]";
+    return false;
+  }
+  if (threads < 0) {
+    if (why) *why = "threads must be >= 0";
+    return false;
+  }
+  return trial.IsValid(why) && perturbation.IsValid(why) && quality.IsValid(why);
+}
+
+PhysicsGateResult RunPhysicsGate(const SimulationModel& model, const JointTrajectory& trajectory,
+                                 const PhysicsGateOptions& options,
+                                 const ProgressCallback& progress) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError("invalid physics gate option: " + why);
+  const auto t0 = std::chrono::steady_clock::now();
+  PhysicsGateResult r;
+  // the nominal trial, keeping the last hand-object contact set and the object pose with it.
+  std::vector<HandObjectContact> last;
+  Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
+  r.nominal = RunTrial(model, trajectory, options.trial, [&](SimulationData& data) {
+    if (!data.hand_object_contacts().empty()) {
+      last = data.hand_object_contacts();
+      X_WO = data.object_pose();
+    }
+  });
+  const double mu = model.scene().object.friction;
+  for (const HandObjectContact& c : last) r.contacts.push_back({c.p_WC, c.n_W, mu});
+  r.quality = EvaluateGraspQuality(r.contacts, X_WO * model.object_inertia().p_OC, options.quality);
+
+  std::ostringstream s;
+  const bool nominal_ok = r.nominal.success() || !options.require_nominal;
+  if (options.perturbations > 0 && nominal_ok) {
+    RobustnessOptions ro;
+    ro.trials = options.perturbations;
+    ro.seed = options.seed;
+    ro.threads = options.threads;
+    ro.perturbation = options.perturbation;
+    ro.trial = options.trial;
+    r.robustness = EvaluateRobustness(model, trajectory, ro, progress);
+    r.robustness_run = true;
+  }
+  if (!nominal_ok) {
+    s << "the nominal trial failed: " << ToString(r.nominal.outcome) << " (" << r.nominal.reason
+      << ")";
+  } else if (r.robustness_run && r.robustness.score < options.min_robustness) {
+    s << "robustness " << r.robustness.successes << "/" << r.robustness.trials.size() << " = "
+      << r.robustness.score << " is below the threshold " << options.min_robustness;
+  } else {
+    r.passed = true;
+    s << "nominal trial " << ToString(r.nominal.outcome) << " (lift " << r.nominal.lift << " m)";
+    if (r.robustness_run) {
+      s << ", robustness " << r.robustness.successes << "/" << r.robustness.trials.size() << " = "
+        << r.robustness.score << " >= " << options.min_robustness;
+    }
+  }
+  r.reason = s.str();
+  r.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+}  // namespace graspsynth

@@ -1,0 +1,51 @@
+#pragma once
+
+/// @file
+/// The physics gate: a synthesized joint trajectory is simulated nominally (RunTrial) and
+/// under perturbation (EvaluateRobustness) before it may be written; it passes when the nominal
+/// trial succeeds and the robustness score reaches the threshold. The grasp's quality (CGAL,
+/// Ferrari-Canny epsilon and hull volume; solver/grasp_quality.hpp) comes from the hand-object
+/// contacts of the nominal trial's last step that had any (the hold at the top, for a grasp
+/// that lifts), about the object's centre of mass.
+
+#include <string>
+#include <vector>
+
+#include "simulation/robustness.hpp"
+#include "solver/grasp_quality.hpp"
+
+namespace graspsynth {
+
+/// Options of RunPhysicsGate.
+struct PhysicsGateOptions {
+  int perturbations = 30;       ///< perturbed replays, >= 0 (0: nominal only)
+  double min_robustness = 0.8;  ///< success fraction needed, [0, 1]
+  bool require_nominal = true;  ///< the nominal trial must succeed
+  uint64_t seed = 1;
+  int threads = 0;  ///< 0: one per hardware thread
+  TrialOptions trial;
+  PerturbationOptions perturbation;
+  GraspQualityOptions quality;
+
+  bool IsValid(std::string* why) const;
+};
+
+/// The gate's verdict and its figures.
+struct PhysicsGateResult {
+  bool passed = false;
+  std::string reason;  ///< why it passed or failed, one sentence with the figures
+  TrialResult nominal;
+  bool robustness_run = false;
+  RobustnessResult robustness;
+  std::vector<GraspContact> contacts;  ///< the contacts the quality was computed from
+  GraspQuality quality;
+  double time_s = 0.0;  ///< wall time of the gate
+};
+
+/// Simulates `trajectory` (limit-checked) in `model` and judges it. Throws InputError for
+/// invalid options.
+PhysicsGateResult RunPhysicsGate(const SimulationModel& model, const JointTrajectory& trajectory,
+                                 const PhysicsGateOptions& options = {},
+                                 const ProgressCallback& progress = {});
+
+}  // namespace graspsynth

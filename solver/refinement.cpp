@@ -1,0 +1,545 @@
+#include "solver/refinement.hpp"
+
+#include <ceres/ceres.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <nlopt.hpp>
+#include <sstream>
+
+#include "common/errors.hpp"
+#include "kinematics/arm_ik.hpp"
+#include "motion/joint_space.hpp"
+
+namespace graspsynth {
+
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+constexpr double kRadToMetre = 0.1;  // weight of a rad of violation against a metre
+// a constraint violated by less than this (m) holds: NLopt's constraint tolerance.
+constexpr double kFeasibilityTolerance = 1e-5;
+
+using Clock = std::chrono::steady_clock;
+double Since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// Widest feasible arm-angle arc of wrist pose X_WH on `branch`, rad (0 when there is none).
+double PsiWidth(const RobotModel& robot, const Eigen::Isometry3d& X_WH, ArmBranch branch) {
+  const Eigen::Isometry3d X_WF = X_WH * robot.X_FH.inverse();
+  const ArmTargetForm form = PrepareArmTarget(robot.arm, X_WF, branch.gc4);
+  if (form.status != IkStatus::kOk) return 0.0;
+  const std::optional<Interval> widest =
+      WidestInterval(FeasibleArmAngles(robot.arm, form, branch.gc2, branch.gc6));
+  return widest ? widest->width() : 0.0;
+}
+
+Eigen::Isometry3d PoseOf(const MotionWaypoint& w) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = w.q_WH.toRotationMatrix();
+  X.translation() = w.p_WH;
+  return X;
+}
+
+// Index of the first waypoint where the fingers have started closing (motion size if never).
+int FingerStart(const GraspingMotion& m, double threshold) {
+  const HandVector& f0 = m.waypoints.front().f;
+  for (size_t i = 0; i < m.waypoints.size(); ++i) {
+    if ((m.waypoints[i].f - f0).cwiseAbs().maxCoeff() > threshold) return static_cast<int>(i);
+  }
+  return static_cast<int>(m.waypoints.size());
+}
+
+// Up to `count` indices evenly chosen from `from` (sorted).
+std::vector<int> Subsample(const std::vector<int>& from, int count) {
+  if (static_cast<int>(from.size()) <= count) return from;
+  std::vector<int> out;
+  for (int k = 0; k < count; ++k) {
+    const double u = count == 1 ? 1.0 : static_cast<double>(k) / (count - 1);
+    const int i = from[static_cast<size_t>(std::lround(u * (from.size() - 1)))];
+    if (out.empty() || out.back() != i) out.push_back(i);
+  }
+  return out;
+}
+
+// The states stage 2 checks: indices of far and near approach states, the grasp (last index,
+// with the approach fingers), split by FingerStart.
+struct CheckedStates {
+  std::vector<int> far, near;
+  int approach_end = 0;  // last waypoint before the fingers start closing
+};
+
+CheckedStates ChooseStates(const GraspingMotion& m, const RefinementOptions& o) {
+  CheckedStates s;
+  const int n = static_cast<int>(m.waypoints.size());
+  s.approach_end = std::max(0, std::min(n, FingerStart(m, o.finger_start_threshold)) - 1);
+  const Eigen::Vector3d p_end = m.waypoints[s.approach_end].p_WH;
+  std::vector<int> far, near;
+  for (int i = 0; i < s.approach_end; ++i) {
+    ((m.waypoints[i].p_WH - p_end).norm() > o.contact_zone ? far : near).push_back(i);
+  }
+  s.far = Subsample(far, o.approach_states);
+  s.near = Subsample(near, o.near_states);
+  return s;
+}
+
+double HandleAxisDistance(const SceneModel& scene, double theta, const Eigen::Vector3d& p_W) {
+  const Eigen::Isometry3d X_WO = scene.ObjectPose(theta);
+  const ObjectModel& o = scene.object;
+  const Eigen::Vector3d h = X_WO.linear().col(0);
+  const Eigen::Vector3d a0 =
+      X_WO.translation() + (o.handle_axis_height - o.rest_height()) * Eigen::Vector3d::UnitZ();
+  const double along = std::clamp((p_W - a0).dot(h), o.handle_start_radius, o.handle_end_radius);
+  return (a0 + along * h - p_W).norm();
+}
+
+// The motion moved by stage 2's variables x = (dx, dy, dz, yaw, closure).
+GraspingMotion Transformed(const GraspingMotion& m, const double* x, const HandModel& hand) {
+  GraspingMotion out = m;
+  const Eigen::Vector3d p_G = m.grasp().p_WH;
+  const Eigen::Vector3d d(x[0], x[1], x[2]);
+  const Eigen::AngleAxisd turn(x[3], Eigen::Vector3d::UnitZ());
+  const HandVector& f0 = m.waypoints.front().f;
+  for (MotionWaypoint& w : out.waypoints) {
+    w.p_WH = p_G + d + turn * (w.p_WH - p_G);
+    w.q_WH = (Eigen::Quaterniond(turn) * w.q_WH).normalized();
+    w.f = (f0 + x[4] * (w.f - f0)).cwiseMax(hand.lower()).cwiseMin(hand.upper());
+  }
+  return out;
+}
+
+struct ReachResidual {
+  const RobotModel* robot;
+  Eigen::Vector3d b;
+  Eigen::Isometry3d X;
+  ArmBranch branch;
+  double min_width, sigma;
+  bool operator()(const double* d, double* r) const {
+    Eigen::Isometry3d Y = X;
+    Y.translation() = b + Eigen::Vector3d(d[0], d[1], d[2]);
+    r[0] = std::max(0.0, min_width - PsiWidth(*robot, Y, branch)) / sigma;
+    return true;
+  }
+};
+
+struct FidelityResidual {
+  double inv_sigma;
+  template <typename T>
+  bool operator()(const T* d, T* r) const {
+    for (int k = 0; k < 3; ++k) r[k] = d[k] * inv_sigma;
+    return true;
+  }
+};
+
+struct SmoothnessResidual {
+  double inv_sigma;
+  template <typename T>
+  bool operator()(const T* a, const T* b, const T* c, T* r) const {
+    for (int k = 0; k < 3; ++k) r[k] = (a[k] - 2.0 * b[k] + c[k]) * inv_sigma;
+    return true;
+  }
+};
+
+struct LineResidual {
+  Eigen::Vector2d normal;
+  double offset;  // normal . (line point + object centre)
+  Eigen::Vector2d b;
+  double inv_sigma;
+  template <typename T>
+  bool operator()(const T* d, T* r) const {
+    r[0] = (normal.x() * (b.x() + d[0]) + normal.y() * (b.y() + d[1]) - offset) * inv_sigma;
+    return true;
+  }
+};
+
+// What stage 2's callbacks need.
+struct NloptContext {
+  const RobotModel* robot;
+  const SceneModel* scene;
+  const CollisionModel* collision;
+  const GraspingMotion* base;
+  const RefinementInputs* inputs;
+  const RefinementOptions* options;
+  CollisionData* data;
+  int evaluations = 0;
+};
+
+// Stage 2's constraints g(x) <= 0 (g[2] in metres: rad times kRadToMetre).
+void ConstraintsAt(NloptContext& c, const double* x, double* g) {
+  ++c.evaluations;
+  const GraspingMotion moved = Transformed(*c.base, x, c.robot->hand);
+  const RefinementConstraints v = EvaluateRefinementConstraints(
+      *c.robot, *c.scene, *c.collision, moved, *c.inputs, *c.options, c.data);
+  g[0] = c.options->clearance_margin - v.approach_clearance;
+  g[1] = -c.options->penetration_tolerance - v.grasp_clearance;
+  g[2] = kRadToMetre * (c.options->min_psi_width - v.min_psi_width);
+  if (c.inputs->handle_in_hand) g[3] = v.contact_error - c.options->contact_tolerance;
+}
+
+}  // namespace
+
+const char* ToString(NloptAlgorithm algorithm) {
+  switch (algorithm) {
+    case NloptAlgorithm::kSlsqp:
+      return "slsqp";
+    case NloptAlgorithm::kMma:
+      return "mma";
+    case NloptAlgorithm::kCobyla:
+      return "cobyla";
+  }
+  return "?";
+}
+
+bool RefinementOptions::IsValid(std::string* why) const {
+  auto fail = [&](const char* what) {
+    if (why) *why = what;
+    return false;
+  };
+  auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
+  for (double v :
+       {fidelity_sigma, smoothness_sigma, line_sigma, reach_sigma, contact_zone, contact_tolerance,
+        max_shift, max_yaw, shift_scale, yaw_scale, closure_scale, xtol}) {
+    if (!positive(v)) return fail("every sigma, scale, bound and tolerance must be positive");
+  }
+  if (!(std::isfinite(min_psi_width) && min_psi_width >= 0.0)) {
+    return fail("min_psi_width must be >= 0 (rad)");
+  }
+  if (!std::isfinite(clearance_margin)) return fail("clearance_margin must be finite (m)");
+  if (!(std::isfinite(penetration_tolerance) && penetration_tolerance >= 0.0)) {
+    return fail("penetration_tolerance must be >= 0 (m)");
+  }
+  if (!(std::isfinite(finger_start_threshold) && finger_start_threshold > 0.0)) {
+    return fail("finger_start_threshold must be positive (rad)");
+  }
+  if (!(std::isfinite(min_closure) && std::isfinite(max_closure) && min_closure > 0.0 &&
+        min_closure <= 1.0 && max_closure >= 1.0)) {
+    return fail("the closure bounds must satisfy 0 < min_closure <= 1 <= max_closure");
+  }
+  if (reach_stride < 1 || ceres_max_iterations < 1 || approach_states < 1 || near_states < 0 ||
+      max_evaluations < 1) {
+    return fail(
+        "reach_stride, ceres_max_iterations, approach_states and max_evaluations must be "
+        ">= 1, near_states >= 0");
+  }
+  return true;
+}
+
+RefinementConstraints EvaluateRefinementConstraints(
+    const RobotModel& robot, const SceneModel& scene, const CollisionModel& collision,
+    const GraspingMotion& motion, const RefinementInputs& inputs, const RefinementOptions& options,
+    CollisionData* data) {
+  RefinementConstraints c;
+  c.approach_clearance = std::numeric_limits<double>::infinity();
+  c.grasp_clearance = std::numeric_limits<double>::infinity();
+  c.reachable = true;
+  const CheckedStates s = ChooseStates(motion, options);
+  const ArmBranch branch = BranchOf(inputs.q_start);
+  double psi = ArmAngleOf(robot.arm, inputs.q_start);
+  Vector7d q_near = inputs.q_start;
+  SignedDistanceOptions sd;
+  sd.max_distance = std::max(0.05, 2.0 * options.clearance_margin);
+  sd.epa_tolerance = 1e-4;
+  double closest = std::numeric_limits<double>::infinity();
+  auto check = [&](const MotionWaypoint& w, const HandVector& f, double* into) {
+    ++c.states;
+    const std::optional<Vector7d> q =
+        SolveWristPose(robot, PoseOf(w), branch, psi, q_near, 5.0 * kDeg);
+    if (!q) {
+      c.reachable = false;
+      *into = std::min(*into, -0.1);  // unreachable: counts as a deep violation
+      return;
+    }
+    q_near = *q;
+    psi = ArmAngleOf(robot.arm, *q);
+    SetState(collision, *q, f, motion.theta, data);
+    const SignedDistanceResult r =
+        SignedDistance(collision, GroupSet::Robot(), GroupSet::World(), data, sd);
+    *into = std::min(*into, r.distance);
+    if (r.distance < closest && r.shape_a >= 0) {
+      closest = r.distance;
+      c.closest_pair = r.BriefReport();
+    }
+  };
+  for (int i : s.far) check(motion.waypoints[i], motion.waypoints[i].f, &c.approach_clearance);
+  for (int i : s.near) check(motion.waypoints[i], motion.waypoints[i].f, &c.grasp_clearance);
+  check(motion.grasp(), motion.waypoints[s.approach_end].f, &c.grasp_clearance);
+  c.min_psi_width = std::min(PsiWidth(robot, PoseOf(motion.pregrasp()), branch),
+                             PsiWidth(robot, PoseOf(motion.grasp()), branch));
+  c.contact_error = std::numeric_limits<double>::quiet_NaN();
+  double violation = std::max(0.0, options.clearance_margin - c.approach_clearance) +
+                     std::max(0.0, -options.penetration_tolerance - c.grasp_clearance) +
+                     kRadToMetre * std::max(0.0, options.min_psi_width - c.min_psi_width);
+  if (inputs.handle_in_hand) {
+    const Eigen::Vector3d p = PoseOf(motion.grasp()) * *inputs.handle_in_hand;
+    c.contact_error = HandleAxisDistance(scene, motion.theta, p);
+    violation += std::max(0.0, c.contact_error - options.contact_tolerance);
+  }
+  c.violation = violation;
+  c.feasible = c.reachable && violation <= kFeasibilityTolerance;
+  return c;
+}
+
+std::string RefinementReport::BriefReport() const {
+  std::ostringstream s;
+  auto constraints = [&](const RefinementConstraints& c) {
+    s << "clearance " << c.approach_clearance << " m, grasp " << c.grasp_clearance
+      << " m, psi width " << c.min_psi_width / kDeg << " deg";
+    if (std::isfinite(c.contact_error)) s << ", contact error " << c.contact_error << " m";
+    s << (c.feasible ? " (feasible)" : " (infeasible)");
+  };
+  s << "before: ";
+  constraints(before);
+  s << "; after: ";
+  constraints(after);
+  if (ceres.run) {
+    s << "; ceres " << ceres.initial_cost << " -> " << ceres.final_cost << " in "
+      << ceres.iterations << " iterations (" << ceres.termination << ")";
+  }
+  s << "; nlopt " << (nlopt.run ? nlopt.algorithm + " " : std::string()) << nlopt.termination;
+  if (nlopt.run) s << ", " << nlopt.evaluations << " evaluations";
+  s << "; kept " << kept << ", " << time_s * 1e3 << " ms";
+  return s.str();
+}
+
+RefinementResult RefineGraspingMotion(const RobotModel& robot, const SceneModel& scene,
+                                      const CollisionModel& collision, const GraspingMotion& motion,
+                                      const RefinementInputs& inputs,
+                                      const RefinementOptions& options, CollisionData* data) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError("invalid refinement option: " + why);
+  const auto t_start = Clock::now();
+  RefinementResult result;
+  RefinementReport& rep = result.report;
+  rep.before =
+      EvaluateRefinementConstraints(robot, scene, collision, motion, inputs, options, data);
+  GraspingMotion current = motion;
+  RefinementConstraints current_c = rep.before;
+  rep.kept = "input";
+
+  // stage 1: ceres over the waypoint positions.
+  if (options.run_ceres) {
+    const auto t0 = Clock::now();
+    CeresStageReport& cr = rep.ceres;
+    cr.run = true;
+    const int n = static_cast<int>(motion.waypoints.size());
+    std::vector<Eigen::Vector3d> d(static_cast<size_t>(n), Eigen::Vector3d::Zero());
+    ceres::Problem::Options po;
+    ceres::Problem problem(po);
+    std::vector<ceres::ResidualBlockId> fid, smooth, line, reach;
+    for (int i = 0; i < n; ++i) {
+      fid.push_back(
+          problem.AddResidualBlock(new ceres::AutoDiffCostFunction<FidelityResidual, 3, 3>(
+                                       new FidelityResidual{1.0 / options.fidelity_sigma}),
+                                   nullptr, d[i].data()));
+    }
+    for (int i = 1; i + 1 < n; ++i) {
+      smooth.push_back(
+          problem.AddResidualBlock(new ceres::AutoDiffCostFunction<SmoothnessResidual, 3, 3, 3, 3>(
+                                       new SmoothnessResidual{1.0 / options.smoothness_sigma}),
+                                   nullptr, d[i - 1].data(), d[i].data(), d[i + 1].data()));
+    }
+    if (inputs.wrist_line) {
+      const Line2d& l = *inputs.wrist_line;
+      const Eigen::Vector2d o = motion.p_WO.head<2>();
+      line.push_back(problem.AddResidualBlock(
+          new ceres::AutoDiffCostFunction<LineResidual, 1, 3>(
+              new LineResidual{l.normal(), l.normal().dot(l.point + o),
+                               motion.grasp().p_WH.head<2>(), 1.0 / options.line_sigma}),
+          nullptr, d[n - 1].data()));
+    }
+    const ArmBranch branch = BranchOf(inputs.q_start);
+    for (int i = 0; i < n; i += options.reach_stride) {
+      const int k = (i + options.reach_stride >= n) ? n - 1 : i;
+      const MotionWaypoint& w = motion.waypoints[k];
+      reach.push_back(problem.AddResidualBlock(
+          new ceres::NumericDiffCostFunction<ReachResidual, ceres::CENTRAL, 1, 3>(new ReachResidual{
+              &robot, w.p_WH, PoseOf(w), branch, options.min_psi_width, options.reach_sigma}),
+          nullptr, d[k].data()));
+      if (k == n - 1) break;
+    }
+    auto term_cost = [&](const std::vector<ceres::ResidualBlockId>& ids) {
+      if (ids.empty()) return 0.0;
+      ceres::Problem::EvaluateOptions eo;
+      eo.residual_blocks = ids;
+      double cost = 0.0;
+      problem.Evaluate(eo, &cost, nullptr, nullptr, nullptr);
+      return cost;
+    };
+    cr.initial_reach = term_cost(reach);
+    ceres::Solver::Options so;
+    so.max_num_iterations = options.ceres_max_iterations;
+    so.linear_solver_type =
+        ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::SUITE_SPARSE) ||
+                ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::EIGEN_SPARSE)
+            ? ceres::SPARSE_NORMAL_CHOLESKY
+            : ceres::DENSE_QR;
+    if (!ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::SUITE_SPARSE)) {
+      so.sparse_linear_algebra_library_type = ceres::EIGEN_SPARSE;
+    }
+    so.logging_type = ceres::SILENT;
+    so.minimizer_progress_to_stdout = false;
+    so.num_threads = 1;
+    ceres::Solver::Summary summary;
+    ceres::Solve(so, &problem, &summary);
+    cr.initial_cost = summary.initial_cost;
+    cr.final_cost = summary.final_cost;
+    cr.iterations = static_cast<int>(summary.iterations.size()) - 1;
+    cr.termination = ceres::TerminationTypeToString(summary.termination_type);
+    cr.fidelity = term_cost(fid);
+    cr.smoothness = term_cost(smooth);
+    cr.line = term_cost(line);
+    cr.reach = term_cost(reach);
+    GraspingMotion stage1 = motion;
+    if (summary.IsSolutionUsable()) {
+      for (int i = 0; i < n; ++i) stage1.waypoints[i].p_WH += d[i];
+    }
+    cr.time_s = Since(t0);
+    rep.after_ceres =
+        EvaluateRefinementConstraints(robot, scene, collision, stage1, inputs, options, data);
+    if (summary.IsSolutionUsable() && rep.after_ceres.violation <= current_c.violation + 1e-9) {
+      current = std::move(stage1);
+      current_c = rep.after_ceres;
+      rep.kept = "ceres";
+    }
+  } else {
+    rep.after_ceres = rep.before;
+  }
+
+  // stage 2: nlopt on the grasp pose and the closure, only when infeasible.
+  NloptStageReport& nr = rep.nlopt;
+  if (!options.run_nlopt) {
+    nr.termination = "not run (disabled)";
+  } else if (current_c.feasible) {
+    nr.termination = "not run (the start satisfies every constraint)";
+  } else {
+    const auto t0 = Clock::now();
+    nr.run = true;
+    const bool contact = inputs.handle_in_hand.has_value();
+    const unsigned m = contact ? 4 : 3;
+    NloptContext ctx{&robot, &scene, &collision, &current, &inputs, &options, data};
+    auto mconstraint = [](unsigned mm, double* g, unsigned nn, const double* x, double* grad,
+                          void* data) {
+      NloptContext& c = *static_cast<NloptContext*>(data);
+      ConstraintsAt(c, x, g);
+      if (grad) {
+        const double steps[5] = {1e-4, 1e-4, 1e-4, 1e-3, 1e-3};
+        std::vector<double> xh(x, x + nn), gh(mm);
+        for (unsigned j = 0; j < nn; ++j) {
+          xh[j] = x[j] + steps[j];
+          ConstraintsAt(c, xh.data(), gh.data());
+          for (unsigned k = 0; k < mm; ++k) grad[k * nn + j] = (gh[k] - g[k]) / steps[j];
+          xh[j] = x[j];
+        }
+      }
+    };
+    auto objective = [](unsigned, const double* x, double* grad, void* data) {
+      const RefinementOptions& o = *static_cast<NloptContext*>(data)->options;
+      const double ws = 1.0 / (o.shift_scale * o.shift_scale);
+      const double wy = 1.0 / (o.yaw_scale * o.yaw_scale);
+      const double wc = 1.0 / (o.closure_scale * o.closure_scale);
+      if (grad) {
+        for (int k = 0; k < 3; ++k) grad[k] = 2.0 * ws * x[k];
+        grad[3] = 2.0 * wy * x[3];
+        grad[4] = 2.0 * wc * (x[4] - 1.0);
+      }
+      return ws * (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) + wy * x[3] * x[3] +
+             wc * (x[4] - 1.0) * (x[4] - 1.0);
+    };
+    const std::vector<double> lb = {-options.max_shift, -options.max_shift, -options.max_shift,
+                                    -options.max_yaw, options.min_closure};
+    const std::vector<double> ub = {options.max_shift, options.max_shift, options.max_shift,
+                                    options.max_yaw, options.max_closure};
+    struct Attempt {
+      std::vector<double> x;
+      double f = 0.0;
+      double violation = INFINITY;
+      std::string algorithm, termination;
+    };
+    auto run = [&](NloptAlgorithm algorithm) {
+      Attempt a;
+      a.algorithm = ToString(algorithm);
+      a.x = {0.0, 0.0, 0.0, 0.0, 1.0};
+      const nlopt::algorithm which = algorithm == NloptAlgorithm::kSlsqp ? nlopt::LD_SLSQP
+                                     : algorithm == NloptAlgorithm::kMma ? nlopt::LD_MMA
+                                                                         : nlopt::LN_COBYLA;
+      nlopt::opt opt(which, 5);
+      opt.set_lower_bounds(lb);
+      opt.set_upper_bounds(ub);
+      opt.set_min_objective(objective, &ctx);
+      opt.add_inequality_mconstraint(mconstraint, &ctx,
+                                     std::vector<double>(m, 0.5 * kFeasibilityTolerance));
+      opt.set_xtol_rel(options.xtol);
+      opt.set_maxeval(options.max_evaluations);
+      if (algorithm == NloptAlgorithm::kCobyla) {
+        opt.set_initial_step({0.01, 0.01, 0.01, 2.0 * kDeg, 0.02});
+      }
+      try {
+        const nlopt::result r = opt.optimize(a.x, a.f);
+        a.termination = "nlopt result " + std::to_string(static_cast<int>(r));
+        switch (r) {
+          case nlopt::SUCCESS:
+            a.termination = "success";
+            break;
+          case nlopt::FTOL_REACHED:
+            a.termination = "ftol reached";
+            break;
+          case nlopt::XTOL_REACHED:
+            a.termination = "xtol reached";
+            break;
+          case nlopt::MAXEVAL_REACHED:
+            a.termination = "maximum evaluations reached";
+            break;
+          default:
+            break;
+        }
+      } catch (const std::exception& e) {
+        a.termination = std::string("failed: ") + e.what();
+        a.f = objective(5, a.x.data(), nullptr, &ctx);
+      }
+      std::vector<double> g(m);
+      ConstraintsAt(ctx, a.x.data(), g.data());
+      a.violation = 0.0;
+      for (double v : g) a.violation += std::max(0.0, v);
+      return a;
+    };
+    nr.initial_objective = 0.0;
+    Attempt best = run(options.algorithm);
+    if (best.violation > kFeasibilityTolerance && options.cobyla_fallback &&
+        options.algorithm != NloptAlgorithm::kCobyla) {
+      Attempt second = run(NloptAlgorithm::kCobyla);
+      nr.fallback_used = true;
+      second.termination += " (fallback after " + best.algorithm + ": " + best.termination + ")";
+      if (second.violation < best.violation - 1e-9 ||
+          (second.violation <= kFeasibilityTolerance && second.f < best.f)) {
+        best = second;
+      } else {
+        best.termination += " (the cobyla fallback did no better)";
+      }
+    }
+    nr.algorithm = best.algorithm;
+    nr.termination = best.termination;
+    nr.evaluations = ctx.evaluations;
+    nr.final_objective = best.f;
+    nr.shift = Eigen::Vector3d(best.x[0], best.x[1], best.x[2]);
+    nr.yaw = best.x[3];
+    nr.closure = best.x[4];
+    GraspingMotion stage2 = Transformed(current, best.x.data(), robot.hand);
+    const RefinementConstraints c2 =
+        EvaluateRefinementConstraints(robot, scene, collision, stage2, inputs, options, data);
+    if (c2.violation <= current_c.violation + 1e-9) {
+      current = std::move(stage2);
+      current_c = c2;
+      rep.kept = "nlopt";
+    }
+    nr.time_s = Since(t0);
+  }
+  rep.after = current_c;
+  rep.time_s = Since(t_start);
+  result.motion = std::move(current);
+  return result;
+}
+
+}  // namespace graspsynth

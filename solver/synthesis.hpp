@@ -1,0 +1,148 @@
+#pragma once
+
+/// @file
+/// Grasp synthesis for an object orientation absent from the library (paper section IV and
+/// DESIGN.md's "generalize", "refine", "reach"): a grasping motion by one of three methods, the
+/// refinement (refinement.hpp), a spline reach from the start configuration, the lift, and the
+/// joint trajectory through the analytic IK with a continuous arm angle.
+///
+/// Methods:
+/// - interp: the paper's blend (motion/interpolation.hpp) of the bracket theta1 < theta <
+///   theta2 (bracket.hpp); a demonstrated theta is that demonstration. Outside the library's
+///   range: an error (kOutOfRange) that names the range. A bracket that cannot be blended (the
+///   hard case) falls back, in this order: (1) the nearer demonstration of the bracket turned
+///   with the object about its vertical axis (the hand keeps the demonstrated hold of the
+///   handle; accepted when its grasp and pre-grasp are reachable on the start branch with
+///   min_psi_width to spare); (2) the line principle on the nearer demonstration's side of the
+///   handle; (3) the plain blend, left to the refinement. The result says which and why.
+/// - nearest: the nearest demonstration turned with the object (any theta).
+/// - line: the line principle (line_principle.hpp) on the nearest demonstration's side (any
+///   theta).
+
+#include <string>
+#include <vector>
+
+#include "collision/collision_scene.hpp"
+#include "kinematics/robot_description.hpp"
+#include "kinematics/scene_model.hpp"
+#include "learning_data/grasp_library.hpp"
+#include "motion/interpolation.hpp"
+#include "motion/joint_space.hpp"
+#include "motion/reach.hpp"
+#include "solver/bracket.hpp"
+#include "solver/line_principle.hpp"
+#include "solver/refinement.hpp"
+
+namespace graspsynth {
+
+/// How the grasping motion is made.
+enum class SynthesisMethod { kInterp, kLine, kNearest };
+
+/// "interp", "line" or "nearest".
+const char* ToString(SynthesisMethod method);
+/// Parses "interp", "line" or "nearest"; throws InputError naming the value otherwise.
+SynthesisMethod ParseSynthesisMethod(const std::string& text);
+
+/// Everything the synthesis needs that does not change between queries (STYLE.md's Model):
+/// robot, scene, collision model, library and the line-principle models fitted over it.
+class SynthesisModel {
+ public:
+  /// Checks the library (at least one entry, theta strictly increasing, every motion well
+  /// formed; throws InputError naming the entry otherwise) and fits the line principle.
+  SynthesisModel(RobotModel robot, SceneModel scene, GraspLibrary library,
+                 const LinePrincipleOptions& line_options = {});
+
+  const RobotModel& robot() const { return robot_; }
+  const SceneModel& scene() const { return scene_; }
+  const CollisionModel& collision() const { return collision_; }
+  const GraspLibrary& library() const { return library_; }
+  const LinePrincipleModel& line() const { return line_; }
+  /// The library's range, deg.
+  double theta_min_deg() const { return library_.entries.front().theta_deg; }
+  double theta_max_deg() const { return library_.entries.back().theta_deg; }
+
+ private:
+  RobotModel robot_;
+  SceneModel scene_;
+  GraspLibrary library_;
+  CollisionModel collision_;
+  LinePrincipleModel line_;
+};
+
+/// Options of SynthesizeGrasp.
+struct SynthesisOptions {
+  SynthesisMethod method = SynthesisMethod::kInterp;
+  bool refine = true;
+  BracketOptions bracket;
+  BlendOptions blend = {.waypoints = 40};
+  RefinementOptions refinement;
+  SplineReachOptions reach;
+  /// The lift after the grasp; height and duration come from the sources' library entries
+  /// (weighted) when they are positive there.
+  LiftOptions lift;
+  JointSpaceOptions joint_space;
+  /// Arm configuration at the start, rad; all NaN: DefaultRestConfiguration for the grasp
+  /// orientation.
+  Vector7d start = Vector7d::Constant(NAN);
+
+  bool IsValid(std::string* why) const;
+};
+
+/// How a synthesis ended.
+enum class SynthesisStatus {
+  kOk,
+  kOutOfRange,   ///< interp outside the library's range
+  kBadStart,     ///< the start configuration is outside the joint limits or in collision
+  kNoModel,      ///< the line principle cannot be fitted on this library
+  kUnreachable,  ///< the joint conversion failed (a pose without IK solution, or a jump)
+};
+
+/// "ok", "out_of_range", "bad_start", "no_model" or "unreachable".
+const char* ToString(SynthesisStatus status);
+
+/// A demonstration the grasp was made from.
+struct SourceDemo {
+  int entry = -1;  ///< library entry index
+  double theta_deg = 0.0;
+  std::string file;
+  std::string trial;
+  double weight = 0.0;  ///< its share in the grasp (blend weights sum to 1)
+};
+
+/// The synthesized grasp.
+struct SynthesisResult {
+  SynthesisStatus status = SynthesisStatus::kUnreachable;
+  std::string message;  ///< why, when not kOk
+  double theta_deg = 0.0;
+  SynthesisMethod requested = SynthesisMethod::kInterp;
+  SynthesisMethod used = SynthesisMethod::kInterp;
+  bool fallback = false;        ///< a method other than the requested one was used
+  std::string fallback_reason;  ///< why, and what was tried
+  int side = 0;                 ///< side of the handle of the line-principle grasp (0: unused)
+  Bracket bracket;
+  std::vector<SourceDemo> sources;
+  GraspingMotion unrefined;  ///< the grasping motion before refinement
+  GraspingMotion motion;     ///< the grasping motion after refinement (or unrefined)
+  bool refined = false;
+  RefinementReport refinement;
+  Vector7d start = Vector7d::Zero();
+  CartesianPath path;          ///< reach + grasping motion + lift
+  JointSpaceResult joints;     ///< the joint conversion
+  JointTrajectory trajectory;  ///< the robot's trajectory (waypoints: start, pre-grasp, grasp,
+                               ///< lift start, top)
+  double generate_s = 0.0, refine_s = 0.0, joints_s = 0.0;  ///< wall time of the stages
+
+  bool ok() const { return status == SynthesisStatus::kOk; }
+};
+
+/// Synthesizes a grasp for object orientation `theta_deg`. Throws InputError for invalid
+/// options; bad queries and failures are results. `data` is the caller's collision data
+/// (made from model.collision()).
+SynthesisResult SynthesizeGrasp(const SynthesisModel& model, double theta_deg,
+                                const SynthesisOptions& options, CollisionData* data);
+
+/// A library entry's grasping motion turned with the object from its theta to `theta` (rad)
+/// about the vertical through the object centre.
+GraspingMotion TurnWithObject(const GraspingMotion& motion, double theta);
+
+}  // namespace graspsynth

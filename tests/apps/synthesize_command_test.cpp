@@ -1,0 +1,125 @@
+// Tests of `graspsynth synthesize`: the command end to end on a library file of scripted
+// grasps, and its bad queries (each an error that writes nothing).
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "learning_data/grasp_library.hpp"
+#include "tests/solver/synthesis_fixtures.hpp"
+#include "tests/utils/run_command.hpp"
+
+namespace graspsynth {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::ReadFileText;
+using testing::RunGraspsynth;
+
+class SynthesizeCommand : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("graspsynth_synth_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+    library_ = (dir_ / "library.json").string();
+    WriteGraspLibrary(testing::Library406080(), library_);
+    out_ = (dir_ / "grasp.json").string();
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string Args(const std::string& more) const {
+    return "synthesize --library " + library_ + " --out " + out_ + " --perturb 2 --threads 2 " +
+           more;
+  }
+
+  fs::path dir_;
+  std::string library_, out_;
+};
+
+TEST_F(SynthesizeCommand, WritesAValidatedGraspFileThatSimulatePlays) {
+  const testing::CommandOutput r = RunGraspsynth(Args("--theta 50"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_TRUE(fs::exists(out_)) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(ReadFileText(out_));
+  EXPECT_EQ(j["format"], "graspsynth-grasp/1");
+  EXPECT_EQ(j["method"]["requested"], "interp");
+  EXPECT_TRUE(j["validation"]["passed"].get<bool>());
+  EXPECT_EQ(j["validation"]["robustness"]["trials"], 2);
+  const std::string report = (dir_ / "report.json").string();
+  const testing::CommandOutput sim = RunGraspsynth("simulate " + out_ + " --out " + report);
+  EXPECT_EQ(sim.exit_code, 0) << sim.err;
+  EXPECT_TRUE(nlohmann::json::parse(ReadFileText(report))["nominal"]["success"].get<bool>());
+}
+
+TEST_F(SynthesizeCommand, LineMethodGoesBeyondTheRange) {
+  const testing::CommandOutput r = RunGraspsynth(Args("--theta 100 --method line --no-refine"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(ReadFileText(out_));
+  EXPECT_EQ(j["method"]["used"], "line");
+  EXPECT_FALSE(j["refinement"]["refined"].get<bool>());
+}
+
+TEST_F(SynthesizeCommand, InterpOutsideTheRangeIsAnErrorThatSuggestsLine) {
+  const testing::CommandOutput r = RunGraspsynth(Args("--theta 100"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("[40, 80]"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("line"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out_));
+}
+
+TEST_F(SynthesizeCommand, BadStartIsAnError) {
+  const testing::CommandOutput limits = RunGraspsynth(Args("--theta 50 --start 0,0,0,9,0,0,0"));
+  EXPECT_EQ(limits.exit_code, 2);
+  EXPECT_NE(limits.err.find("joint 4"), std::string::npos) << limits.err;
+  const testing::CommandOutput count = RunGraspsynth(Args("--theta 50 --start 0,0,0"));
+  EXPECT_EQ(count.exit_code, 2);
+  EXPECT_NE(count.err.find("7"), std::string::npos) << count.err;
+  EXPECT_FALSE(fs::exists(out_));
+}
+
+TEST_F(SynthesizeCommand, WrongVersionAndCorruptLibrariesAreErrors) {
+  std::string text = ReadFileText(library_);
+  const size_t at = text.find("graspsynth-library/1");
+  ASSERT_NE(at, std::string::npos);
+  std::string other = text;
+  other.replace(at, 20, "graspsynth-library/9");
+  std::ofstream(library_) << other;
+  const testing::CommandOutput version = RunGraspsynth(Args("--theta 50"));
+  EXPECT_EQ(version.exit_code, 2);
+  EXPECT_NE(version.err.find("library.json"), std::string::npos) << version.err;
+  std::ofstream(library_) << text.substr(0, text.size() / 2);
+  const testing::CommandOutput corrupt = RunGraspsynth(Args("--theta 50"));
+  EXPECT_EQ(corrupt.exit_code, 2);
+  EXPECT_NE(corrupt.err.find("library.json"), std::string::npos) << corrupt.err;
+  const testing::CommandOutput missing = RunGraspsynth(
+      "synthesize --library " + (dir_ / "none.json").string() + " --theta 50 --out " + out_);
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_FALSE(fs::exists(out_));
+}
+
+TEST_F(SynthesizeCommand, GraspBelowTheGateIsNotWrittenUnlessForced) {
+  // a library whose grasps hold the hand 5 cm too high: nothing is lifted.
+  ScriptedGraspOptions high;
+  high.bar_in_hand.x() -= 0.05;
+  WriteGraspLibrary(
+      testing::ScriptedLibrary(testing::ShippedSimulationModel().robot(),
+                               testing::ShippedSimulationModel().scene(), {40.0, 60.0}, +1, high),
+      library_);
+  const testing::CommandOutput r = RunGraspsynth(Args("--theta 50 --no-refine"));
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("physics gate"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out_));
+  const testing::CommandOutput forced = RunGraspsynth(Args("--theta 50 --no-refine --force"));
+  EXPECT_EQ(forced.exit_code, 1) << forced.err;
+  ASSERT_TRUE(fs::exists(out_));
+  const nlohmann::json j = nlohmann::json::parse(ReadFileText(out_));
+  EXPECT_FALSE(j["validation"]["passed"].get<bool>());
+  EXPECT_TRUE(j["validation"]["forced"].get<bool>());
+}
+
+}  // namespace
+}  // namespace graspsynth

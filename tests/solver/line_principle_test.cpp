@@ -1,0 +1,83 @@
+#include "solver/line_principle.hpp"
+
+#include <gtest/gtest.h>
+
+#include "kinematics/pose_math.hpp"
+#include "solver/bracket.hpp"
+#include "tests/solver/synthesis_fixtures.hpp"
+
+namespace graspsynth {
+namespace {
+
+using testing::Library406080;
+using testing::ShippedSimulationModel;
+using testing::SideSwitchLibrary;
+
+constexpr double kDeg = M_PI / 180.0;
+const SceneModel& Scene() { return ShippedSimulationModel().scene(); }
+
+TEST(LinePrinciple, ReproducesTheLibrarysGraspsInsideTheRange) {
+  const LinePrincipleModel m = FitLinePrinciple(Library406080(), Scene());
+  ASSERT_TRUE(m.valid) << m.message;
+  EXPECT_EQ(m.sides[1].entries, 3);
+  EXPECT_EQ(m.sides[0].entries, 0);
+  for (const LibraryEntry& e : Library406080().entries) {
+    const Eigen::Isometry3d X = LinePrincipleGraspPose(m, Scene(), e.theta_deg * kDeg, +1);
+    const Eigen::Isometry3d Y = Eigen::Translation3d(e.motion.grasp().p_WH) * e.motion.grasp().q_WH;
+    const PoseDistance d = DistanceBetween(X, Y);
+    // three grasps on a circle about the object centre are not on a line: a few cm.
+    EXPECT_LT(d.translation, 0.03) << e.theta_deg;
+    EXPECT_LT(d.rotation, 2.0 * kDeg) << e.theta_deg;
+  }
+}
+
+TEST(LinePrinciple, TheHandleLiesInTheHandWhereTheScriptedGraspPutsIt) {
+  const LinePrincipleModel m = FitLinePrinciple(Library406080(), Scene());
+  ASSERT_TRUE(m.valid);
+  EXPECT_LT((m.handle_in_hand - ScriptedGraspOptions{}.bar_in_hand).norm(), 1e-3);
+}
+
+TEST(LinePrinciple, MotionsOutsideTheRangeAreWellFormedAndEndAtTheModelledGrasp) {
+  const LinePrincipleModel m = FitLinePrinciple(Library406080(), Scene());
+  ASSERT_TRUE(m.valid);
+  for (double theta_deg : {0.0, 10.0, 20.0, 100.0, 110.0, 120.0}) {
+    const GraspingMotion g = LinePrincipleMotion(m, Scene(), theta_deg * kDeg, +1);
+    std::string why;
+    ASSERT_TRUE(IsWellFormed(g, &why)) << theta_deg << ": " << why;
+    EXPECT_EQ(g.waypoints.size(), 40u);
+    const Eigen::Isometry3d X = LinePrincipleGraspPose(m, Scene(), theta_deg * kDeg, +1);
+    EXPECT_LT((g.grasp().p_WH - X.translation()).norm(), 1e-12);
+    // the hand's long axis lies across the handle (within the fitted yaw's drift).
+    const Eigen::Vector3d h = Scene().ObjectPose(theta_deg * kDeg).linear().col(0);
+    EXPECT_LT(std::abs((g.grasp().q_WH * Eigen::Vector3d::UnitZ()).dot(h)), 0.2) << theta_deg;
+    // the pre-grasp is above the grasp, as in every demonstration.
+    EXPECT_GT(g.pregrasp().p_WH.z(), g.grasp().p_WH.z() + 0.03);
+  }
+}
+
+TEST(LinePrinciple, OrientationIsFittedPerSideOfTheHandle) {
+  const LinePrincipleModel m = FitLinePrinciple(SideSwitchLibrary(), Scene());
+  ASSERT_TRUE(m.valid) << m.message;
+  EXPECT_EQ(m.sides[0].entries, 2);
+  EXPECT_EQ(m.sides[1].entries, 2);
+  EXPECT_EQ(m.entry_sides, (std::vector<int>{-1, -1, 1, 1}));
+  // across the handle on either side: yaw relative to the handle near -90 and +90 deg.
+  EXPECT_NEAR(m.sides[0].yaw(45.0 * kDeg), -90.0 * kDeg, 1e-6);
+  EXPECT_NEAR(m.sides[1].yaw(45.0 * kDeg), 90.0 * kDeg, 1e-6);
+  EXPECT_TRUE(m.sides[0].has_line);
+  const Eigen::Isometry3d left = LinePrincipleGraspPose(m, Scene(), 45.0 * kDeg, -1);
+  EXPECT_EQ(HandleSide(Scene(), 45.0 * kDeg, left.translation(), 0.01), -1);
+  const Eigen::Isometry3d right = LinePrincipleGraspPose(m, Scene(), 45.0 * kDeg, +1);
+  EXPECT_EQ(HandleSide(Scene(), 45.0 * kDeg, right.translation(), 0.01), 1);
+}
+
+TEST(LinePrinciple, OneEntryIsNotEnough) {
+  GraspLibrary one;
+  one.entries.push_back(Library406080().entries[0]);
+  const LinePrincipleModel m = FitLinePrinciple(one, Scene());
+  EXPECT_FALSE(m.valid);
+  EXPECT_NE(m.message.find("two"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace graspsynth

@@ -1,0 +1,104 @@
+#include "solver/physics_gate.hpp"
+
+#include <gtest/gtest.h>
+
+#include "common/errors.hpp"
+#include "simulation/scripted_grasp.hpp"
+#include "tests/utils/simulation_fixtures.hpp"
+
+namespace graspsynth {
+namespace {
+
+using testing::Scaled;
+using testing::ShippedSimulationModel;
+
+JointTrajectory Scripted(double theta_deg, double higher = 0.0) {
+  ScriptedGraspOptions o;
+  o.theta_deg = theta_deg;
+  o.bar_in_hand.x() -= higher;  // the handle nearer the palm: the wrist `higher` up
+  const ScriptedGraspResult r =
+      BuildScriptedGrasp(ShippedSimulationModel().robot(), ShippedSimulationModel().scene(), o);
+  EXPECT_TRUE(r.ok) << r.message;
+  return r.trajectory;
+}
+
+TEST(PhysicsGate, PassesAGraspThatWorks) {
+  PhysicsGateOptions o;
+  o.perturbations = Scaled(8, 2);
+  o.threads = 2;
+  const PhysicsGateResult r = RunPhysicsGate(ShippedSimulationModel(), Scripted(60.0), o);
+  EXPECT_TRUE(r.passed) << r.reason;
+  EXPECT_TRUE(r.nominal.success());
+  EXPECT_TRUE(r.robustness_run);
+  EXPECT_EQ(static_cast<int>(r.robustness.trials.size()), o.perturbations);
+  EXPECT_GE(r.robustness.score, 0.8);
+  // quality from the held grasp's contacts.
+  EXPECT_GE(r.contacts.size(), 2u);
+  EXPECT_GT(r.quality.wrenches, 0);
+  EXPECT_TRUE(std::isfinite(r.quality.epsilon));
+}
+
+TEST(PhysicsGate, RejectsAHandFiveCentimetresTooHigh) {
+  PhysicsGateOptions o;
+  o.perturbations = Scaled(8, 2);
+  const PhysicsGateResult r = RunPhysicsGate(ShippedSimulationModel(), Scripted(60.0, 0.05), o);
+  EXPECT_FALSE(r.passed);
+  EXPECT_FALSE(r.nominal.success());
+  EXPECT_NE(r.reason.find("nominal trial failed"), std::string::npos) << r.reason;
+  EXPECT_FALSE(r.robustness_run);  // no replays for a grasp that fails unperturbed
+}
+
+TEST(PhysicsGate, RobustnessBelowTheThresholdFails) {
+  PhysicsGateOptions o;
+  o.perturbations = 2;
+  o.min_robustness = 1.0;
+  // so much noise that the replays cannot all hold (2 cm, 20 deg on the wrist).
+  o.perturbation.position_sigma = 0.02;
+  o.perturbation.orientation_sigma = 20.0 * M_PI / 180.0;
+  const PhysicsGateResult r = RunPhysicsGate(ShippedSimulationModel(), Scripted(60.0), o);
+  if (r.robustness.score < 1.0) {
+    EXPECT_FALSE(r.passed);
+    EXPECT_NE(r.reason.find("below the threshold"), std::string::npos) << r.reason;
+  } else {
+    EXPECT_TRUE(r.passed);
+  }
+}
+
+TEST(PhysicsGate, OptionsAreChecked) {
+  PhysicsGateOptions o;
+  o.min_robustness = 1.5;
+  std::string why;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_THROW(RunPhysicsGate(ShippedSimulationModel(), Scripted(60.0), o), InputError);
+}
+
+// SimulationData::hand_object_contacts, the accessor the gate's quality reads: one point per
+// object-hand contact of the last pass, normals unit and pointing into the object.
+TEST(PhysicsGate, HandObjectContactsMatchTheContactReport) {
+  int steps_with_contacts = 0;
+  int inward = 0, total = 0;
+  const SceneModel& scene = ShippedSimulationModel().scene();
+  RunTrial(ShippedSimulationModel(), Scripted(60.0), {}, [&](SimulationData& data) {
+    const std::vector<HandObjectContact>& c = data.hand_object_contacts();
+    ASSERT_EQ(static_cast<int>(c.size()), data.contacts().object_hand);
+    if (c.empty()) return;
+    ++steps_with_contacts;
+    const Eigen::Isometry3d X_WO = data.object_pose();
+    const Eigen::Vector3d axis = X_WO.linear().col(0);
+    const Eigen::Vector3d a0 =
+        X_WO *
+        Eigen::Vector3d(0.0, 0.0, scene.object.handle_axis_height - scene.object.rest_height());
+    for (const HandObjectContact& k : c) {
+      EXPECT_NEAR(k.n_W.norm(), 1.0, 1e-9);
+      EXPECT_GE(k.hand_link, 0);
+      const Eigen::Vector3d to_axis = (a0 + (k.p_WC - a0).dot(axis) * axis) - k.p_WC;
+      ++total;
+      if (k.n_W.dot(to_axis) > 0.0) ++inward;
+    }
+  });
+  EXPECT_GT(steps_with_contacts, 10);
+  EXPECT_GT(inward, 0.9 * total);
+}
+
+}  // namespace
+}  // namespace graspsynth

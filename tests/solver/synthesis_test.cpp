@@ -1,0 +1,152 @@
+#include "solver/synthesis.hpp"
+
+#include <gtest/gtest.h>
+
+#include "kinematics/pose_math.hpp"
+#include "simulation/trial.hpp"
+#include "tests/solver/synthesis_fixtures.hpp"
+
+namespace graspsynth {
+namespace {
+
+using testing::Library406080;
+using testing::Model406080;
+using testing::ShippedSimulationModel;
+using testing::SideSwitchModel;
+
+constexpr double kDeg = M_PI / 180.0;
+
+SynthesisResult Synthesize(const SynthesisModel& model, double theta_deg,
+                           SynthesisMethod method = SynthesisMethod::kInterp, bool refine = true) {
+  SynthesisOptions o;
+  o.method = method;
+  o.refine = refine;
+  CollisionData data(model.collision());
+  return SynthesizeGrasp(model, theta_deg, o, &data);
+}
+
+TEST(Synthesis, InterpolatesInsideTheRangeWithBlendWeights) {
+  const SynthesisResult r = Synthesize(Model406080(), 50.0);
+  ASSERT_TRUE(r.ok()) << r.message;
+  EXPECT_EQ(r.used, SynthesisMethod::kInterp);
+  EXPECT_FALSE(r.fallback);
+  ASSERT_EQ(r.sources.size(), 2u);
+  EXPECT_DOUBLE_EQ(r.sources[0].theta_deg, 40.0);
+  EXPECT_NEAR(r.sources[0].weight, 0.5, 1e-12);
+  EXPECT_NEAR(r.sources[1].weight, 0.5, 1e-12);
+  EXPECT_EQ(r.trajectory.theta_deg, 50.0);
+  EXPECT_GE(r.trajectory.waypoints.size(), 4u);
+  // the trajectory starts at the start configuration and ends lifted above the grasp.
+  EXPECT_TRUE(r.trajectory.samples.front().arm.isApprox(r.start));
+  EXPECT_GT(r.path.back().p_WH.z(), r.motion.grasp().p_WH.z() + 0.05);
+  std::string why;
+  EXPECT_TRUE(IsWellFormed(r.motion, &why)) << why;
+}
+
+TEST(Synthesis, ExactHitIsThatDemonstration) {
+  const SynthesisResult r = Synthesize(Model406080(), 60.0, SynthesisMethod::kInterp, false);
+  ASSERT_TRUE(r.ok()) << r.message;
+  ASSERT_EQ(r.sources.size(), 1u);
+  EXPECT_DOUBLE_EQ(r.sources[0].weight, 1.0);
+  const MotionWaypoint& g = Library406080().entries[1].motion.grasp();
+  EXPECT_LT((r.motion.grasp().p_WH - g.p_WH).norm(), 1e-12);
+}
+
+TEST(Synthesis, InterpOutsideTheRangeNamesTheRangeAndSuggestsLine) {
+  const SynthesisResult r = Synthesize(Model406080(), 100.0);
+  EXPECT_EQ(r.status, SynthesisStatus::kOutOfRange);
+  EXPECT_NE(r.message.find("[40, 80]"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("'line'"), std::string::npos) << r.message;
+}
+
+TEST(Synthesis, LineAndNearestWorkOutsideTheRange) {
+  for (double theta : {10.0, 20.0, 100.0, 110.0}) {
+    const SynthesisResult r = Synthesize(Model406080(), theta, SynthesisMethod::kLine);
+    ASSERT_TRUE(r.ok()) << theta << ": " << r.message;
+    EXPECT_EQ(r.used, SynthesisMethod::kLine);
+    EXPECT_DOUBLE_EQ(r.trajectory.theta_deg, theta);
+    EXPECT_EQ(r.sources.size(), 3u);
+  }
+  for (double theta : {30.0, 100.0}) {
+    const SynthesisResult r = Synthesize(Model406080(), theta, SynthesisMethod::kNearest);
+    ASSERT_TRUE(r.ok()) << theta << ": " << r.message;
+    ASSERT_EQ(r.sources.size(), 1u);
+    EXPECT_DOUBLE_EQ(r.sources[0].theta_deg, theta < 60.0 ? 40.0 : 80.0);
+  }
+}
+
+TEST(Synthesis, UnplayableGraspIsAResultNotAnException) {
+  // a right-side grasp turned 30 deg below the range leaves the arm's reach on the way.
+  const SynthesisResult r = Synthesize(Model406080(), 10.0, SynthesisMethod::kNearest);
+  if (!r.ok()) {
+    EXPECT_EQ(r.status, SynthesisStatus::kUnreachable);
+    EXPECT_FALSE(r.message.empty());
+  }
+}
+
+TEST(Synthesis, HardCaseFallsBackAndSaysWhy) {
+  const SynthesisResult r = Synthesize(SideSwitchModel(), 45.0);
+  ASSERT_TRUE(r.ok()) << r.message;
+  EXPECT_FALSE(r.bracket.blendable);
+  EXPECT_TRUE(r.fallback);
+  EXPECT_NE(r.used, SynthesisMethod::kInterp);
+  EXPECT_NE(r.fallback_reason.find("sides of the handle"), std::string::npos) << r.fallback_reason;
+  // the hand lies across the handle: its long axis z_H at least 60 deg from the handle.
+  const Eigen::Vector3d h =
+      ShippedSimulationModel().scene().ObjectPose(45.0 * kDeg).linear().col(0);
+  const Eigen::Vector3d z_H = r.motion.grasp().q_WH * Eigen::Vector3d::UnitZ();
+  EXPECT_LT(std::abs(z_H.dot(h)), std::cos(60.0 * kDeg));
+}
+
+TEST(Synthesis, PlainBlendOfTheHardCaseLaysTheHandAlongTheHandle) {
+  // what the fallback avoids: the blend turns the hand by about 90 deg from either demo.
+  const GraspLibrary& l = testing::SideSwitchLibrary();
+  const GraspingMotion m = BlendMotions(l.entries[1].motion, l.entries[2].motion, 0.5);
+  const Eigen::Vector3d h =
+      ShippedSimulationModel().scene().ObjectPose(45.0 * kDeg).linear().col(0);
+  const Eigen::Vector3d z_H = m.grasp().q_WH * Eigen::Vector3d::UnitZ();
+  EXPECT_GT(std::abs(z_H.dot(h)), std::cos(60.0 * kDeg));
+}
+
+TEST(Synthesis, BadStartIsAResult) {
+  SynthesisOptions o;
+  o.start = Vector7d::Zero();
+  o.start[3] = 10.0;  // E1 far beyond its limit
+  CollisionData data(Model406080().collision());
+  const SynthesisResult r = SynthesizeGrasp(Model406080(), 50.0, o, &data);
+  EXPECT_EQ(r.status, SynthesisStatus::kBadStart);
+  EXPECT_NE(r.message.find("joint 4"), std::string::npos) << r.message;
+}
+
+TEST(Synthesis, TurnWithObjectKeepsTheHoldRelativeToTheObject) {
+  const GraspingMotion& m = Library406080().entries[0].motion;
+  const GraspingMotion t = TurnWithObject(m, 55.0 * kDeg);
+  const SceneModel& scene = ShippedSimulationModel().scene();
+  const Eigen::Isometry3d X_OH_a =
+      scene.ObjectPose(m.theta).inverse() * (Eigen::Translation3d(m.grasp().p_WH) * m.grasp().q_WH);
+  const Eigen::Isometry3d X_OH_b = scene.ObjectPose(55.0 * kDeg).inverse() *
+                                   (Eigen::Translation3d(t.grasp().p_WH) * t.grasp().q_WH);
+  const PoseDistance d = DistanceBetween(X_OH_a, X_OH_b);
+  EXPECT_LT(d.translation, 1e-12);
+  EXPECT_LT(d.rotation, 1e-9);
+}
+
+// A grasp synthesized at an orientation absent from the library lifts the object.
+TEST(Synthesis, SynthesizedGraspLiftsTheObject) {
+  for (double theta : {50.0, 70.0}) {
+    const SynthesisResult r = Synthesize(Model406080(), theta);
+    ASSERT_TRUE(r.ok()) << r.message;
+    const TrialResult t = RunTrial(ShippedSimulationModel(), r.trajectory);
+    EXPECT_TRUE(t.success()) << theta << ": " << t.BriefReport();
+  }
+}
+
+TEST(Synthesis, HardCaseGraspLiftsTheObject) {
+  const SynthesisResult r = Synthesize(SideSwitchModel(), 45.0);
+  ASSERT_TRUE(r.ok()) << r.message;
+  const TrialResult t = RunTrial(ShippedSimulationModel(), r.trajectory);
+  EXPECT_TRUE(t.success()) << t.BriefReport();
+}
+
+}  // namespace
+}  // namespace graspsynth
