@@ -7,9 +7,13 @@
 #include <iostream>
 
 #include "apps/analyze_command.hpp"
+#include "apps/demos_command.hpp"
 #include "apps/kinematics_commands.hpp"
 #include "apps/run_command.hpp"
+#include "apps/select_command.hpp"
 #include "apps/simulate_command.hpp"
+#include "apps/synthesize_command.hpp"
+#include "apps/teleop_command.hpp"
 #include "apps/view_command.hpp"
 #include "collision/library_info.hpp"
 #include "simulation/library_info.hpp"
@@ -25,8 +29,12 @@ int main(int argc, char** argv) {
   graspsynth::apps::AddRunCommand(app, &exit_code);
   graspsynth::apps::AddKinematicsCommands(app, &exit_code);
   graspsynth::apps::AddAnalyzeCommand(app, &exit_code);
+  graspsynth::apps::AddDemosCommand(app, &exit_code);
   graspsynth::apps::AddSimulateCommand(app, &exit_code);
+  graspsynth::apps::AddSynthesizeCommand(app, &exit_code);
+  graspsynth::apps::AddSelectCommand(app, &exit_code);
   graspsynth::apps::AddViewCommand(app, &exit_code);
+  graspsynth::apps::AddTeleopCommands(app, &exit_code);
 
   auto* version = app.add_subcommand("version", "Print the versions of the linked libraries");
   version->callback([] {
