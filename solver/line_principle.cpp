@@ -127,13 +127,22 @@ LinePrincipleModel FitLinePrinciple(const GraspLibrary& library, const SceneMode
     theta_side[si].push_back(theta[k]);
     residual_side[si].push_back(RotationVector((Rz(yaw) * CanonicalHand()).transpose() * R_G));
     for (int j = 0; j < kHandDof; ++j) finger_values[j].push_back(g.f[j]);
-    // the handle axis point nearest the wrist, in H.
+    // the handle axis point under the hand: where the hand's forward axis (z_H, seen from
+    // above) crosses the handle's axis - the bar in the pinch of the scripted grasp and in the
+    // hook of the synthetic operator alike, whatever the hand's yaw; the point nearest the
+    // wrist when the hand lies (nearly) along the handle. In H.
     const ObjectModel& o = scene.object;
     const Eigen::Vector3d h = X_WO.linear().col(0);
     const Eigen::Vector3d a0 =
         X_WO.translation() + (o.handle_axis_height - o.rest_height()) * Eigen::Vector3d::UnitZ();
-    const double along =
-        std::clamp((g.p_WH - a0).dot(h), o.handle_start_radius, o.handle_end_radius);
+    const Eigen::Vector2d u = R_G.col(2).head<2>().normalized();
+    const Eigen::Vector2d d = (a0 - g.p_WH).head<2>();
+    auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+      return a.x() * b.y() - a.y() * b.x();
+    };
+    const double sine = cross(u, h.head<2>());
+    const double crossing = std::abs(sine) > 0.1 ? -cross(u, d) / sine : (g.p_WH - a0).dot(h);
+    const double along = std::clamp(crossing, o.handle_start_radius, o.handle_end_radius);
     model.handle_in_hand += inv * (R_G.transpose() * (a0 + along * h - g.p_WH));
     // the approach relative to the grasp.
     const GraspingMotion r = Resample(e.motion, n);

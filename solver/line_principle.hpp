@@ -19,8 +19,10 @@
 /// - approach: the mean of the entries' grasping motions expressed relative to their grasp pose
 ///   (positions in the grasp's yaw frame, rotations in the grasp's hand frame, finger offsets
 ///   from the grasp fingers), with the mean duration;
-/// - the handle in the hand: the mean point of the handle's axis nearest the wrist, in the
-///   grasp's hand frame H (what the refinement's contact constraint uses).
+/// - the handle in the hand: the mean point of the handle's axis under the hand (where the
+///   hand's forward axis z_H, seen from above, crosses it; the point nearest the wrist when the
+///   hand lies along the handle), in the grasp's hand frame H (what the refinement's contact
+///   constraint uses).
 
 #include <string>
 #include <vector>

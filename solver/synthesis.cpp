@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "common/errors.hpp"
@@ -333,6 +334,27 @@ SynthesisResult SynthesizeGrasp(const SynthesisModel& model, double theta_deg,
     ++i_lift;
   }
   r.joints = ToJointTrajectory(robot, r.path, r.start, theta_deg, options.joint_space);
+  if (r.joints.status != JointSpaceStatus::kOk && !has_start) {
+    // the default rest pose on another branch (the wrist flip first), as ReplayDemoLog does: a
+    // hand turned far from the rest orientation can need it. A start given by the user is kept.
+    const Eigen::Isometry3d X_rest_flange = ArmFlangePose(robot.arm, r.start);
+    for (int index : {4, 1, 5, 2, 6, 3, 7}) {
+      const std::optional<MidArcSolution> other =
+          SolveArmIkMidArc(robot.arm, X_rest_flange, ArmBranch::FromIndex(index));
+      if (!other) continue;
+      SetState(model.collision(), other->q, motion.pregrasp().f, theta, data);
+      if (Collide(model.collision(), GroupSet::Robot(), GroupSet::World(), data, co).collision()) {
+        continue;
+      }
+      JointSpaceResult joints =
+          ToJointTrajectory(robot, r.path, other->q, theta_deg, options.joint_space);
+      if (joints.status == JointSpaceStatus::kOk) {
+        r.start = other->q;
+        r.joints = std::move(joints);
+        break;
+      }
+    }
+  }
   r.joints_s = Since(t_joints);
   if (r.joints.status != JointSpaceStatus::kOk) {
     r.status = SynthesisStatus::kUnreachable;

@@ -82,7 +82,8 @@ struct SynthesisOptions {
   LiftOptions lift;
   JointSpaceOptions joint_space;
   /// Arm configuration at the start, rad; all NaN: DefaultRestConfiguration for the grasp
-  /// orientation.
+  /// orientation, or that rest pose on another branch (the wrist flip first) when the motion
+  /// cannot be played from the elbow-up one.
   Vector7d start = Vector7d::Constant(NAN);
 
   bool IsValid(std::string* why) const;

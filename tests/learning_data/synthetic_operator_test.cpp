@@ -113,7 +113,9 @@ TEST(SyntheticOperator, TrialsAreCompleteLogsLabelledByTheSimulation) {
     // success flag agrees with the segmentation's reading of the object columns.
     EXPECT_EQ(t.success, s.success);
     EXPECT_EQ(t.success, t.outcome == "success") << t.reason;
-    if (t.success) EXPECT_GT(s.lift, 0.05);
+    if (t.success) {
+      EXPECT_GT(s.lift, 0.05);
+    }
   }
 }
 
