@@ -106,17 +106,17 @@ TEST(TeleopCommand, SignalEndsTheSessionWithASummary) {
   fs::remove_all(dir);
 }
 
-TEST(TeleopCommand, AReplayedTrialIsRecordedAgainWithTheSameOutcome) {
-  const fs::path dir = TempDir("loop");
-  TrialResult nominal;
-  const DemoLog original = testing::ScriptedDemoLog(60.0, 60.0, &nominal);
-  ASSERT_TRUE(nominal.success()) << nominal.BriefReport();
+// Replays `original` (a successful trial at theta_deg) into a recording server and checks that
+// the recorded trial has the same outcome and grasp pose.
+void ExpectRecordedAgain(const DemoLog& original, const std::string& theta_deg,
+                         const std::string& name) {
+  const fs::path dir = TempDir(name);
   const SegmentedTrial original_segmented = Segment(original, SegmentationOptions{});
   ASSERT_TRUE(original_segmented.success);
   WriteDemoLog(dir / "original.csv", original);
 
   const pid_t server = Spawn({"teleop", "--port", "0", "--port-file", (dir / "port").string(),
-                              "--orientations", "60", "--record", (dir / "recorded").string(),
+                              "--orientations", theta_deg, "--record", (dir / "recorded").string(),
                               "--summary", (dir / "summary.json").string(), "--exit-after", "120"});
   for (int k = 0; k < 1500 && !fs::exists(dir / "port"); ++k) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
@@ -159,6 +159,21 @@ TEST(TeleopCommand, AReplayedTrialIsRecordedAgainWithTheSameOutcome) {
   EXPECT_LT(AngleBetween(b.q_WH, a.q_WH), 2.0 * M_PI / 180.0);
   EXPECT_LT((b.f - a.f).cwiseAbs().maxCoeff(), 0.05);
   fs::remove_all(dir);
+}
+
+TEST(TeleopCommand, AReplayedTrialIsRecordedAgainWithTheSameOutcome) {
+  TrialResult nominal;
+  const DemoLog original = testing::ScriptedDemoLog(60.0, 60.0, &nominal);
+  ASSERT_TRUE(nominal.success()) << nominal.BriefReport();
+  ExpectRecordedAgain(original, "60", "loop");
+}
+
+TEST(TeleopCommand, AShippedSyntheticTrialIsRecordedAgainWithTheSameOutcome) {
+  // a trial of the synthetic operator (learning_data/demos), made by a different path than the
+  // scripted grasp: its own rest pose, reach and hook grip.
+  const DemoLog original = ReadDemoLog(fs::path(GRASPSYNTH_SOURCE_DIR) / "learning_data" / "demos" /
+                                       "theta100_trial01.csv");
+  ExpectRecordedAgain(original, "100", "synthetic");
 }
 
 }  // namespace
