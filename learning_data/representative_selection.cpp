@@ -19,20 +19,6 @@ std::string FileName(const std::string& source) {
   return std::filesystem::path(source).filename().string();
 }
 
-// "dropped 3, not_lifted 1": the failed replays by outcome, in the outcome enum's order.
-std::string FailureSummary(const RobustnessResult& result) {
-  std::map<TrialOutcome, int> counts;
-  for (const RobustnessTrial& t : result.trials) {
-    if (!t.success()) ++counts[t.outcome];
-  }
-  std::string text;
-  for (const auto& [outcome, n] : counts) {
-    if (!text.empty()) text += ", ";
-    text += std::string(ToString(outcome)) + " " + std::to_string(n);
-  }
-  return text;
-}
-
 // A segmented, successful demonstration and what its replays gave.
 struct Scored {
   const DemoLog* log = nullptr;

@@ -3,6 +3,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <mutex>
 #include <thread>
 
@@ -111,6 +112,19 @@ RobustnessResult EvaluateRobustness(const SimulationModel& model, const JointTra
   result.wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
+}
+
+std::string FailureSummary(const RobustnessResult& result) {
+  std::map<TrialOutcome, int> counts;
+  for (const RobustnessTrial& t : result.trials) {
+    if (!t.success()) ++counts[t.outcome];
+  }
+  std::string text;
+  for (const auto& [outcome, n] : counts) {
+    if (!text.empty()) text += ", ";
+    text += std::string(ToString(outcome)) + " " + std::to_string(n);
+  }
+  return text;
 }
 
 }  // namespace graspsynth

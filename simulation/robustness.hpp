@@ -74,6 +74,10 @@ RobustnessResult EvaluateRobustness(const SimulationModel& model, const JointTra
                                     const RobustnessOptions& options,
                                     const ProgressCallback& progress = {});
 
+/// The failed replays by outcome, in the outcome enum's order, e.g. "dropped 3, not_lifted 1";
+/// empty when every replay succeeded.
+std::string FailureSummary(const RobustnessResult& result);
+
 /// Runs trial `index` of an evaluation alone (what EvaluateRobustness runs for it).
 RobustnessTrial RunRobustnessTrial(const SimulationModel& model, const JointTrajectory& nominal,
                                    const RobustnessOptions& options, int index);

@@ -85,6 +85,20 @@ TEST(EvaluateRobustness, TheThreadCountChangesNoBitOfAnyTrial) {
   EXPECT_LT(one.ci95.lo, one.score + 1e-12);
 }
 
+TEST(FailureSummary, CountsFailedReplaysByOutcomeInEnumOrder) {
+  RobustnessResult result;
+  for (TrialOutcome o : {TrialOutcome::kNotLifted, TrialOutcome::kSuccess, TrialOutcome::kDropped,
+                         TrialOutcome::kNotLifted}) {
+    RobustnessTrial t;
+    t.outcome = o;
+    result.trials.push_back(t);
+  }
+  EXPECT_EQ(FailureSummary(result), "not_lifted 2, dropped 1");
+  result.trials = {RobustnessTrial{}};
+  result.trials[0].outcome = TrialOutcome::kSuccess;
+  EXPECT_EQ(FailureSummary(result), "");
+}
+
 // A small version of benchmarks/simulation_benchmark.cpp's agreement study: the fast path
 // (kinematic arm, kinematic free space, 4 ms, early stop) and the full-detail simulation
 // (dynamic arm, 1 ms, everything simulated) agree on the success of every replay, which is what

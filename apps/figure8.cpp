@@ -1,0 +1,240 @@
+// The paper's Fig. 8 drawn with gnuplot, shared by `graspsynth analyze --plot` and
+// `graspsynth run`.
+
+#include "apps/figure8.hpp"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <stdlib.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "common/atomic_file.hpp"
+#include "common/errors.hpp"
+
+extern char** environ;
+
+namespace graspsynth::apps {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kDeg = M_PI / 180.0;
+
+// A folder under the system's temporary folder, removed with everything in it on destruction.
+class TempFolder {
+ public:
+  TempFolder() {
+    std::string pattern = (fs::temp_directory_path() / "graspsynth-plot-XXXXXX").string();
+    if (::mkdtemp(pattern.data()) == nullptr) {
+      throw InputError("cannot create a temporary folder '" + pattern +
+                       "': " + std::strerror(errno));
+    }
+    path_ = pattern;
+  }
+  ~TempFolder() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  TempFolder(const TempFolder&) = delete;
+  TempFolder& operator=(const TempFolder&) = delete;
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+void WriteText(const fs::path& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+  if (!out) throw InputError("cannot write '" + path.string() + "'");
+}
+
+std::string ReadText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Runs `program script` with stdout and stderr sent to `log`; throws with a clear message when
+// the program cannot be started or fails.
+void RunGnuplot(const std::string& program, const fs::path& script, const fs::path& log) {
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  std::string arg0 = program;
+  std::string arg1 = script.string();
+  char* argv[] = {arg0.data(), arg1.data(), nullptr};
+  pid_t pid = 0;
+  const int error = ::posix_spawnp(&pid, program.c_str(), &actions, nullptr, argv, environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (error != 0) {
+    throw InputError("--plot needs gnuplot, but '" + program + "' could not be started (" +
+                     std::strerror(error) +
+                     "); install it (Debian: apt-get install gnuplot-nox) or name the program "
+                     "with --gnuplot");
+  }
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR)
+      throw InputError(std::string("waiting for gnuplot: ") + std::strerror(errno));
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    throw InputError("gnuplot ('" + program + "') failed on '" + script.string() + "':\n" +
+                     ReadText(log));
+  }
+}
+
+std::string Num(double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), "%.9g", value);
+  return buffer;
+}
+
+// The paper's symbols of Table I (*, o, x, +, *, square, diamond, triangle down, triangle up) as
+// gnuplot point types, with the second * made a filled circle so that all nine differ; more
+// orientations reuse them cyclically.
+int PointType(size_t index) {
+  constexpr int kTypes[] = {3, 6, 2, 1, 7, 4, 12, 10, 8, 5, 9, 11, 13, 14, 15};
+  return kTypes[index % (sizeof(kTypes) / sizeof(kTypes[0]))];
+}
+
+}  // namespace
+
+// The paper's Fig. 8 in the object-centred frame: mean pre-grasp and grasp positions per
+// orientation, the wrist line, the grasp region, the object outline at a few orientations.
+void DrawFigure8(const DemonstrationAnalysis& analysis, const SceneModel& scene,
+                 const std::string& gnuplot, const fs::path& svg_path) {
+  const TempFolder temp;
+  const fs::path dir = temp.path();
+  if (dir.string().find('\'') != std::string::npos) {
+    throw InputError("--plot: the temporary folder '" + dir.string() +
+                     "' has a quote in its name, which gnuplot cannot take; set TMPDIR");
+  }
+  const std::vector<OrientationStats>& rows = analysis.table.orientations;
+
+  // the object: the body circle, and the handle at the first, middle and last orientation.
+  std::string object;
+  const ObjectModel& pan = scene.object;
+  for (int i = 0; i <= 72; ++i) {
+    const double a = 2.0 * M_PI * i / 72.0;
+    object += Num(pan.body_radius * std::cos(a)) + " " + Num(pan.body_radius * std::sin(a)) + "\n";
+  }
+  std::vector<double> handle_thetas;
+  if (rows.empty()) {
+    handle_thetas = {20.0, 60.0, 100.0};
+  } else {
+    handle_thetas = {rows.front().theta_deg};
+    if (rows.size() > 2) handle_thetas.push_back(rows[rows.size() / 2].theta_deg);
+    if (rows.size() > 1) handle_thetas.push_back(rows.back().theta_deg);
+  }
+  std::string labels;
+  for (double theta_deg : handle_thetas) {
+    const double phi = theta_deg * kDeg + pan.handle_offset;
+    const Eigen::Vector2d u(std::cos(phi), std::sin(phi));
+    const Eigen::Vector2d v(-u.y(), u.x());
+    const double h = 0.5 * pan.handle_width;
+    const Eigen::Vector2d corners[] = {
+        pan.handle_start_radius * u + h * v, pan.handle_end_radius * u + h * v,
+        pan.handle_end_radius * u - h * v, pan.handle_start_radius * u - h * v,
+        pan.handle_start_radius * u + h * v};
+    object += "\n";
+    for (const Eigen::Vector2d& c : corners) object += Num(c.x()) + " " + Num(c.y()) + "\n";
+    const Eigen::Vector2d tip = (pan.handle_end_radius + 0.12) * u;
+    labels += "set label 'handle θ = " + Num(theta_deg) + "' at " + Num(tip.x()) + "," +
+              Num(tip.y()) + " font ',9' textcolor rgb '#606060' center\n";
+  }
+  WriteText(dir / "object.dat", object);
+
+  // the grasp region boundary (its horizontal section).
+  std::string region;
+  const double r = analysis.options.segmentation.region.radius;
+  for (int i = 0; i <= 180; ++i) {
+    const double a = 2.0 * M_PI * i / 180.0;
+    region += Num(r * std::cos(a)) + " " + Num(r * std::sin(a)) + "\n";
+  }
+  WriteText(dir / "region.dat", region);
+
+  // one block per orientation: pre-grasp mean, then grasp mean.
+  std::string means;
+  for (const OrientationStats& row : rows) {
+    means += Num(row.pregrasp.mean_xy.x()) + " " + Num(row.pregrasp.mean_xy.y()) + " " +
+             Num(row.grasp.mean_xy.x()) + " " + Num(row.grasp.mean_xy.y()) + "\n\n\n";
+  }
+  WriteText(dir / "means.dat", means.empty() ? std::string("\n") : means);
+
+  // the wrist line over the span of the fitted points, 5 cm beyond each end.
+  std::string line_data;
+  const WristLineResult& line = analysis.line;
+  if (line.usable()) {
+    double lo = 0.0, hi = 0.0;
+    for (size_t i = 0; i < analysis.fit_points.size(); ++i) {
+      const double s = line.line.direction.dot(analysis.fit_points[i] - line.line.point);
+      lo = i == 0 ? s : std::min(lo, s);
+      hi = i == 0 ? s : std::max(hi, s);
+    }
+    for (double s : {lo - 0.05, hi + 0.05}) {
+      const Eigen::Vector2d p = line.line.point + s * line.line.direction;
+      line_data += Num(p.x()) + " " + Num(p.y()) + "\n";
+    }
+    WriteText(dir / "line.dat", line_data);
+  }
+
+  const fs::path svg = dir / "figure.svg";
+  // the data files are named relative to the folder, which the script changes to first.
+  std::string script = "cd '" + dir.string() + "'\n";
+  script += "set encoding utf8\n";
+  script += "set terminal svg size 900,800 enhanced font 'Helvetica,12' background rgb 'white'\n";
+  script += "set output 'figure.svg'\n";
+  script +=
+      "set title 'Average pre-grasp and grasp wrist positions per object orientation "
+      "(top view, object-centred)'\n";
+  script += "set xlabel 'x (m)'\nset ylabel 'y (m)'\n";
+  script += "set size ratio -1\nset grid lc rgb '#dddddd'\n";
+  script += "set key outside right top box\n";
+  script += labels;
+  script +=
+      "plot 'region.dat'"
+      " using 1:2 with lines dt 2 lc rgb '#9090c0' title 'grasp region (" +
+      Num(r) + " m)', \\\n";
+  script += "     'object.dat' using 1:2 with lines lw 2 lc rgb '#606060' title 'object', \\\n";
+  if (!line_data.empty()) {
+    script +=
+        "     'line.dat' using 1:2 with lines lw 2 lc rgb '#2ca02c' title 'wrist line (fit)', \\\n";
+  }
+  script += "     keyentry with points pt 7 lc rgb '#1f77b4' title 'pre-grasp (mean)', \\\n";
+  script += "     keyentry with points pt 7 lc rgb '#d62728' title 'grasp (mean)'";
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const std::string pt = std::to_string(PointType(i));
+    const std::string block = "'means.dat' index " + std::to_string(i);
+    script += ", \\\n     " + block + " using 1:2 with points pt " + pt +
+              " ps 1.4 lc rgb '#1f77b4' notitle";
+    script += ", \\\n     " + block + " using 3:4 with points pt " + pt +
+              " ps 1.4 lc rgb '#d62728' title 'θ = " + Num(rows[i].theta_deg) + "'";
+  }
+  script += "\nunset output\n";
+  const fs::path script_path = dir / "figure8.gp";
+  WriteText(script_path, script);
+
+  RunGnuplot(gnuplot, script_path, dir / "gnuplot.log");
+  const std::string contents = ReadText(svg);
+  if (contents.empty()) {
+    throw InputError("gnuplot ('" + gnuplot + "') wrote no SVG:\n" + ReadText(dir / "gnuplot.log"));
+  }
+  WriteFileAtomically(svg_path, contents);
+}
+
+}  // namespace graspsynth::apps

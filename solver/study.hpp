@@ -1,0 +1,196 @@
+#pragma once
+
+/// @file
+/// The end-to-end study of `graspsynth run` (issue 6): on a folder of demonstrations, the
+/// paper's Table I analysis compared with the paper, the representative selection (the grasp
+/// library), the synthesis of a grasp for every study orientation by each study method, and
+/// the physics validation of every synthesized grasp (nominal and perturbed replays).
+///
+/// RunStudy() computes; the report builders are pure functions of its result, so the command
+/// decides where they go (the library never prints or writes files).
+///
+/// Determinism: the selection seeds each demonstration from (seed, file name) and the physics
+/// gate of each synthesis row from StudyRowSeed(seed, theta, method); every replay is
+/// independent of the thread count. Every builder but StudyReportMarkdown's timing columns is
+/// a function of those results alone, so analysis, library, synthesis JSON and CSV are the same
+/// bytes for the same options whatever `threads` is. The markdown report and StudyTimingJson
+/// carry wall-clock times.
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "learning_data/representative_selection.hpp"
+#include "simulation/simulation_model.hpp"
+#include "solver/analysis_report.hpp"
+#include "solver/synthesis.hpp"
+
+namespace graspsynth {
+
+/// `format` of the study's synthesis table (synthesis.json).
+inline constexpr std::string_view kStudySynthesisFormat = "graspsynth-study-synthesis/1";
+/// `format` of the study's timing file (timing.json).
+inline constexpr std::string_view kStudyTimingFormat = "graspsynth-study-timing/1";
+/// Header row of the study's synthesis CSV (synthesis.csv).
+inline constexpr std::string_view kStudySynthesisCsvHeader =
+    "theta_deg,method,status,used,fallback,refined,nominal_success,nominal_outcome,trials,"
+    "successes,robustness,ci_low,ci_high,passed,epsilon,force_closure,failures";
+
+/// One synthesis method of the study: how the grasping motion is made, with or without the
+/// refinement.
+struct StudyMethod {
+  SynthesisMethod method = SynthesisMethod::kInterp;
+  bool refine = true;
+
+  /// "interp+refine", "line", ...: the method's name, "+refine" when refined.
+  std::string Label() const;
+};
+
+/// The stages of the study, in order.
+enum class StudyStage { kAnalysis, kSelection, kSynthesis };
+
+/// "analysis", "selection" or "synthesis".
+const char* ToString(StudyStage stage);
+
+/// Inputs of RunStudy().
+struct StudyOptions {
+  /// Folder of demonstration logs (*.csv, graspsynth-demo/1).
+  std::filesystem::path demos;
+  /// Seed of the whole study (selection and physics gates).
+  uint64_t seed = 1;
+  /// Worker threads of the replays (0: one per hardware thread). Changes no result.
+  int threads = 0;
+  /// Perturbed replays per demonstration in the representative selection, >= 1. The shipped
+  /// library uses 20; 10 keeps the default study within 10 minutes on 2 cores.
+  int selection_perturbations = 10;
+  /// Perturbed replays of each synthesized grasp's physics gate, >= 0 (0: nominal only).
+  int gate_perturbations = 10;
+  /// Success fraction the gate needs under perturbation, [0, 1].
+  double min_robustness = 0.8;
+  /// Object orientations to synthesize, deg, each finite (the study's: 20, 25, ..., 100).
+  std::vector<double> orientations = DefaultStudyOrientations();
+  /// The methods, each run at every orientation (default: interp with refinement, the line
+  /// principle with refinement).
+  std::vector<StudyMethod> methods = {{SynthesisMethod::kInterp, true},
+                                      {SynthesisMethod::kLine, true}};
+  /// Analysis settings (grasp region, wrist-line fit); commands take the region from the scene.
+  AnalysisOptions analysis;
+  /// Tolerances of the comparison with the paper's Table I.
+  PaperComparisonOptions comparison;
+
+  /// 20, 25, ..., 100 deg.
+  static std::vector<double> DefaultStudyOrientations();
+
+  /// True when every value is in range (and the nested options are valid); otherwise false
+  /// with the reason, naming the field and the value, in `why` (if given).
+  bool IsValid(std::string* why) const;
+};
+
+/// Reachability of the paper's Table I grasp wrist pose at one orientation (a cheap kinematics
+/// check of the scene: the wrist palm down across the handle at the paper's (d, eta)).
+struct ReachabilityRow {
+  double theta_deg = 0.0;      ///< deg
+  double d = 0.0;              ///< paper's grasp distance, m
+  double eta_deg = 0.0;        ///< paper's grasp polar angle, deg
+  bool reachable = false;      ///< an IK solution within the limits on the elbow-up branch
+  double psi_width_deg = 0.0;  ///< total width of the feasible arm-angle set, deg
+  double fk_error = 0.0;       ///< FK(IK) position error at the middle of the widest arc, m
+  std::string reason;          ///< why not, when unreachable
+};
+
+/// One row of the synthesis table: one orientation, one method, and its physics validation.
+struct StudyRow {
+  double theta_deg = 0.0;  ///< deg
+  std::string method;      ///< StudyMethod::Label()
+  std::string status;      ///< ToString(SynthesisStatus): "ok", "out_of_range", ...
+  std::string message;     ///< the synthesis' message when status is not "ok"
+  std::string used;        ///< method used ("interp", "line", "nearest"); empty if none
+  bool fallback = false;   ///< a method other than the requested one was used
+  std::string fallback_reason;
+  bool refined = false;   ///< the refinement ran
+  bool gate_run = false;  ///< the physics gate ran (status "ok")
+  bool nominal_success = false;
+  std::string nominal_outcome;         ///< ToString(TrialOutcome) of the nominal trial
+  std::string nominal_reason;          ///< its reason sentence
+  int trials = 0;                      ///< perturbed replays
+  int successes = 0;                   ///< of which succeeded
+  double robustness = 0.0;             ///< successes / trials (0 without replays)
+  double ci_low = 0.0, ci_high = 1.0;  ///< Wilson 95% interval
+  bool passed = false;                 ///< the physics gate passed
+  std::string gate_reason;             ///< the gate's sentence
+  double epsilon = 0.0;                ///< Ferrari-Canny epsilon of the nominal hold
+  bool force_closure = false;
+  std::string failures;      ///< perturbed failures by outcome, e.g. "dropped 2, not_lifted 1"
+  uint64_t seed = 0;         ///< seed of the gate's perturbations
+  double synthesis_s = 0.0;  ///< wall time of the synthesis (not in the deterministic files)
+  double gate_s = 0.0;       ///< wall time of the gate (not in the deterministic files)
+};
+
+/// Per-method totals of the synthesis table.
+struct StudyMethodSummary {
+  std::string method;
+  int rows = 0;                ///< orientations tried
+  int synthesized = 0;         ///< with status "ok"
+  int nominal_successes = 0;   ///< nominal trial succeeded
+  int passed = 0;              ///< passed the gate
+  int fallbacks = 0;           ///< used another method
+  double mean_robustness = 0;  ///< over the synthesized rows (0 when none)
+};
+
+/// Everything the study found.
+struct StudyResult {
+  StudyOptions options;
+  DemonstrationAnalysis analysis;
+  std::vector<PaperComparisonRow> comparison;
+  SelectionResult selection;
+  std::vector<ReachabilityRow> reachability;
+  std::vector<StudyRow> rows;  ///< by orientation, then method in options' order
+  /// Wall time of each stage, s (analysis, selection, synthesis), and of the whole study.
+  double analysis_s = 0.0, selection_s = 0.0, synthesis_s = 0.0, total_s = 0.0;
+  /// The Fig. 8 image file name relative to the report ("" when it was not drawn), and why not.
+  std::string figure;
+  std::string figure_note;
+};
+
+/// Progress of a study: the stage, steps done and their total within it, and what is being
+/// worked on. Called from worker threads, one call at a time.
+using StudyProgress =
+    std::function<void(StudyStage stage, int done, int total, const std::string& what)>;
+
+/// The seed of the physics gate of the row (theta_deg, method) in a study with `seed`.
+uint64_t StudyRowSeed(uint64_t seed, double theta_deg, const std::string& method);
+
+/// The reachability of the paper's Table I grasp wrist poses in `scene` (see ReachabilityRow).
+std::vector<ReachabilityRow> TableIReachability(const RobotModel& robot, const SceneModel& scene);
+
+/// Runs the study. Throws InputError for invalid options or a demonstration folder that cannot
+/// be read; everything that fails inside (files rejected, orientations not selected, grasps
+/// not synthesized or failing in physics) is a result.
+StudyResult RunStudy(const SimulationModel& model, const StudyOptions& options,
+                     const StudyProgress& progress = {});
+
+/// Per-method totals of `rows`, methods in the order they first appear.
+std::vector<StudyMethodSummary> SummarizeStudy(const std::vector<StudyRow>& rows);
+
+/// The synthesis table as CSV: kStudySynthesisCsvHeader, then one line per row (numbers with 17
+/// significant digits, text fields quoted when they hold a comma or a quote).
+std::string StudySynthesisCsv(const std::vector<StudyRow>& rows);
+
+/// The synthesis table as JSON (format kStudySynthesisFormat): `format`, `seed`, `orientations`
+/// [deg], `methods`, `gate` {perturbations, min_robustness}, `summary` [per method], `rows`
+/// [one per orientation and method, without wall times].
+std::string StudySynthesisJson(const StudyResult& result);
+
+/// The wall times (format kStudyTimingFormat): stages, total, per row synthesis and gate.
+std::string StudyTimingJson(const StudyResult& result);
+
+/// The report (markdown): options, Table I beside the paper with differences, Fig. 8, the wrist
+/// line and radial residuals, the kinematics check, the library, the synthesis table per
+/// orientation and method, per-method summary lines and the failure reasons.
+std::string StudyReportMarkdown(const StudyResult& result);
+
+}  // namespace graspsynth

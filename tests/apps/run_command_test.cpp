@@ -1,0 +1,186 @@
+// Tests of `graspsynth run`, the end-to-end study, through the built binary: the quick study
+// on the shipped demonstrations writes every file and gives plausible results; the outputs do
+// not depend on --threads; bad options are refused.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tests/utils/run_command.hpp"
+
+namespace graspsynth {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using ::testing::HasSubstr;
+using testing::ReadFileText;
+using testing::RunGraspsynth;
+
+const fs::path kShippedDemos = fs::path(GRASPSYNTH_SOURCE_DIR) / "learning_data" / "demos";
+
+class RunCommand : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("graspsynth_run_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // A copy of the shipped demonstrations of the orientations `thetas` (file prefix thetaNNN).
+  fs::path DemoSubset(const std::vector<int>& thetas) const {
+    const fs::path demos = dir_ / "demos";
+    fs::create_directories(demos);
+    for (const fs::directory_entry& e : fs::directory_iterator(kShippedDemos)) {
+      const std::string name = e.path().filename().string();
+      for (int theta : thetas) {
+        char prefix[16];
+        std::snprintf(prefix, sizeof(prefix), "theta%03d_", theta);
+        if (name.rfind(prefix, 0) == 0) fs::copy_file(e.path(), demos / name);
+      }
+    }
+    return demos;
+  }
+
+  fs::path dir_;
+};
+
+int CountLines(const std::string& text) {
+  int n = 0;
+  for (char c : text) n += c == '\n';
+  return n;
+}
+
+TEST_F(RunCommand, QuickStudyWritesEveryFileWithPlausibleResults) {
+  const fs::path out = dir_ / "study";
+#ifdef GRASPSYNTH_SANITIZED
+  // under the sanitizers: one orientation's demonstrations, one query, one replay each.
+  const std::string demos = DemoSubset({40}).string();
+  const std::string args = "run --quick --orientations 40 --perturb 1 --select-perturb 1 --demos ";
+  const int orientations = 1;
+#else
+  const std::string demos = kShippedDemos.string();
+  const std::string args = "run --quick --demos ";
+  const int orientations = 4;
+#endif
+  const testing::CommandOutput r =
+      RunGraspsynth(args + demos + " --threads 2 --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+
+  // every stage ran to its end (progress lines "stage: N/N" on stderr when not a terminal).
+  for (const char* stage : {"analysis: ", "selection: ", "synthesis: "}) {
+    const size_t at = r.err.rfind(stage);
+    ASSERT_NE(at, std::string::npos) << stage << "\n" << r.err;
+    const std::string line = r.err.substr(at, r.err.find('\n', at) - at);
+    int done = -1, total = -2;
+    ASSERT_EQ(std::sscanf(line.c_str() + std::string(stage).size(), "%d/%d", &done, &total), 2)
+        << line;
+    EXPECT_EQ(done, total) << line;
+  }
+
+  // every file, valid against its format.
+  const json analysis = json::parse(ReadFileText(out / "analysis.json"));
+  EXPECT_EQ(analysis["format"], "graspsynth-analysis/1");
+  const json library = json::parse(ReadFileText(out / "library.json"));
+  EXPECT_EQ(library["format"], "graspsynth-library/1");
+  EXPECT_GE(library["entries"].size(), 1u);
+  const json synthesis = json::parse(ReadFileText(out / "synthesis.json"));
+  EXPECT_EQ(synthesis["format"], "graspsynth-study-synthesis/1");
+  ASSERT_EQ(synthesis["rows"].size(), 2u * orientations);
+  const json timing = json::parse(ReadFileText(out / "timing.json"));
+  EXPECT_EQ(timing["format"], "graspsynth-study-timing/1");
+  const std::string csv = ReadFileText(out / "synthesis.csv");
+  EXPECT_EQ(csv.substr(0, csv.find('\n')),
+            std::string("theta_deg,method,status,used,fallback,refined,"
+                        "nominal_success,nominal_outcome,trials,successes,"
+                        "robustness,ci_low,ci_high,passed,epsilon,"
+                        "force_closure,failures"));
+  EXPECT_EQ(CountLines(csv), 1 + 2 * orientations);
+  EXPECT_THAT(ReadFileText(out / "fig8.svg"), HasSubstr("<svg"));
+  const std::string report = ReadFileText(out / "report.md");
+  EXPECT_THAT(report, HasSubstr("## Synthesis and physics validation"));
+  EXPECT_THAT(report, HasSubstr("![Fig. 8"));
+  EXPECT_THAT(report, HasSubstr("interp+refine: "));
+  EXPECT_THAT(report, HasSubstr("line+refine: "));
+
+  // plausible outcomes: every query synthesized (a one-orientation library has no line
+  // model), at least half of the grasps hold in the nominal trial, and the perturbed replays
+  // run after a nominal success (the gate skips them after a failure).
+  int nominal = 0;
+  for (const json& row : synthesis["rows"]) {
+#ifdef GRASPSYNTH_SANITIZED
+    if (row["method"] == "line+refine") continue;
+#endif
+    EXPECT_EQ(row["status"], "ok") << row.dump();
+    const bool success = row["nominal"]["success"].get<bool>();
+    nominal += success ? 1 : 0;
+    const int trials = row["robustness"]["trials"];
+    if (success) {
+      EXPECT_EQ(trials, synthesis["gate"]["perturbations"].get<int>()) << row.dump();
+    }
+    EXPECT_LE(row["robustness"]["successes"].get<int>(), trials);
+    EXPECT_EQ(row["passed"].get<bool>(),
+              success && row["robustness"]["score"].get<double>() >= 0.8 - 1e-12)
+        << row.dump();
+  }
+  EXPECT_GE(nominal, orientations) << "of " << 2 * orientations;
+  for (const json& s : synthesis["summary"]) {
+    EXPECT_EQ(s["rows"], orientations);
+    EXPECT_GE(s["mean_robustness"].get<double>(), 0.0);
+    EXPECT_LE(s["mean_robustness"].get<double>(), 1.0);
+  }
+#ifndef GRASPSYNTH_SANITIZED
+  // Table I of the shipped demonstrations matches the paper's (within 5 mm / 2 deg).
+  EXPECT_THAT(r.out, HasSubstr("Table I 9 of 9 orientations within"));
+  EXPECT_EQ(library["entries"].size(), 9u);
+#endif
+  EXPECT_THAT(r.out, HasSubstr("interp+refine: "));
+  EXPECT_THAT(r.out, HasSubstr("nominal successes"));
+}
+
+TEST_F(RunCommand, SameSeedGivesTheSameFilesWhateverTheThreads) {
+  // one orientation's demonstrations: the selection, and the gate of the grasp at 40 deg
+  // (the 40 deg demonstration itself) with perturbed replays spread over the threads.
+  const std::string demos = DemoSubset({40}).string();
+  std::vector<fs::path> outs;
+  for (int threads : {1, 2}) {
+    outs.push_back(dir_ / ("out" + std::to_string(threads)));
+    const testing::CommandOutput r = RunGraspsynth(
+        "run --orientations 40 --perturb 3 --select-perturb 2 --seed 7 --demos " + demos +
+        " --threads " + std::to_string(threads) + " --out " + outs.back().string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  for (const char* file :
+       {"analysis.json", "library.json", "synthesis.json", "synthesis.csv", "fig8.svg"}) {
+    const std::string a = ReadFileText(outs[0] / file);
+    EXPECT_FALSE(a.empty()) << file;
+    EXPECT_EQ(a, ReadFileText(outs[1] / file)) << file;
+  }
+}
+
+TEST_F(RunCommand, BadOptionsAreRefusedNamingTheValue) {
+  const testing::CommandOutput bad_theta =
+      RunGraspsynth("run --orientations 40,abc --out " + (dir_ / "o").string());
+  EXPECT_EQ(bad_theta.exit_code, 2);
+  EXPECT_THAT(bad_theta.err, HasSubstr("'abc'"));
+  const testing::CommandOutput twice =
+      RunGraspsynth("run --orientations 40,40 --out " + (dir_ / "o").string());
+  EXPECT_EQ(twice.exit_code, 2);
+  EXPECT_THAT(twice.err, HasSubstr("40 deg is given twice"));
+  const testing::CommandOutput missing =
+      RunGraspsynth("run --demos /nonexistent/demos --out " + (dir_ / "o").string());
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_THAT(missing.err, HasSubstr("/nonexistent/demos"));
+  EXPECT_FALSE(fs::exists(dir_ / "o"));
+}
+
+}  // namespace
+}  // namespace graspsynth

@@ -1,0 +1,240 @@
+// Tests of the study's options and report builders (solver/study.hpp) on hand-made results;
+// the study itself runs end to end in tests/apps/run_command_test.cpp.
+
+#include "solver/study.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "kinematics/robot_description.hpp"
+#include "kinematics/scene_model.hpp"
+
+namespace graspsynth {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+StudyOptions ValidOptions() {
+  StudyOptions o;
+  o.demos = "demos";
+  return o;
+}
+
+std::string WhyInvalid(const StudyOptions& o) {
+  std::string why;
+  EXPECT_FALSE(o.IsValid(&why));
+  return why;
+}
+
+TEST(StudyOptions, DefaultsAreTheStudysOrientationsAndMethods) {
+  const StudyOptions o = ValidOptions();
+  std::string why;
+  EXPECT_TRUE(o.IsValid(&why)) << why;
+  ASSERT_EQ(o.orientations.size(), 17u);
+  EXPECT_EQ(o.orientations.front(), 20.0);
+  EXPECT_EQ(o.orientations[1], 25.0);
+  EXPECT_EQ(o.orientations.back(), 100.0);
+  ASSERT_EQ(o.methods.size(), 2u);
+  EXPECT_EQ(o.methods[0].Label(), "interp+refine");
+  EXPECT_EQ(o.methods[1].Label(), "line+refine");
+  EXPECT_EQ((StudyMethod{SynthesisMethod::kNearest, false}.Label()), "nearest");
+}
+
+TEST(StudyOptions, RejectsBadValuesNamingTheFieldAndValue) {
+  StudyOptions o = ValidOptions();
+  o.demos.clear();
+  EXPECT_THAT(WhyInvalid(o), HasSubstr("demos"));
+  o = ValidOptions();
+  o.selection_perturbations = 0;
+  EXPECT_THAT(WhyInvalid(o), HasSubstr("selection_perturbations: 0"));
+  o = ValidOptions();
+  o.gate_perturbations = -1;
+  EXPECT_THAT(WhyInvalid(o), HasSubstr("gate_perturbations: -1"));
+  o = ValidOptions();
+  o.threads = -2;
+  EXPECT_THAT(WhyInvalid(o), HasSubstr("threads: -2"));
+  o = ValidOptions();
+  o.min_robustness = 1.5;
+  EXPECT_THAT(WhyInvalid(o), HasSubstr("min_robustness: 1.5"));
+  o = ValidOptions();
+  o.orientations = {40, NAN};
+  EXPECT_THAT(WhyInvalid(o), HasSubstr("orientations[1]: nan"));
+  o = ValidOptions();
+  o.orientations = {40, 45, 40};
+  EXPECT_THAT(WhyInvalid(o), HasSubstr("orientations[2]: 40 deg is given twice"));
+  o = ValidOptions();
+  o.orientations.clear();
+  EXPECT_THAT(WhyInvalid(o), HasSubstr("orientations"));
+  o = ValidOptions();
+  o.methods = {{SynthesisMethod::kLine, true}, {SynthesisMethod::kLine, true}};
+  EXPECT_THAT(WhyInvalid(o), HasSubstr("methods[1]: line+refine"));
+  o = ValidOptions();
+  o.analysis.segmentation.region.radius = -1.0;
+  EXPECT_THAT(WhyInvalid(o), HasSubstr("analysis"));
+}
+
+TEST(StudyRowSeed, DependsOnSeedThetaAndMethodOnly) {
+  EXPECT_EQ(StudyRowSeed(7, 45, "interp+refine"), StudyRowSeed(7, 45, "interp+refine"));
+  EXPECT_NE(StudyRowSeed(7, 45, "interp+refine"), StudyRowSeed(8, 45, "interp+refine"));
+  EXPECT_NE(StudyRowSeed(7, 45, "interp+refine"), StudyRowSeed(7, 45.5, "interp+refine"));
+  EXPECT_NE(StudyRowSeed(7, 45, "interp+refine"), StudyRowSeed(7, 45, "line+refine"));
+}
+
+TEST(TableIReachability, EveryPaperGraspIsReachableInTheShippedScene) {
+  const RobotModel robot = LoadRobotModel(DefaultRobotDescriptionPath());
+  const SceneModel scene = LoadSceneModel(DefaultSceneModelPath());
+  const std::vector<ReachabilityRow> rows = TableIReachability(robot, scene);
+  ASSERT_EQ(rows.size(), 9u);
+  for (const ReachabilityRow& r : rows) {
+    EXPECT_TRUE(r.reachable) << r.theta_deg << ": " << r.reason;
+    EXPECT_GT(r.psi_width_deg, 0.0);
+    EXPECT_LT(r.fk_error, 1e-9);
+  }
+}
+
+// A hand-made result: two orientations, two methods; 45 deg line fails in the nominal trial,
+// 60 deg interp is out of range, and a failure reason has a comma and a pipe.
+StudyResult HandMadeResult() {
+  StudyResult r;
+  r.options = ValidOptions();
+  r.options.orientations = {45, 60};
+  r.options.gate_perturbations = 4;
+  r.options.seed = 42;
+  StudyRow ok;
+  ok.theta_deg = 45;
+  ok.method = "interp+refine";
+  ok.status = "ok";
+  ok.used = "nearest";
+  ok.fallback = true;
+  ok.fallback_reason = "sides differ, so the nearer demonstration was turned";
+  ok.refined = true;
+  ok.gate_run = true;
+  ok.nominal_success = true;
+  ok.nominal_outcome = "success";
+  ok.trials = 4;
+  ok.successes = 4;
+  ok.robustness = 1.0;
+  ok.ci_low = 0.51;
+  ok.ci_high = 1.0;
+  ok.passed = true;
+  ok.gate_reason = "passed: nominal success, robustness 4/4";
+  ok.epsilon = 0.0123;
+  ok.force_closure = true;
+  ok.seed = 99;
+  ok.synthesis_s = 0.002;
+  ok.gate_s = 1.5;
+  StudyRow dropped = ok;
+  dropped.method = "line+refine";
+  dropped.used = "line";
+  dropped.fallback = false;
+  dropped.fallback_reason.clear();
+  dropped.nominal_success = false;
+  dropped.nominal_outcome = "dropped";
+  dropped.nominal_reason = "lifted 6 cm, then slipped | fell";
+  dropped.successes = 1;
+  dropped.robustness = 0.25;
+  dropped.passed = false;
+  dropped.failures = "dropped 2, not_lifted 1";
+  dropped.gate_reason = "failed: nominal dropped";
+  StudyRow out_of_range;
+  out_of_range.theta_deg = 60;
+  out_of_range.method = "interp+refine";
+  out_of_range.status = "out_of_range";
+  out_of_range.message = "60 deg is outside the library's range [20, 50]";
+  StudyRow line60 = ok;
+  line60.theta_deg = 60;
+  line60.method = "line+refine";
+  line60.used = "line";
+  line60.fallback = false;
+  r.rows = {ok, dropped, out_of_range, line60};
+  r.total_s = 12.5;
+  r.figure = "fig8.svg";
+  return r;
+}
+
+TEST(StudySummary, CountsPerMethodInOrder) {
+  const std::vector<StudyMethodSummary> s = SummarizeStudy(HandMadeResult().rows);
+  ASSERT_EQ(s.size(), 2u);
+  EXPECT_EQ(s[0].method, "interp+refine");
+  EXPECT_EQ(s[0].rows, 2);
+  EXPECT_EQ(s[0].synthesized, 1);
+  EXPECT_EQ(s[0].nominal_successes, 1);
+  EXPECT_EQ(s[0].passed, 1);
+  EXPECT_EQ(s[0].fallbacks, 1);
+  EXPECT_DOUBLE_EQ(s[0].mean_robustness, 1.0);
+  EXPECT_EQ(s[1].method, "line+refine");
+  EXPECT_EQ(s[1].synthesized, 2);
+  EXPECT_EQ(s[1].nominal_successes, 1);
+  EXPECT_EQ(s[1].passed, 1);
+  EXPECT_DOUBLE_EQ(s[1].mean_robustness, 0.625);
+}
+
+TEST(StudySynthesisCsv, HasTheHeaderAndOneQuotedSafeLinePerRow) {
+  const std::string csv = StudySynthesisCsv(HandMadeResult().rows);
+  std::istringstream in(csv);
+  std::string line;
+  std::vector<std::string> lines;
+  while (std::getline(in, line)) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 5u);
+  EXPECT_EQ(lines[0], kStudySynthesisCsvHeader);
+  EXPECT_EQ(lines[1].rfind("45,interp+refine,ok,nearest,1,1,1,success,4,4,1,", 0), 0u) << lines[1];
+  // a field with a comma is quoted, so the row keeps the header's column count.
+  EXPECT_THAT(lines[2], HasSubstr(",\"dropped 2, not_lifted 1\""));
+  EXPECT_EQ(lines[3].rfind("60,interp+refine,out_of_range,,0,", 0), 0u) << lines[3];
+  EXPECT_THAT(csv, Not(HasSubstr("1.5")));  // no wall times in the deterministic table
+}
+
+TEST(StudySynthesisJson, HasTheFormatSummaryAndRowsWithoutWallTimes) {
+  const nlohmann::json j = nlohmann::json::parse(StudySynthesisJson(HandMadeResult()));
+  EXPECT_EQ(j["format"], "graspsynth-study-synthesis/1");
+  EXPECT_EQ(j["seed"], 42);
+  EXPECT_EQ(j["gate"]["perturbations"], 4);
+  EXPECT_EQ(j["orientations_deg"], nlohmann::json({45.0, 60.0}));
+  ASSERT_EQ(j["rows"].size(), 4u);
+  EXPECT_EQ(j["rows"][1]["nominal"]["outcome"], "dropped");
+  EXPECT_EQ(j["rows"][1]["robustness"]["successes"], 1);
+  EXPECT_EQ(j["rows"][2]["status"], "out_of_range");
+  EXPECT_FALSE(j["rows"][0].contains("synthesis_s"));
+  EXPECT_EQ(j["summary"][1]["method"], "line+refine");
+  EXPECT_EQ(j["summary"][1]["passed"], 1);
+  const nlohmann::json t = nlohmann::json::parse(StudyTimingJson(HandMadeResult()));
+  EXPECT_EQ(t["format"], "graspsynth-study-timing/1");
+  EXPECT_DOUBLE_EQ(t["total_s"].get<double>(), 12.5);
+  EXPECT_DOUBLE_EQ(t["rows"][0]["gate_s"].get<double>(), 1.5);
+}
+
+TEST(StudyReportMarkdown, StatesTheHeadlinesTablesAndFailureReasons) {
+  const std::string md = StudyReportMarkdown(HandMadeResult());
+  EXPECT_THAT(md, HasSubstr("# graspsynth study"));
+  EXPECT_THAT(md, HasSubstr("interp+refine: 1/2 nominal successes, 1/2 passed the gate"));
+  EXPECT_THAT(md, HasSubstr("line+refine: 1/2 nominal successes"));
+  EXPECT_THAT(md, HasSubstr("![Fig. 8"));
+  EXPECT_THAT(md, HasSubstr("(fig8.svg)"));
+  // Table I beside the paper: every paper orientation is listed, ours missing here.
+  EXPECT_THAT(md, HasSubstr("Table I: 0 of 9"));
+  // the synthesis table: the fallback, the failed nominal trial, the out-of-range query.
+  EXPECT_THAT(md, HasSubstr("| 45 | interp+refine | nearest (fallback) | success | 4/4 |"));
+  EXPECT_THAT(md, HasSubstr("| 45 | line+refine | line | **dropped** | 1/4 |"));
+  EXPECT_THAT(md, HasSubstr("| 60 | interp+refine | **out_of_range** |"));
+  // the reasons of every shortfall, with the pipe escaped.
+  EXPECT_THAT(md, HasSubstr("45 deg: nominal trial dropped: lifted 6 cm, then slipped \\| fell"));
+  EXPECT_THAT(md, HasSubstr("60 deg: not synthesized (out_of_range): 60 deg is outside"));
+  EXPECT_THAT(md, HasSubstr("sides differ, so the nearer demonstration was turned"));
+}
+
+TEST(StudyReportMarkdown, SaysWhyFig8IsMissing) {
+  StudyResult r = HandMadeResult();
+  r.figure.clear();
+  r.figure_note = "gnuplot could not be started";
+  const std::string md = StudyReportMarkdown(r);
+  EXPECT_THAT(md, Not(HasSubstr("![Fig. 8")));
+  EXPECT_THAT(md, HasSubstr("Not drawn: gnuplot could not be started"));
+}
+
+}  // namespace
+}  // namespace graspsynth
