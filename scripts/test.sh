@@ -20,6 +20,6 @@ export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 # -O1 -g1 (line tables only): the sanitizers' usual level, and about half the compile time of
 # -O2 -g on this template-heavy code (Eigen, CGAL, Ceres); reports still name file and line.
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGRASPSYNTH_SANITIZE=ON \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DGRASPSYNTH_BUILD_BENCHMARKS=OFF
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DGRASPSYNTH_BUILD_BENCHMARKS=OFF
 cmake --build build-asan
 ctest --test-dir build-asan --output-on-failure -j "$jobs"
