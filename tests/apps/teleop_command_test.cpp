@@ -124,10 +124,10 @@ void ExpectRecordedAgain(const DemoLog& original, const std::string& theta_deg,
   ASSERT_TRUE(fs::exists(dir / "port")) << "the server did not start";
   const std::string port = testing::ReadFileText(dir / "port");
   // slower under the sanitizers, so that the server keeps its rate.
-  const std::string speed = testing::Scaled(1, 0) == 1 ? "1" : "0.5";
+  const double speed = testing::Scaled(1, 0) == 1 ? 1.0 : 0.5;
   const testing::CommandOutput client =
       RunGraspsynth("teleop-client --replay " + (dir / "original.csv").string() + " --port " +
-                    port + " --speed " + speed + " --linger 1.5");
+                    port + " --speed " + (speed == 1.0 ? "1" : "0.5") + " --linger 1.5");
   EXPECT_EQ(client.exit_code, 0) << client.err;
   EXPECT_EQ(WaitFor(server, 60.0), 0);
 
@@ -154,7 +154,8 @@ void ExpectRecordedAgain(const DemoLog& original, const std::string& theta_deg,
   const size_t g1 = FindEvent(recorded, DemoEvent::kGrasp).value();
   const DemoSample& a = original.samples[g0];
   const DemoSample& b = recorded.samples[g1];
-  EXPECT_NEAR(b.t, a.t, 0.1);
+  // the client plays the log at `speed`, so the recorded trial runs 1 / speed times as long.
+  EXPECT_NEAR(b.t, a.t / speed, 0.1 / speed);
   EXPECT_LT((b.p_WH - a.p_WH).norm(), 0.01) << b.p_WH.transpose() << " vs " << a.p_WH.transpose();
   EXPECT_LT(AngleBetween(b.q_WH, a.q_WH), 2.0 * M_PI / 180.0);
   EXPECT_LT((b.f - a.f).cwiseAbs().maxCoeff(), 0.05);
