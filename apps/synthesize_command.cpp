@@ -24,6 +24,8 @@ struct SynthesizeOptions {
   std::string library;
   double theta = NAN;
   std::string method = "interp";
+  std::string reach = "auto";
+  double clearance_margin = 0.005;
   bool no_refine = false;
   std::string start;
   uint64_t seed = PhysicsGateOptions{}.seed;
@@ -73,6 +75,8 @@ int RunSynthesize(const SynthesizeOptions& o) {
   SynthesisOptions so;
   so.method = method;
   so.refine = !o.no_refine;
+  so.reach_method = ParseReachMethod(o.reach);
+  so.refinement.clearance_margin = o.clearance_margin;
   if (!o.start.empty()) so.start = ParseStart(o.start);
   CollisionData data(model.collision());
   const SynthesisResult s = SynthesizeGrasp(model, o.theta, so, &data);
@@ -90,6 +94,7 @@ int RunSynthesize(const SynthesizeOptions& o) {
   std::cerr << "synthesized theta " << o.theta << " deg by " << ToString(s.used)
             << (s.fallback ? " (fallback: " + s.fallback_reason + ")" : std::string()) << ": "
             << s.trajectory.samples.size() << " samples, " << s.trajectory.duration() << " s; "
+            << ToString(s.reach_used) << " reach (" << s.reach_reason << "); "
             << "generate " << s.generate_s * 1e3 << " ms, refine " << s.refine_s * 1e3
             << " ms, joints " << s.joints_s * 1e3 << " ms\n";
   if (s.refined) std::cerr << "refinement: " << s.refinement.BriefReport() << "\n";
@@ -138,6 +143,16 @@ void AddSynthesizeCommand(CLI::App& app, int* exit_code) {
       ->check(CLI::IsMember({"interp", "line", "nearest"}))
       ->capture_default_str();
   cmd->add_flag("--no-refine", opts->no_refine, "Skip the Ceres and NLopt refinement");
+  cmd->add_option("--reach", opts->reach,
+                  "spline (the paper's Cartesian spline), joint (minimum-jerk joint move to the "
+                  "pre-grasp configuration) or auto (the spline unless it passes within 1 cm of "
+                  "the workspace's edge)")
+      ->check(CLI::IsMember({"spline", "joint", "auto"}))
+      ->capture_default_str();
+  cmd->add_option("--clearance-margin", opts->clearance_margin,
+                  "The refinement's clearance of hand and arm from object and table along the "
+                  "approach, m")
+      ->capture_default_str();
   cmd->add_option("--start", opts->start,
                   "Start arm configuration q1,...,q7 in radians (default: the rest pose for the "
                   "grasp orientation)");

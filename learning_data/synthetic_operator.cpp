@@ -16,6 +16,7 @@
 #include "common/errors.hpp"
 #include "kinematics/hand_model.hpp"
 #include "learning_data/demo_replay.hpp"
+#include "motion/reach.hpp"
 #include "simulation/random.hpp"
 #include "simulation/trial.hpp"
 
@@ -25,11 +26,6 @@ namespace {
 constexpr double kDeg = M_PI / 180.0;
 constexpr int kMaxAttempts = 5;
 using json = nlohmann::ordered_json;
-
-double MinimumJerk(double u) {
-  u = std::clamp(u, 0.0, 1.0);
-  return u * u * u * (10.0 - 15.0 * u + 6.0 * u * u);
-}
 
 // One sub-movement of the wrist and fingers: minimum-jerk in position, slerp in orientation,
 // a linear finger blend on the same profile, and a bow (offset * sin(pi s)) off the straight

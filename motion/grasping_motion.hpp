@@ -14,10 +14,10 @@ namespace graspsynth {
 
 /// One waypoint of a grasping motion.
 struct MotionWaypoint {
-  double t = 0.0;                                         ///< s, time since the pre-grasp pose
-  Eigen::Vector3d p_WH = Eigen::Vector3d::Zero();         ///< wrist (hand mount) position, world, m
+  double t = 0.0;                                  ///< s, time since the pre-grasp pose
+  Eigen::Vector3d p_WH = Eigen::Vector3d::Zero();  ///< wrist (hand mount) position, world, m
   Eigen::Quaterniond q_WH = Eigen::Quaterniond::Identity();  ///< wrist orientation, unit
-  HandVector f = HandVector::Zero();                      ///< finger joints f0..f15, rad
+  HandVector f = HandVector::Zero();                         ///< finger joints f0..f15, rad
 };
 
 /// A grasping motion: pre-grasp first, grasp last, times non-decreasing from 0.
@@ -25,7 +25,7 @@ struct GraspingMotion {
   double theta = 0.0;                              ///< object orientation, rad
   Eigen::Vector3d p_WO = Eigen::Vector3d::Zero();  ///< object centre at rest, world, m
   std::vector<MotionWaypoint> waypoints;
-  std::string source;                              ///< provenance (file, trial), for reports
+  std::string source;  ///< provenance (file, trial), for reports
 
   /// Duration from the pre-grasp to the grasp pose, s (0 when empty).
   double duration() const { return waypoints.empty() ? 0.0 : waypoints.back().t; }

@@ -4,6 +4,7 @@
 
 #include "common/demand.hpp"
 #include "kinematics/arm_ik.hpp"
+#include "motion/reach.hpp"
 
 namespace graspsynth {
 namespace {
@@ -122,6 +123,47 @@ JointSpaceResult ToJointTrajectory(const RobotModel& robot, const CartesianPath&
   }
   result.status = JointSpaceStatus::kOk;
   return result;
+}
+
+bool JointReachOptions::IsValid(std::string* why) const {
+  const auto fail = [why](const char* text) {
+    if (why) *why = text;
+    return false;
+  };
+  if (!(min_duration > 0.0)) return fail("JointReachOptions::min_duration must be positive");
+  if (!(sample_period > 0.0)) return fail("JointReachOptions::sample_period must be positive");
+  if (!(velocity_scale > 0.0 && velocity_scale <= 1.0)) {
+    return fail("JointReachOptions::velocity_scale must be in (0, 1]");
+  }
+  return true;
+}
+
+std::vector<TrajectorySample> JointReach(const RobotModel& robot, const Vector7d& q_start,
+                                         const HandVector& f_start, const Vector7d& q_goal,
+                                         const HandVector& f_goal,
+                                         const JointReachOptions& options) {
+  GS_DEMAND(options.IsValid(nullptr), "invalid JointReachOptions");
+  constexpr double kPeakSlope = 1.875;  // of the minimum-jerk profile
+  const double arm_time = ((q_goal - q_start).cwiseAbs().array() /
+                           (options.velocity_scale * robot.arm.max_velocity().array()))
+                              .maxCoeff();
+  const double hand_time = ((f_goal - f_start).cwiseAbs().array() /
+                            (options.velocity_scale * robot.hand.max_velocity().array()))
+                               .maxCoeff();
+  const double duration =
+      std::max(options.min_duration, kPeakSlope * std::max(arm_time, hand_time));
+  const int n = std::max(1, static_cast<int>(std::ceil(duration / options.sample_period - 1e-9)));
+  std::vector<TrajectorySample> samples(static_cast<size_t>(n) + 1);
+  for (int k = 0; k <= n; ++k) {
+    TrajectorySample& s = samples[static_cast<size_t>(k)];
+    s.t = std::min(k * options.sample_period, duration);
+    const double u = MinimumJerk(s.t / duration);
+    s.arm = q_start + u * (q_goal - q_start);
+    s.hand = f_start + u * (f_goal - f_start);
+  }
+  samples.back().arm = q_goal;
+  samples.back().hand = f_goal;
+  return samples;
 }
 
 }  // namespace graspsynth

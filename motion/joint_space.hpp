@@ -57,6 +57,28 @@ JointSpaceResult ToJointTrajectory(const RobotModel& robot, const CartesianPath&
                                    const Vector7d& q_start, double theta_deg,
                                    const JointSpaceOptions& options = {});
 
+/// Options of the joint-space reach.
+struct JointReachOptions {
+  double min_duration = 2.0;        ///< s, the shortest reach
+  double sample_period = 1.0 / 60;  ///< s, spacing of the samples
+  /// The duration grows until no arm or hand joint exceeds this fraction of its velocity cap,
+  /// (0, 1].
+  double velocity_scale = 0.9;
+
+  bool IsValid(std::string* why) const;
+};
+
+/// A reach in joint space: every arm and hand joint from (q_start, f_start) to (q_goal,
+/// f_goal) on the same minimum-jerk profile, so the arm never leaves the box of its joint
+/// limits and changes branch only where the two ends differ. The duration is min_duration or
+/// longer, so that each joint's peak speed (1.875 x its change / duration) stays within
+/// velocity_scale of its cap. Samples from t = 0 to the duration; the first is the start and
+/// the last the goal exactly. Aborts (GS_DEMAND) on invalid options.
+std::vector<TrajectorySample> JointReach(const RobotModel& robot, const Vector7d& q_start,
+                                         const HandVector& f_start, const Vector7d& q_goal,
+                                         const HandVector& f_goal,
+                                         const JointReachOptions& options = {});
+
 /// The arm configuration for wrist pose X_WH on `branch` with the arm angle nearest `psi`
 /// (kept when feasible, else moved into the nearest feasible arc by `margin`), 2 pi-equivalents
 /// nearest q_near. std::nullopt when the pose has no feasible arm angle on that branch.

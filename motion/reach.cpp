@@ -22,8 +22,6 @@ int SampleCount(double duration, double period) {
 
 double SmoothStep(double u) { return u * u * (3.0 - 2.0 * u); }
 
-double MinimumJerk(double u) { return u * u * u * (10.0 + u * (-15.0 + 6.0 * u)); }
-
 // Clamped cubic spline through knots (times T, points P) with end velocities v0, vm:
 // the second derivatives M solve the tridiagonal system of the clamped end conditions.
 class ClampedSpline {
@@ -263,6 +261,11 @@ CartesianPath DmpReach(const PositionDmp& dmp, const MotionWaypoint& start,
   path.back().q_WH = pregrasp.q_WH;
   path.back().f = pregrasp.f;
   return path;
+}
+
+double MinimumJerk(double u) {
+  u = std::clamp(u, 0.0, 1.0);
+  return u * u * u * (10.0 - 15.0 * u + 6.0 * u * u);
 }
 
 bool LiftOptions::IsValid(std::string* why) const {

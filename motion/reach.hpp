@@ -16,6 +16,10 @@ namespace graspsynth {
 /// Samples of a Cartesian wrist-and-finger trajectory, times strictly increasing.
 using CartesianPath = std::vector<MotionWaypoint>;
 
+/// The minimum-jerk profile 10u^3 - 15u^4 + 6u^5 of u clamped to [0, 1]: 0 and 1 at the ends with
+/// zero velocity and acceleration there; its peak slope is 1.875 (at u = 0.5).
+double MinimumJerk(double u);
+
 /// Options of the spline reach.
 struct SplineReachOptions {
   double duration = 2.0;            ///< s, from the start pose to the pre-grasp pose

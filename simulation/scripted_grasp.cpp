@@ -6,16 +6,12 @@
 #include "common/errors.hpp"
 #include "kinematics/arm_ik.hpp"
 #include "motion/joint_space.hpp"
+#include "motion/reach.hpp"
 
 namespace graspsynth {
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
-
-double MinimumJerk(double u) {
-  u = std::clamp(u, 0.0, 1.0);
-  return u * u * u * (10.0 - 15.0 * u + 6.0 * u * u);
-}
 
 Eigen::Isometry3d Pose(const Eigen::Matrix3d& R, const Eigen::Vector3d& p) {
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();

@@ -52,6 +52,7 @@ std::string GraspFileToJson(const SynthesisResult& s, const PhysicsGateResult* g
                  {"fallback", s.fallback},
                  {"reason", s.fallback_reason}};
   if (s.side != 0) j["method"]["side"] = s.side;
+  j["reach"] = {{"used", ToString(s.reach_used)}, {"reason", s.reach_reason}};
   const Bracket& b = s.bracket;
   j["bracket"] = {{"kind", ToString(b.kind)},
                   {"lower", b.lower},

@@ -10,6 +10,7 @@
 ///                  "orientation_change_deg", "sides": [s1, s2]},
 ///      "sources": [{"theta_deg", "file", "trial", "weight"}],
 ///      "start": [7 rad],
+///      "reach": {"used": "spline" | "joint", "reason": "..."},
 ///      "waypoints": [{"t", "position", "quaternion", "fingers": [16 rad]}],  the grasping
 ///                   motion from the pre-grasp to the grasp (after refinement)
 ///      "trajectory": {graspsynth-trajectory/1 document},   what `graspsynth simulate` plays

@@ -53,7 +53,166 @@ std::string Degrees(double v) {
   return s.str();
 }
 
+// True when the robot at (q, f) touches the table or the object at its rest pose.
+bool InCollision(const SynthesisModel& model, const Vector7d& q, const HandVector& f, double theta,
+                 CollisionData* data) {
+  SetState(model.collision(), q, f, theta, data);
+  CollideOptions co;
+  co.max_pairs = 1;
+  return Collide(model.collision(), GroupSet::Robot(), GroupSet::World(), data, co).collision();
+}
+
+// A reach followed by `tail` (grasping motion and lift, times from the pre-grasp) as one
+// Cartesian path and its joint trajectory.
+struct ReachAttempt {
+  ReachMethod method = ReachMethod::kSpline;
+  CartesianPath path;
+  size_t reach_samples = 0;  // path samples of the reach, pre-grasp included
+  JointSpaceResult joints;
+  bool margin_ok = false;         // spline: every reach pose survives the margin test
+  int margin_failed_sample = -1;  // spline: the first that does not
+
+  bool ok() const { return joints.status == JointSpaceStatus::kOk; }
+};
+
+// `tail` shifted to start at `t0`, its first sample (the pre-grasp) left out.
+void AppendTail(const CartesianPath& tail, double t0, CartesianPath* path) {
+  for (size_t i = 1; i < tail.size(); ++i) {
+    MotionWaypoint w = tail[i];
+    w.t += t0;
+    path->push_back(w);
+  }
+}
+
+// The first reach pose (index) that has no feasible arm angle on `branch` once the wrist moves
+// by +-margin along a world axis, or -1.
+int FirstPoseWithoutMargin(const RobotModel& robot, const CartesianPath& path, size_t count,
+                           ArmBranch branch, double margin) {
+  for (size_t i = 0; i < count; ++i) {
+    for (int axis = 0; axis < 3; ++axis) {
+      for (double sign : {-1.0, 1.0}) {
+        Eigen::Isometry3d X = PoseOf(path[i]);
+        X.translation()[axis] += sign * margin;
+        if (PsiWidth(robot, X, branch) <= 0.0) return static_cast<int>(i);
+      }
+    }
+  }
+  return -1;
+}
+
+ReachAttempt SplineReachAttempt(const RobotModel& robot, const GraspingMotion& motion,
+                                const CartesianPath& tail, const Vector7d& q_start,
+                                double theta_deg, const SynthesisOptions& options) {
+  ReachAttempt a;
+  a.method = ReachMethod::kSpline;
+  MotionWaypoint start;
+  const Eigen::Isometry3d X_start = ArmFlangePose(robot.arm, q_start) * robot.X_FH;
+  start.p_WH = X_start.translation();
+  start.q_WH = Eigen::Quaterniond(X_start.linear()).normalized();
+  start.f = motion.pregrasp().f;
+  const MotionWaypoint& w0 = motion.waypoints[0];
+  const MotionWaypoint& w1 = motion.waypoints[1];
+  const Eigen::Vector3d v_end = (w1.p_WH - w0.p_WH) / std::max(1e-6, w1.t - w0.t);
+  a.path = SplineReach(start, motion.pregrasp(), v_end, options.reach);
+  a.reach_samples = a.path.size();
+  AppendTail(tail, a.path.back().t, &a.path);
+  a.joints = ToJointTrajectory(robot, a.path, q_start, theta_deg, options.joint_space);
+  if (a.ok()) {
+    a.margin_failed_sample = FirstPoseWithoutMargin(robot, a.path, a.reach_samples,
+                                                    BranchOf(q_start), options.reach_margin);
+    a.margin_ok = a.margin_failed_sample < 0;
+  }
+  return a;
+}
+
+// The joint reach: the grasping motion and lift played from the pre-grasp configuration on the
+// start's branch, or the first other branch (the wrist flip first) that plays them, and a
+// collision-free minimum-jerk move to it. std::nullopt, with the reason in `why`, when no
+// branch works; on success `why` names the branch.
+std::optional<ReachAttempt> JointReachAttempt(const SynthesisModel& model,
+                                              const GraspingMotion& motion,
+                                              const CartesianPath& tail, const Vector7d& q_start,
+                                              double theta, double theta_deg,
+                                              const SynthesisOptions& options, CollisionData* data,
+                                              std::string* why) {
+  const RobotModel& robot = model.robot();
+  const int start_branch = BranchOf(q_start).index();
+  const double psi = ArmAngleOf(robot.arm, q_start);
+  std::ostringstream failures;
+  std::vector<int> order = {start_branch};
+  for (int index : {0, 4, 1, 5, 2, 6, 3, 7}) {
+    if (index != start_branch) order.push_back(index);
+  }
+  for (int index : order) {
+    const std::optional<Vector7d> q_pre =
+        SolveWristPose(robot, PoseOf(motion.pregrasp()), ArmBranch::FromIndex(index), psi, q_start,
+                       options.joint_space.psi_margin);
+    if (!q_pre) continue;
+    JointSpaceResult after = ToJointTrajectory(robot, tail, *q_pre, theta_deg, options.joint_space);
+    if (after.status != JointSpaceStatus::kOk) continue;
+    const std::vector<TrajectorySample> reach = JointReach(
+        robot, q_start, motion.pregrasp().f, *q_pre, motion.pregrasp().f, options.joint_reach);
+    int hit = -1;
+    for (size_t k = 0; k < reach.size() && hit < 0; ++k) {
+      if (InCollision(model, reach[k].arm, reach[k].hand, theta, data)) hit = static_cast<int>(k);
+    }
+    if (hit >= 0) {
+      failures << " branch " << index << ": the move collides at t = " << reach[hit].t << " s;";
+      continue;
+    }
+    ReachAttempt a;
+    a.method = ReachMethod::kJoint;
+    for (const TrajectorySample& s : reach) {
+      const Eigen::Isometry3d X = ArmFlangePose(robot.arm, s.arm) * robot.X_FH;
+      MotionWaypoint w;
+      w.t = s.t;
+      w.p_WH = X.translation();
+      w.q_WH = Eigen::Quaterniond(X.linear()).normalized();
+      w.f = s.hand;
+      a.path.push_back(w);
+    }
+    a.path.back() = tail.front();
+    a.path.back().t = reach.back().t;
+    a.reach_samples = a.path.size();
+    AppendTail(tail, reach.back().t, &a.path);
+    a.joints = std::move(after);
+    a.joints.trajectory.samples.erase(a.joints.trajectory.samples.begin());
+    for (TrajectorySample& s : a.joints.trajectory.samples) s.t += reach.back().t;
+    a.joints.trajectory.samples.insert(a.joints.trajectory.samples.begin(), reach.begin(),
+                                       reach.end());
+    for (size_t k = 1; k < reach.size(); ++k) {
+      a.joints.max_joint_step = std::max(a.joints.max_joint_step,
+                                         (reach[k].arm - reach[k - 1].arm).cwiseAbs().maxCoeff());
+    }
+    std::ostringstream s;
+    s << " on branch " << index << " (" << reach.back().t << " s)";
+    *why = s.str();
+    return a;
+  }
+  *why = "no branch plays the grasping motion from a collision-free joint move;" + failures.str();
+  return std::nullopt;
+}
+
 }  // namespace
+
+const char* ToString(ReachMethod method) {
+  switch (method) {
+    case ReachMethod::kSpline:
+      return "spline";
+    case ReachMethod::kJoint:
+      return "joint";
+    case ReachMethod::kAuto:
+      return "auto";
+  }
+  return "?";
+}
+
+ReachMethod ParseReachMethod(const std::string& text) {
+  if (text == "spline") return ReachMethod::kSpline;
+  if (text == "joint") return ReachMethod::kJoint;
+  if (text == "auto") return ReachMethod::kAuto;
+  throw InputError("unknown reach method '" + text + "' (spline, joint or auto)");
+}
 
 const char* ToString(SynthesisMethod method) {
   switch (method) {
@@ -121,6 +280,11 @@ bool SynthesisOptions::IsValid(std::string* why) const {
       !reach.IsValid(why) || !lift.IsValid(why) || !joint_space.IsValid(why)) {
     return false;
   }
+  if (!(reach_margin >= 0.0)) {
+    if (why) *why = "reach_margin must be >= 0";
+    return false;
+  }
+  if (!joint_reach.IsValid(why)) return false;
   if (!start.allFinite() && !start.array().isNaN().all()) {
     if (why) *why = "start must be all finite or all NaN";
     return false;
@@ -294,23 +458,9 @@ SynthesisResult SynthesizeGrasp(const SynthesisModel& model, double theta_deg,
 
   // 4. reach, grasping motion, lift, joints.
   const auto t_joints = Clock::now();
-  MotionWaypoint start;
-  const Eigen::Isometry3d X_start = ArmFlangePose(robot.arm, r.start) * robot.X_FH;
-  start.p_WH = X_start.translation();
-  start.q_WH = Eigen::Quaterniond(X_start.linear()).normalized();
-  start.f = motion.pregrasp().f;
-  const MotionWaypoint& w0 = motion.waypoints[0];
-  const MotionWaypoint& w1 = motion.waypoints[1];
-  const Eigen::Vector3d v_end = (w1.p_WH - w0.p_WH) / std::max(1e-6, w1.t - w0.t);
-  r.path = SplineReach(start, motion.pregrasp(), v_end, options.reach);
-  const double t0 = r.path.back().t;
-  const size_t i_pre = r.path.size() - 1;
-  for (size_t i = 1; i < motion.waypoints.size(); ++i) {
-    MotionWaypoint w = motion.waypoints[i];
-    w.t += t0;
-    r.path.push_back(w);
-  }
-  const size_t i_grasp = r.path.size() - 1;
+  // after the pre-grasp: the grasping motion and the lift, times from the pre-grasp.
+  CartesianPath tail(motion.waypoints.begin(), motion.waypoints.end());
+  const size_t tail_grasp = tail.size() - 1;
   LiftOptions lift = options.lift;
   double height = 0.0, duration = 0.0;
   for (const SourceDemo& s : r.sources) {
@@ -319,8 +469,82 @@ SynthesisResult SynthesizeGrasp(const SynthesisModel& model, double theta_deg,
   }
   if (height > 0.0) lift.height = height;
   if (duration > 0.0) lift.duration = duration;
-  const CartesianPath up = LiftPath(r.path.back(), lift);
-  r.path.insert(r.path.end(), up.begin(), up.end());
+  const CartesianPath up = LiftPath(tail.back(), lift);
+  tail.insert(tail.end(), up.begin(), up.end());
+
+  const ReachAttempt spline =
+      options.reach_method == ReachMethod::kJoint
+          ? ReachAttempt{}
+          : SplineReachAttempt(robot, motion, tail, r.start, theta_deg, options);
+  std::ostringstream reach_why;
+  std::optional<ReachAttempt> chosen;
+  if (options.reach_method == ReachMethod::kSpline) {
+    chosen = spline;
+    reach_why << "spline reach requested";
+    if (!spline.ok() && !has_start) {
+      // the default rest pose on another branch (the wrist flip first), as ReplayDemoLog does:
+      // a hand turned far from the rest orientation can need it. A start given by the user is
+      // kept.
+      const Eigen::Isometry3d X_rest_flange = ArmFlangePose(robot.arm, r.start);
+      for (int index : {4, 1, 5, 2, 6, 3, 7}) {
+        const std::optional<MidArcSolution> other =
+            SolveArmIkMidArc(robot.arm, X_rest_flange, ArmBranch::FromIndex(index));
+        if (!other || InCollision(model, other->q, motion.pregrasp().f, theta, data)) continue;
+        ReachAttempt a = SplineReachAttempt(robot, motion, tail, other->q, theta_deg, options);
+        if (a.ok()) {
+          r.start = other->q;
+          chosen = std::move(a);
+          reach_why << "; the rest pose on branch " << index
+                    << " (the elbow-up one cannot play it)";
+          break;
+        }
+      }
+    }
+  } else {
+    if (options.reach_method == ReachMethod::kAuto) {
+      if (spline.ok() && spline.margin_ok) {
+        chosen = spline;
+        reach_why << "spline reach (reachable with " << options.reach_margin * 1000.0
+                  << " mm to spare)";
+      } else if (spline.ok()) {
+        reach_why << "the spline reach passes within " << options.reach_margin * 1000.0
+                  << " mm of the workspace's edge at wrist pose " << spline.margin_failed_sample;
+      } else {
+        reach_why << "the spline reach cannot be played: " << spline.joints.message;
+      }
+    } else {
+      reach_why << "joint reach requested";
+    }
+    if (!chosen) {
+      std::string joint_why;
+      std::optional<ReachAttempt> joint = JointReachAttempt(model, motion, tail, r.start, theta,
+                                                            theta_deg, options, data, &joint_why);
+      if (joint) {
+        chosen = std::move(joint);
+        reach_why << "; joint reach" << joint_why;
+      } else {
+        reach_why << "; the joint reach failed too: " << joint_why;
+        if (spline.ok()) {
+          chosen = spline;
+          reach_why << "; kept the spline reach";
+        }
+      }
+    }
+  }
+  r.joints_s = Since(t_joints);
+  r.reach_reason = reach_why.str();
+  if (!chosen || !chosen->ok()) {
+    r.status = SynthesisStatus::kUnreachable;
+    r.message = "the synthesized motion cannot be played from the start configuration: " +
+                (chosen ? chosen->joints.message : r.reach_reason);
+    if (chosen) r.joints = chosen->joints;
+    return r;
+  }
+  r.reach_used = chosen->method;
+  r.path = std::move(chosen->path);
+  r.joints = std::move(chosen->joints);
+  const size_t i_pre = chosen->reach_samples - 1;
+  const size_t i_grasp = i_pre + tail_grasp;
   size_t i_top = r.path.size() - 1;
   for (size_t i = i_grasp; i < r.path.size(); ++i) {
     if (r.path[i].p_WH.z() >= r.path[i_grasp].p_WH.z() + lift.height - 1e-9) {
@@ -332,35 +556,6 @@ SynthesisResult SynthesizeGrasp(const SynthesisModel& model, double theta_deg,
   while (i_lift + 1 < r.path.size() &&
          r.path[i_lift + 1].p_WH.z() <= r.path[i_grasp].p_WH.z() + 1e-9) {
     ++i_lift;
-  }
-  r.joints = ToJointTrajectory(robot, r.path, r.start, theta_deg, options.joint_space);
-  if (r.joints.status != JointSpaceStatus::kOk && !has_start) {
-    // the default rest pose on another branch (the wrist flip first), as ReplayDemoLog does: a
-    // hand turned far from the rest orientation can need it. A start given by the user is kept.
-    const Eigen::Isometry3d X_rest_flange = ArmFlangePose(robot.arm, r.start);
-    for (int index : {4, 1, 5, 2, 6, 3, 7}) {
-      const std::optional<MidArcSolution> other =
-          SolveArmIkMidArc(robot.arm, X_rest_flange, ArmBranch::FromIndex(index));
-      if (!other) continue;
-      SetState(model.collision(), other->q, motion.pregrasp().f, theta, data);
-      if (Collide(model.collision(), GroupSet::Robot(), GroupSet::World(), data, co).collision()) {
-        continue;
-      }
-      JointSpaceResult joints =
-          ToJointTrajectory(robot, r.path, other->q, theta_deg, options.joint_space);
-      if (joints.status == JointSpaceStatus::kOk) {
-        r.start = other->q;
-        r.joints = std::move(joints);
-        break;
-      }
-    }
-  }
-  r.joints_s = Since(t_joints);
-  if (r.joints.status != JointSpaceStatus::kOk) {
-    r.status = SynthesisStatus::kUnreachable;
-    r.message =
-        "the synthesized motion cannot be played from the start configuration: " + r.joints.message;
-    return r;
   }
   r.trajectory = r.joints.trajectory;
   r.trajectory.samples.front().arm = r.start;

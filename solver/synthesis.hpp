@@ -38,10 +38,27 @@ namespace graspsynth {
 /// How the grasping motion is made.
 enum class SynthesisMethod { kInterp, kLine, kNearest };
 
+/// How the robot reaches the pre-grasp pose from the start configuration.
+/// - spline: the paper's reach (IV-C), a cubic spline of the wrist position with slerp
+///   orientation, played through the IK on the start's branch;
+/// - joint: a minimum-jerk move in joint space to the pre-grasp configuration (motion/
+///   joint_space.hpp's JointReach); the grasping motion is played on the start's branch when
+///   it can be, else on the first other branch that can play it; the move is checked for
+///   collision;
+/// - auto: the spline when every one of its poses stays reachable with the wrist moved by
+///   reach_margin along each world axis (a reach near the edge of the workspace fails under
+///   the perturbations of the physics gate), else the joint reach.
+enum class ReachMethod { kSpline, kJoint, kAuto };
+
 /// "interp", "line" or "nearest".
 const char* ToString(SynthesisMethod method);
 /// Parses "interp", "line" or "nearest"; throws InputError naming the value otherwise.
 SynthesisMethod ParseSynthesisMethod(const std::string& text);
+
+/// "spline", "joint" or "auto".
+const char* ToString(ReachMethod method);
+/// Parses "spline", "joint" or "auto"; throws InputError naming the value otherwise.
+ReachMethod ParseReachMethod(const std::string& text);
 
 /// Everything the synthesis needs that does not change between queries (STYLE.md's Model):
 /// robot, scene, collision model, library and the line-principle models fitted over it.
@@ -76,14 +93,19 @@ struct SynthesisOptions {
   BracketOptions bracket;
   BlendOptions blend = {.waypoints = 40};
   RefinementOptions refinement;
+  ReachMethod reach_method = ReachMethod::kAuto;
   SplineReachOptions reach;
+  JointReachOptions joint_reach;
+  /// m, the wrist displacement along each world axis every spline-reach pose must survive for
+  /// ReachMethod::kAuto to keep the spline.
+  double reach_margin = 0.01;
   /// The lift after the grasp; height and duration come from the sources' library entries
   /// (weighted) when they are positive there.
   LiftOptions lift;
   JointSpaceOptions joint_space;
   /// Arm configuration at the start, rad; all NaN: DefaultRestConfiguration for the grasp
-  /// orientation, or that rest pose on another branch (the wrist flip first) when the motion
-  /// cannot be played from the elbow-up one.
+  /// orientation. With the spline reach, the rest pose on another branch (the wrist flip
+  /// first) when the motion cannot be played from the elbow-up one.
   Vector7d start = Vector7d::Constant(NAN);
 
   bool IsValid(std::string* why) const;
@@ -127,7 +149,9 @@ struct SynthesisResult {
   bool refined = false;
   RefinementReport refinement;
   Vector7d start = Vector7d::Zero();
-  CartesianPath path;          ///< reach + grasping motion + lift
+  ReachMethod reach_used = ReachMethod::kSpline;  ///< kSpline or kJoint
+  std::string reach_reason;                       ///< why that reach, in words
+  CartesianPath path;          ///< reach + grasping motion + lift (the joint reach's by FK)
   JointSpaceResult joints;     ///< the joint conversion
   JointTrajectory trajectory;  ///< the robot's trajectory (waypoints: start, pre-grasp, grasp,
                                ///< lift start, top)

@@ -144,5 +144,50 @@ TEST(SolveWristPose, KeepsAFeasibleArmAngleAndMovesAnInfeasibleOne) {
   EXPECT_LT((WristPose(*moved).translation() - PalmDownTarget().translation()).norm(), 1e-9);
 }
 
+TEST(JointReach, StartsAndEndsExactlyOnTheMinimumJerkProfile) {
+  const Vector7d q0 = Rest();
+  Vector7d q1 = q0;
+  q1[0] -= 0.4;
+  q1[3] += 0.3;
+  const HandVector f0 = HandVector::Zero(), f1 = HandVector::Constant(0.2);
+  const std::vector<TrajectorySample> s = JointReach(Robot(), q0, f0, q1, f1);
+  ASSERT_GE(s.size(), 3u);
+  EXPECT_EQ(s.front().t, 0.0);
+  EXPECT_EQ(s.front().arm, q0);
+  EXPECT_EQ(s.back().arm, q1);
+  EXPECT_EQ(s.back().hand, f1);
+  EXPECT_NEAR(s.back().t, 2.0, 1e-12);  // small moves keep the minimum duration
+  for (size_t k = 1; k < s.size(); ++k) {
+    ASSERT_GT(s[k].t, s[k - 1].t);
+    // every joint is at the same fraction of its way: a straight line in joint space.
+    const double u = (s[k].arm[0] - q0[0]) / (q1[0] - q0[0]);
+    EXPECT_NEAR(u, MinimumJerk(s[k].t / 2.0), 1e-12);
+    EXPECT_NEAR((s[k].arm[3] - q0[3]) / (q1[3] - q0[3]), u, 1e-12);
+    EXPECT_NEAR((s[k].hand[5] - f0[5]) / (f1[5] - f0[5]), u, 1e-12);
+  }
+}
+
+TEST(JointReach, StretchesALargeMoveToTheVelocityCaps) {
+  const Vector7d q0 = Rest();
+  Vector7d q1 = q0;
+  q1[0] = Robot().arm.lower()[0] + 0.1;  // most of S1's range
+  JointReachOptions options;
+  options.velocity_scale = 0.5;
+  const std::vector<TrajectorySample> s =
+      JointReach(Robot(), q0, HandVector::Zero(), q1, HandVector::Zero(), options);
+  const double cap = options.velocity_scale * Robot().arm.max_velocity()[0];
+  EXPECT_GT(s.back().t, options.min_duration);
+  double peak = 0.0;
+  for (size_t k = 1; k < s.size(); ++k) {
+    peak = std::max(peak, std::abs(s[k].arm[0] - s[k - 1].arm[0]) / (s[k].t - s[k - 1].t));
+    for (int j = 0; j < kArmDof; ++j) {
+      EXPECT_GE(s[k].arm[j], Robot().arm.lower()[j]);
+      EXPECT_LE(s[k].arm[j], Robot().arm.upper()[j]);
+    }
+  }
+  EXPECT_LE(peak, cap * (1.0 + 1e-9));
+  EXPECT_GT(peak, 0.95 * cap);  // and not slower than needed
+}
+
 }  // namespace
 }  // namespace graspsynth
