@@ -8,6 +8,7 @@
 
 #include "apps/analyze_command.hpp"
 #include "apps/demos_command.hpp"
+#include "apps/generalize_command.hpp"
 #include "apps/kinematics_commands.hpp"
 #include "apps/run_command.hpp"
 #include "apps/select_command.hpp"
@@ -32,6 +33,7 @@ int main(int argc, char** argv) {
   graspsynth::apps::AddDemosCommand(app, &exit_code);
   graspsynth::apps::AddSimulateCommand(app, &exit_code);
   graspsynth::apps::AddSynthesizeCommand(app, &exit_code);
+  graspsynth::apps::AddGeneralizeCommand(app, &exit_code);
   graspsynth::apps::AddSelectCommand(app, &exit_code);
   graspsynth::apps::AddViewCommand(app, &exit_code);
   graspsynth::apps::AddTeleopCommands(app, &exit_code);

@@ -5,18 +5,16 @@
 
 #include "apps/run_command.hpp"
 
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
-#include <mutex>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "apps/cli_helpers.hpp"
 #include "apps/figure8.hpp"
 #include "common/atomic_file.hpp"
 #include "common/data_dir.hpp"
@@ -51,65 +49,6 @@ const std::vector<double> kQuickOrientations = {40, 45, 60, 85};
 constexpr int kQuickGatePerturbations = 3;
 constexpr int kQuickSelectionPerturbations = 2;
 
-std::vector<double> ParseOrientations(const std::string& text) {
-  std::vector<double> thetas;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    char* end = nullptr;
-    const double v = std::strtod(item.c_str(), &end);
-    if (item.empty() || end == item.c_str() || *end != '\0' || !std::isfinite(v)) {
-      throw InputError("--orientations: '" + item + "' is not a finite number of degrees (in '" +
-                       text + "')");
-    }
-    thetas.push_back(v);
-  }
-  if (thetas.empty()) throw InputError("--orientations: no orientation in '" + text + "'");
-  return thetas;
-}
-
-// One progress bar per stage on stderr, redrawn in place on a terminal; elsewhere (logs,
-// pipes) a line at every tenth of the stage.
-class StageProgress {
- public:
-  StageProgress() : tty_(::isatty(STDERR_FILENO) != 0) {}
-
-  void Update(StudyStage stage, int done, int total, const std::string& what) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (total <= 0) return;
-    if (stage != stage_) {
-      if (tty_ && started_) std::fprintf(stderr, "\n");
-      stage_ = stage;
-      last_tenth_ = -1;
-      started_ = true;
-    }
-    const int width = 30;
-    const int filled = std::min(done, total) * width / total;
-    const char* name = ToString(stage);
-    if (tty_) {
-      std::fprintf(stderr, "\r%-9s [%s%s] %d/%d  %-36.36s", name, std::string(filled, '#').c_str(),
-                   std::string(width - filled, ' ').c_str(), done, total, what.c_str());
-    } else if (done * 10 / total != last_tenth_) {
-      last_tenth_ = done * 10 / total;
-      std::fprintf(stderr, "%s: %d/%d (%s)\n", name, done, total, what.c_str());
-    }
-    std::fflush(stderr);
-  }
-
-  void Finish() {
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (tty_ && started_) std::fprintf(stderr, "\n");
-    started_ = false;
-  }
-
- private:
-  bool tty_;
-  bool started_ = false;
-  StudyStage stage_ = StudyStage::kAnalysis;
-  int last_tenth_ = -1;
-  std::mutex mutex_;
-};
-
 int RunStudyCommand(const RunOptions& o) {
   const SceneModel scene =
       LoadSceneModel(o.scene.empty() ? DefaultSceneModelPath() : fs::path(o.scene));
@@ -128,17 +67,18 @@ int RunStudyCommand(const RunOptions& o) {
   }
   if (o.perturb >= 0) options.gate_perturbations = o.perturb;
   if (o.select_perturb >= 0) options.selection_perturbations = o.select_perturb;
-  if (!o.orientations.empty()) options.orientations = ParseOrientations(o.orientations);
+  if (!o.orientations.empty())
+    options.orientations = ParseOrientationList(o.orientations, "--orientations");
   std::string why;
   if (!options.IsValid(&why)) throw InputError("run: " + why);
   if (!fs::is_directory(options.demos)) {
     throw InputError("run: --demos '" + options.demos.string() + "' is not a folder");
   }
 
-  StageProgress bar;
+  ProgressBar bar;
   StudyResult result =
       RunStudy(model, options, [&](StudyStage stage, int done, int total, const std::string& w) {
-        bar.Update(stage, done, total, w);
+        bar.Update(ToString(stage), done, total, w);
       });
   bar.Finish();
 
@@ -245,8 +185,8 @@ void AddRunCommand(CLI::App& app, int* exit_code) {
                       std::to_string(kQuickSelectionPerturbations) + ")")
       ->check(CLI::PositiveNumber);
   run->add_option("--orientations", opts->orientations,
-                  "Comma-separated object orientations to synthesize, deg (default "
-                  "20,25,...,100)");
+                  "Comma-separated object orientations to synthesize, deg, each a number or a "
+                  "range FROM:TO:STEP (default 20:100:5)");
   run->add_option("--gnuplot", opts->gnuplot, "The gnuplot program for Fig. 8")
       ->capture_default_str();
   run->add_option("--robot", opts->robot, "Robot description (URDF); default: the shipped one");

@@ -123,7 +123,64 @@ std::string ShortfallReason(const StudyRow& r) {
 }  // namespace
 
 std::string StudyMethod::Label() const {
-  return std::string(ToString(method)) + (refine ? "+refine" : "");
+  std::string label = ToString(method);
+  if (refine && ceres && nlopt) label += "+refine";
+  if (refine && ceres && !nlopt) label += "+ceres";
+  if (refine && !ceres && nlopt) label += "+nlopt";
+  if (resample == ResampleMode::kArcLength) label += "/arc";
+  if (reach != ReachMethod::kAuto) label += std::string("/") + ToString(reach);
+  return label;
+}
+
+SynthesisOptions StudyMethod::Options() const {
+  SynthesisOptions o;
+  o.method = method;
+  o.refine = refine && (ceres || nlopt);
+  o.refinement.run_ceres = ceres;
+  o.refinement.run_nlopt = nlopt;
+  o.blend.resample = resample;
+  o.reach_method = reach;
+  return o;
+}
+
+StudyMethod ParseStudyMethod(const std::string& label) {
+  const auto fail = [&](const std::string& part) {
+    return InputError("unknown method '" + label + "': '" + part +
+                      "' is not known (a method interp, line or nearest, then optionally "
+                      "+refine, +ceres or +nlopt, /arc, /spline or /joint; e.g. "
+                      "interp+refine/arc)");
+  };
+  StudyMethod m;
+  m.refine = false;
+  size_t end = label.find_first_of("+/");
+  const std::string name = label.substr(0, end);
+  try {
+    m.method = ParseSynthesisMethod(name);
+  } catch (const InputError&) {
+    throw fail(name);
+  }
+  while (end != std::string::npos) {
+    const size_t next = label.find_first_of("+/", end + 1);
+    const std::string part = label.substr(end, next == std::string::npos ? next : next - end);
+    if (part == "+refine" && !m.refine) {
+      m.refine = true;
+    } else if (part == "+ceres" && !m.refine) {
+      m.refine = true;
+      m.nlopt = false;
+    } else if (part == "+nlopt" && !m.refine) {
+      m.refine = true;
+      m.ceres = false;
+    } else if (part == "/arc" && m.resample == ResampleMode::kNormalizedTime) {
+      m.resample = ResampleMode::kArcLength;
+    } else if ((part == "/spline" || part == "/joint") && m.reach == ReachMethod::kAuto) {
+      m.reach = ParseReachMethod(part.substr(1));
+    } else {
+      throw fail(part);
+    }
+    end = next;
+  }
+  if (m.Label() != label) throw fail(label);  // e.g. parts out of order
+  return m;
 }
 
 const char* ToString(StudyStage stage) {
@@ -221,6 +278,71 @@ std::vector<ReachabilityRow> TableIReachability(const RobotModel& robot, const S
   return rows;
 }
 
+std::vector<StudyRow> SynthesisTable(const SimulationModel& model, const GraspLibrary& library,
+                                     const SynthesisTableOptions& options,
+                                     const SynthesisTableProgress& progress) {
+  const SynthesisModel synthesis(model.robot(), model.scene(), library);
+  CollisionData data(synthesis.collision());
+  const auto report = [&](int done, int total, const std::string& what) {
+    if (progress) progress(done, total, what);
+  };
+  std::vector<StudyRow> rows;
+  const int per_row = options.gate_perturbations + 1;
+  const int total =
+      static_cast<int>(options.orientations.size() * options.methods.size()) * per_row;
+  int base = 0;
+  for (double theta : options.orientations) {
+    for (const StudyMethod& method : options.methods) {
+      StudyRow row;
+      row.theta_deg = theta;
+      row.method = method.Label();
+      row.seed = StudyRowSeed(options.seed, theta, row.method);
+      const std::string what = "theta " + Deg(theta) + " " + row.method;
+      report(base, total, what);
+      const auto t0 = std::chrono::steady_clock::now();
+      const SynthesisResult s = SynthesizeGrasp(synthesis, theta, method.Options(), &data);
+      row.synthesis_s = SecondsSince(t0);
+      row.status = ToString(s.status);
+      row.message = s.message;
+      if (s.ok()) {
+        row.used = ToString(s.used);
+        row.fallback = s.fallback;
+        row.fallback_reason = s.fallback_reason;
+        row.refined = s.refined;
+        PhysicsGateOptions go;
+        go.perturbations = options.gate_perturbations;
+        go.min_robustness = options.min_robustness;
+        go.perturbation = options.perturbation;
+        go.seed = row.seed;
+        go.threads = options.threads;
+        const PhysicsGateResult gate = RunPhysicsGate(
+            model, s.trajectory, go, [&](int done, int) { report(base + 1 + done, total, what); });
+        row.gate_run = true;
+        row.gate_s = gate.time_s;
+        row.nominal_success = gate.nominal.success();
+        row.nominal_outcome = std::string(ToString(gate.nominal.outcome));
+        row.nominal_reason = gate.nominal.reason;
+        if (gate.robustness_run) {
+          row.trials = static_cast<int>(gate.robustness.trials.size());
+          row.successes = gate.robustness.successes;
+          row.robustness = gate.robustness.score;
+          row.ci_low = gate.robustness.ci95.lo;
+          row.ci_high = gate.robustness.ci95.hi;
+          row.failures = FailureSummary(gate.robustness);
+        }
+        row.passed = gate.passed;
+        row.gate_reason = gate.reason;
+        row.epsilon = gate.quality.epsilon;
+        row.force_closure = gate.quality.force_closure;
+      }
+      rows.push_back(row);
+      base += per_row;
+      report(base, total, what);
+    }
+  }
+  return rows;
+}
+
 StudyResult RunStudy(const SimulationModel& model, const StudyOptions& options,
                      const StudyProgress& progress) {
   std::string why;
@@ -264,81 +386,38 @@ StudyResult RunStudy(const SimulationModel& model, const StudyOptions& options,
 
   // stage 3: synthesis and physics validation, one row per orientation and method.
   start = std::chrono::steady_clock::now();
+  SynthesisTableOptions table;
+  table.orientations = options.orientations;
+  table.methods = options.methods;
+  table.gate_perturbations = options.gate_perturbations;
+  table.min_robustness = options.min_robustness;
+  table.seed = options.seed;
+  table.threads = options.threads;
+  const auto table_progress = [&](int done, int total, const std::string& what) {
+    report(StudyStage::kSynthesis, done, total, what);
+  };
   const GraspLibrary& library = result.selection.library;
-  std::optional<SynthesisModel> synthesis;
   std::string no_model;
   if (library.entries.empty()) {
     no_model = "the selection made an empty library (no orientation had a robust demonstration)";
   } else {
     try {
-      synthesis.emplace(model.robot(), model.scene(), library);
+      result.rows = SynthesisTable(model, library, table, table_progress);
     } catch (const InputError& e) {
       no_model = e.what();
     }
   }
-  std::optional<CollisionData> data;
-  if (synthesis) data.emplace(synthesis->collision());
-  const int per_row = options.gate_perturbations + 1;
-  const int total =
-      static_cast<int>(options.orientations.size() * options.methods.size()) * per_row;
-  int base = 0;
-  for (double theta : options.orientations) {
-    for (const StudyMethod& method : options.methods) {
-      StudyRow row;
-      row.theta_deg = theta;
-      row.method = method.Label();
-      row.seed = StudyRowSeed(options.seed, theta, row.method);
-      const std::string what = "theta " + Deg(theta) + " " + row.method;
-      report(StudyStage::kSynthesis, base, total, what);
-      if (!synthesis) {
+  if (!no_model.empty()) {
+    for (double theta : options.orientations) {
+      for (const StudyMethod& method : options.methods) {
+        StudyRow row;
+        row.theta_deg = theta;
+        row.method = method.Label();
+        row.seed = StudyRowSeed(options.seed, theta, row.method);
         row.status = "no_library";
         row.message = no_model;
         result.rows.push_back(row);
-        base += per_row;
-        continue;
       }
-      SynthesisOptions so;
-      so.method = method.method;
-      so.refine = method.refine;
-      const auto t0 = std::chrono::steady_clock::now();
-      const SynthesisResult s = SynthesizeGrasp(*synthesis, theta, so, &*data);
-      row.synthesis_s = SecondsSince(t0);
-      row.status = ToString(s.status);
-      row.message = s.message;
-      if (s.ok()) {
-        row.used = ToString(s.used);
-        row.fallback = s.fallback;
-        row.fallback_reason = s.fallback_reason;
-        row.refined = s.refined;
-        PhysicsGateOptions go;
-        go.perturbations = options.gate_perturbations;
-        go.min_robustness = options.min_robustness;
-        go.seed = row.seed;
-        go.threads = options.threads;
-        const PhysicsGateResult gate = RunPhysicsGate(model, s.trajectory, go, [&](int done, int) {
-          report(StudyStage::kSynthesis, base + 1 + done, total, what);
-        });
-        row.gate_run = true;
-        row.gate_s = gate.time_s;
-        row.nominal_success = gate.nominal.success();
-        row.nominal_outcome = std::string(ToString(gate.nominal.outcome));
-        row.nominal_reason = gate.nominal.reason;
-        if (gate.robustness_run) {
-          row.trials = static_cast<int>(gate.robustness.trials.size());
-          row.successes = gate.robustness.successes;
-          row.robustness = gate.robustness.score;
-          row.ci_low = gate.robustness.ci95.lo;
-          row.ci_high = gate.robustness.ci95.hi;
-          row.failures = FailureSummary(gate.robustness);
-        }
-        row.passed = gate.passed;
-        row.gate_reason = gate.reason;
-        row.epsilon = gate.quality.epsilon;
-        row.force_closure = gate.quality.force_closure;
-      }
-      result.rows.push_back(row);
-      base += per_row;
-      report(StudyStage::kSynthesis, base, total, what);
     }
   }
   result.synthesis_s = SecondsSince(start);
@@ -369,6 +448,7 @@ std::vector<StudyMethodSummary> SummarizeStudy(const std::vector<StudyRow>& rows
   }
   for (size_t i = 0; i < out.size(); ++i) {
     out[i].mean_robustness = out[i].synthesized > 0 ? robustness_sum[i] / out[i].synthesized : 0;
+    out[i].mean_robustness_all = robustness_sum[i] / out[i].rows;
   }
   return out;
 }
@@ -448,6 +528,77 @@ std::string StudyTimingJson(const StudyResult& result) {
   }
   j["rows"] = rows;
   return j.dump(2) + "\n";
+}
+
+std::string SynthesisTableMarkdown(const std::vector<StudyRow>& rows) {
+  std::ostringstream md;
+  md << "| theta (deg) | method | used | nominal | robustness | 95% CI | gate | epsilon | "
+        "synthesis (ms) | gate (s) |\n|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const StudyRow& r : rows) {
+    md << "| " << Deg(r.theta_deg) << " | " << r.method << " | ";
+    if (r.status != "ok") {
+      md << "**" << r.status << "** | | | | **no** | | " << Format("%.1f", r.synthesis_s * 1e3)
+         << " | |\n";
+      continue;
+    }
+    md << r.used << (r.fallback ? " (fallback)" : "") << " | "
+       << (r.nominal_success ? "success" : "**" + r.nominal_outcome + "**") << " | "
+       << (r.trials > 0 ? Format("%d/%d", r.successes, r.trials) : std::string("-")) << " | "
+       << (r.trials > 0 ? Format("[%.2f, %.2f]", r.ci_low, r.ci_high) : std::string("-")) << " | "
+       << (r.passed ? "yes" : "**no**") << " | "
+       << (std::isfinite(r.epsilon) ? Format("%.4f", r.epsilon + 0.0) : std::string("-")) << " | "
+       << Format("%.1f", r.synthesis_s * 1e3) << " | " << Format("%.1f", r.gate_s) << " |\n";
+  }
+  md << "\n";
+
+  bool any_fallback = false;
+  for (const StudyRow& r : rows) any_fallback |= r.fallback;
+  if (any_fallback) {
+    md << "Fallbacks:\n\n";
+    for (const StudyRow& r : rows) {
+      if (r.fallback) {
+        md << "- " << Deg(r.theta_deg) << " deg, " << r.method << " used " << r.used << ": "
+           << Cell(r.fallback_reason) << "\n";
+      }
+    }
+    md << "\n";
+  }
+
+  return md.str();
+}
+
+std::string SummaryMarkdown(const std::vector<StudyRow>& rows) {
+  std::ostringstream md;
+  md << "| method | orientations | synthesized | nominal successes | mean robustness (all rows) "
+        "| passed the gate | fallbacks |\n|---|---|---|---|---|---|---|\n";
+  for (const StudyMethodSummary& s : SummarizeStudy(rows)) {
+    md << "| " << s.method << " | " << s.rows << " | " << s.synthesized << " | "
+       << Format("%d (%.0f%%)", s.nominal_successes, 100.0 * s.nominal_successes / s.rows) << " | "
+       << Format("%.2f", s.mean_robustness_all) << " | "
+       << Format("%d (%.0f%%)", s.passed, 100.0 * s.passed / s.rows) << " | " << s.fallbacks
+       << " |\n";
+  }
+  return md.str();
+}
+
+std::string ShortfallMarkdown(const std::vector<StudyRow>& rows) {
+  std::ostringstream md;
+  bool any_shortfall = false;
+  for (const StudyMethodSummary& s : SummarizeStudy(rows)) {
+    if (s.passed == s.rows) {
+      md << "- " << s.method << ": every orientation passed.\n";
+      continue;
+    }
+    md << "- " << s.method << ": " << (s.rows - s.passed) << " of " << s.rows
+       << " orientations did not pass:\n";
+    for (const StudyRow& r : rows) {
+      if (r.method != s.method || r.passed) continue;
+      any_shortfall = true;
+      md << "  - " << Deg(r.theta_deg) << " deg: " << Cell(ShortfallReason(r)) << "\n";
+    }
+  }
+  if (!any_shortfall) md << "\nNo shortfall.\n";
+  return md.str();
 }
 
 std::string StudyReportMarkdown(const StudyResult& result) {
@@ -601,54 +752,9 @@ std::string StudyReportMarkdown(const StudyResult& result) {
   if (!result.selection.issues.empty()) md << "\n";
 
   md << "## Synthesis and physics validation\n\n";
-  md << "| theta (deg) | method | used | nominal | robustness | 95% CI | gate | epsilon | "
-        "synthesis (ms) | gate (s) |\n|---|---|---|---|---|---|---|---|---|---|\n";
-  for (const StudyRow& r : result.rows) {
-    md << "| " << Deg(r.theta_deg) << " | " << r.method << " | ";
-    if (r.status != "ok") {
-      md << "**" << r.status << "** | | | | **no** | | " << Format("%.1f", r.synthesis_s * 1e3)
-         << " | |\n";
-      continue;
-    }
-    md << r.used << (r.fallback ? " (fallback)" : "") << " | "
-       << (r.nominal_success ? "success" : "**" + r.nominal_outcome + "**") << " | "
-       << (r.trials > 0 ? Format("%d/%d", r.successes, r.trials) : std::string("-")) << " | "
-       << (r.trials > 0 ? Format("[%.2f, %.2f]", r.ci_low, r.ci_high) : std::string("-")) << " | "
-       << (r.passed ? "yes" : "**no**") << " | "
-       << (std::isfinite(r.epsilon) ? Format("%.4f", r.epsilon + 0.0) : std::string("-")) << " | "
-       << Format("%.1f", r.synthesis_s * 1e3) << " | " << Format("%.1f", r.gate_s) << " |\n";
-  }
-  md << "\n";
-
-  bool any_fallback = false;
-  for (const StudyRow& r : result.rows) any_fallback |= r.fallback;
-  if (any_fallback) {
-    md << "Fallbacks:\n\n";
-    for (const StudyRow& r : result.rows) {
-      if (r.fallback) {
-        md << "- " << Deg(r.theta_deg) << " deg, " << r.method << " used " << r.used << ": "
-           << Cell(r.fallback_reason) << "\n";
-      }
-    }
-    md << "\n";
-  }
-
+  md << SynthesisTableMarkdown(result.rows);
   md << "## Where a method falls short\n\n";
-  bool any_shortfall = false;
-  for (const StudyMethodSummary& s : SummarizeStudy(result.rows)) {
-    if (s.passed == s.rows) {
-      md << "- " << s.method << ": every orientation passed.\n";
-      continue;
-    }
-    md << "- " << s.method << ": " << (s.rows - s.passed) << " of " << s.rows
-       << " orientations did not pass:\n";
-    for (const StudyRow& r : result.rows) {
-      if (r.method != s.method || r.passed) continue;
-      any_shortfall = true;
-      md << "  - " << Deg(r.theta_deg) << " deg: " << Cell(ShortfallReason(r)) << "\n";
-    }
-  }
-  if (!any_shortfall) md << "\nNo shortfall.\n";
+  md << ShortfallMarkdown(result.rows);
   return md.str();
 }
 

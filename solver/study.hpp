@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "learning_data/representative_selection.hpp"
+#include "simulation/perturbation.hpp"
 #include "simulation/simulation_model.hpp"
 #include "solver/analysis_report.hpp"
 #include "solver/synthesis.hpp"
@@ -41,14 +42,27 @@ inline constexpr std::string_view kStudySynthesisCsvHeader =
     "successes,robustness,ci_low,ci_high,passed,epsilon,force_closure,failures";
 
 /// One synthesis method of the study: how the grasping motion is made, with or without the
-/// refinement.
+/// refinement, and the variants the ablations turn (experiments/ablations.sh).
 struct StudyMethod {
   SynthesisMethod method = SynthesisMethod::kInterp;
   bool refine = true;
+  bool ceres = true;  ///< the refinement's stage 1 (with refine)
+  bool nlopt = true;  ///< the refinement's stage 2 (with refine)
+  ResampleMode resample = ResampleMode::kNormalizedTime;  ///< of the blend
+  ReachMethod reach = ReachMethod::kAuto;
 
-  /// "interp+refine", "line", ...: the method's name, "+refine" when refined.
+  /// The name: the method ("interp", "line", "nearest"), then "+refine" when both refinement
+  /// stages run, "+ceres" or "+nlopt" when only that one does, then "/arc" for arc-length
+  /// resampling and "/spline" or "/joint" for a reach other than auto. E.g. "interp+refine",
+  /// "line", "interp+ceres/arc".
   std::string Label() const;
+  /// The synthesis options of this method.
+  SynthesisOptions Options() const;
 };
+
+/// Parses a StudyMethod::Label(); throws InputError naming the label and the part it does not
+/// know otherwise.
+StudyMethod ParseStudyMethod(const std::string& label);
 
 /// The stages of the study, in order.
 enum class StudyStage { kAnalysis, kSelection, kSynthesis };
@@ -133,12 +147,13 @@ struct StudyRow {
 /// Per-method totals of the synthesis table.
 struct StudyMethodSummary {
   std::string method;
-  int rows = 0;                ///< orientations tried
-  int synthesized = 0;         ///< with status "ok"
-  int nominal_successes = 0;   ///< nominal trial succeeded
-  int passed = 0;              ///< passed the gate
-  int fallbacks = 0;           ///< used another method
-  double mean_robustness = 0;  ///< over the synthesized rows (0 when none)
+  int rows = 0;                    ///< orientations tried
+  int synthesized = 0;             ///< with status "ok"
+  int nominal_successes = 0;       ///< nominal trial succeeded
+  int passed = 0;                  ///< passed the gate
+  int fallbacks = 0;               ///< used another method
+  double mean_robustness = 0;      ///< over the synthesized rows (0 when none)
+  double mean_robustness_all = 0;  ///< over every row, a row not synthesized counting 0
 };
 
 /// Everything the study found.
@@ -166,6 +181,39 @@ uint64_t StudyRowSeed(uint64_t seed, double theta_deg, const std::string& method
 
 /// The reachability of the paper's Table I grasp wrist poses in `scene` (see ReachabilityRow).
 std::vector<ReachabilityRow> TableIReachability(const RobotModel& robot, const SceneModel& scene);
+
+/// Options of the synthesis table (the study's stage 3; experiments 2 and 3).
+struct SynthesisTableOptions {
+  std::vector<double> orientations;  ///< deg
+  std::vector<StudyMethod> methods;
+  int gate_perturbations = 10;  ///< perturbed replays per row (0: nominal only)
+  double min_robustness = 0.8;
+  PerturbationOptions perturbation;  ///< of the gate's replays
+  uint64_t seed = 1;                 ///< rows are seeded by StudyRowSeed(seed, theta, label)
+  int threads = 0;
+};
+
+/// Progress of the synthesis table: replays done of their total, and the row being worked on.
+using SynthesisTableProgress = std::function<void(int done, int total, const std::string& what)>;
+
+/// A grasp for every orientation and method from `library`, each validated by the physics
+/// gate: rows by orientation, then method. Rows whose synthesis fails keep its status and
+/// message. Throws InputError for a library the synthesis cannot use.
+std::vector<StudyRow> SynthesisTable(const SimulationModel& model, const GraspLibrary& library,
+                                     const SynthesisTableOptions& options,
+                                     const SynthesisTableProgress& progress = {});
+
+/// The synthesis table as markdown: one line per row (method used, nominal outcome,
+/// robustness with its interval, gate, epsilon, synthesis and gate times), then the fallbacks.
+std::string SynthesisTableMarkdown(const std::vector<StudyRow>& rows);
+
+/// Per-method summary as markdown: rows, synthesized, nominal successes (and %), mean
+/// robustness, gate passes, fallbacks.
+std::string SummaryMarkdown(const std::vector<StudyRow>& rows);
+
+/// "Where a method falls short": every row that did not pass the gate with its reason from the
+/// simulator.
+std::string ShortfallMarkdown(const std::vector<StudyRow>& rows);
 
 /// Runs the study. Throws InputError for invalid options or a demonstration folder that cannot
 /// be read; everything that fails inside (files rejected, orientations not selected, grasps

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "common/errors.hpp"
 #include "kinematics/robot_description.hpp"
 #include "kinematics/scene_model.hpp"
 
@@ -234,6 +235,58 @@ TEST(StudyReportMarkdown, SaysWhyFig8IsMissing) {
   const std::string md = StudyReportMarkdown(r);
   EXPECT_THAT(md, Not(HasSubstr("![Fig. 8")));
   EXPECT_THAT(md, HasSubstr("Not drawn: gnuplot could not be started"));
+}
+
+TEST(StudyMethod, LabelsRoundTripThroughTheParser) {
+  for (const std::string label :
+       {"interp", "interp+refine", "line+refine", "nearest", "interp+ceres", "interp+nlopt",
+        "interp+refine/arc", "interp/arc/joint", "line+nlopt/spline"}) {
+    EXPECT_EQ(ParseStudyMethod(label).Label(), label);
+  }
+  const StudyMethod m = ParseStudyMethod("interp+ceres/arc/spline");
+  EXPECT_TRUE(m.refine);
+  EXPECT_TRUE(m.ceres);
+  EXPECT_FALSE(m.nlopt);
+  const SynthesisOptions o = m.Options();
+  EXPECT_TRUE(o.refine);
+  EXPECT_TRUE(o.refinement.run_ceres);
+  EXPECT_FALSE(o.refinement.run_nlopt);
+  EXPECT_EQ(o.blend.resample, ResampleMode::kArcLength);
+  EXPECT_EQ(o.reach_method, ReachMethod::kSpline);
+  EXPECT_FALSE(ParseStudyMethod("interp").Options().refine);
+}
+
+TEST(StudyMethod, UnknownOrMisplacedPartsAreNamed) {
+  for (const auto& [label, part] : std::vector<std::pair<std::string, std::string>>{
+           {"blend", "'blend'"},
+           {"interp+polish", "'+polish'"},
+           {"interp+refine+ceres", "'+ceres'"},
+           {"interp/arc+refine", "'interp/arc+refine'"},
+           {"interp/auto", "'/auto'"}}) {
+    try {
+      ParseStudyMethod(label);
+      ADD_FAILURE() << label << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << label << ": " << e.what();
+    }
+  }
+}
+
+TEST(StudyReport, SummaryCountsEveryRowAndShortfallsGiveTheReason) {
+  const std::vector<StudyRow> rows = HandMadeResult().rows;
+  const std::string summary = SummaryMarkdown(rows);
+  for (const StudyMethodSummary& s : SummarizeStudy(rows)) {
+    EXPECT_NE(summary.find("| " + s.method + " | " + std::to_string(s.rows) + " | "),
+              std::string::npos)
+        << summary;
+    EXPECT_LE(s.mean_robustness_all, s.mean_robustness);
+  }
+  const std::string shortfall = ShortfallMarkdown(rows);
+  for (const StudyRow& r : rows) {
+    if (!r.passed && r.status == "ok" && !r.nominal_success) {
+      EXPECT_NE(shortfall.find(r.nominal_outcome), std::string::npos) << shortfall;
+    }
+  }
 }
 
 }  // namespace

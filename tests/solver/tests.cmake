@@ -20,5 +20,7 @@ add_dependencies(apps_synthesize_command_test graspsynth)
 graspsynth_test(solver/shipped_demos_test.cpp LIBS graspsynth::solver)
 # Tests of the end-to-end study (solver/study.hpp) and of `graspsynth run`.
 graspsynth_test(solver/study_test.cpp LIBS graspsynth::solver nlohmann_json::nlohmann_json)
+graspsynth_test(apps/generalize_command_test.cpp)
+add_dependencies(apps_generalize_command_test graspsynth)
 graspsynth_test(apps/run_command_test.cpp LIBS nlohmann_json::nlohmann_json)
 add_dependencies(apps_run_command_test graspsynth)
