@@ -164,8 +164,9 @@ void AddGeneralizeCommand(CLI::App& app, int* exit_code) {
       "OUT/NAME.md (summary per method, the shortfalls with the simulator's reasons, every\n"
       "grasp), atomically; the CSV is the same bytes for the same seed whatever --threads is.\n"
       "Methods: interp, line or nearest, then +refine (both refinement stages), +ceres or\n"
-      "+nlopt (one stage), then /arc (arc-length resampling of the blend) and /spline or\n"
-      "/joint (the reach; default auto), e.g. interp+refine/arc.\n"
+      "+nlopt (one stage), then /arc (arc-length resampling of the blend), /spline or\n"
+      "/joint (the reach; default auto) and /strict (the refinement's default thresholds\n"
+      "even where the sources break them), e.g. interp+refine/arc.\n"
       "Experiments 2 and 3 (experiments/generalization.sh, experiments/ablations.sh) run it.\n"
       "Example:\n"
       "  graspsynth generalize --orientations 20:100:1 --out results");

@@ -26,6 +26,7 @@ struct SynthesizeOptions {
   std::string method = "interp";
   std::string reach = "auto";
   double clearance_margin = 0.005;
+  bool strict_thresholds = false;
   bool no_refine = false;
   std::string start;
   uint64_t seed = PhysicsGateOptions{}.seed;
@@ -77,6 +78,7 @@ int RunSynthesize(const SynthesizeOptions& o) {
   so.refine = !o.no_refine;
   so.reach_method = ParseReachMethod(o.reach);
   so.refinement.clearance_margin = o.clearance_margin;
+  so.thresholds_from_sources = !o.strict_thresholds;
   if (!o.start.empty()) so.start = ParseStart(o.start);
   CollisionData data(model.collision());
   const SynthesisResult s = SynthesizeGrasp(model, o.theta, so, &data);
@@ -153,6 +155,9 @@ void AddSynthesizeCommand(CLI::App& app, int* exit_code) {
                   "The refinement's clearance of hand and arm from object and table along the "
                   "approach, m")
       ->capture_default_str();
+  cmd->add_flag("--strict-thresholds", opts->strict_thresholds,
+                "Refine to the default clearance, penetration and contact thresholds even where "
+                "the source demonstrations, which held the object in physics, break them");
   cmd->add_option("--start", opts->start,
                   "Start arm configuration q1,...,q7 in radians (default: the rest pose for the "
                   "grasp orientation)");

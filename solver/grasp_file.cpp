@@ -111,6 +111,11 @@ std::string GraspFileToJson(const SynthesisResult& s, const PhysicsGateResult* g
                     {"closure", r.nlopt.closure},
                     {"time_s", r.nlopt.time_s}};
   }
+  if (s.refined) {
+    ref["thresholds"] = {{"clearance_margin_m", s.clearance_margin},
+                         {"penetration_tolerance_m", s.penetration_tolerance},
+                         {"contact_tolerance_m", s.contact_tolerance}};
+  }
   j["refinement"] = ref;
   json timing = {{"generate_s", s.generate_s}, {"refine_s", s.refine_s}, {"joints_s", s.joints_s}};
   if (gate) {

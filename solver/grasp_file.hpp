@@ -14,8 +14,9 @@
 ///      "waypoints": [{"t", "position", "quaternion", "fingers": [16 rad]}],  the grasping
 ///                   motion from the pre-grasp to the grasp (after refinement)
 ///      "trajectory": {graspsynth-trajectory/1 document},   what `graspsynth simulate` plays
-///      "refinement": {"refined", "kept", "time_s", "before": {...}, "after_ceres": {...},
-///                     "after": {...}, "ceres": {...}, "nlopt": {...}},
+///      "refinement": {"refined", "kept", "time_s", "thresholds": {"clearance_margin_m",
+///                     "penetration_tolerance_m", "contact_tolerance_m"}, "before": {...},
+///                     "after_ceres": {...}, "after": {...}, "ceres": {...}, "nlopt": {...}},
 ///      "quality": {"contacts", "force_closure", "epsilon", "volume", "wrenches", "facets",
 ///                  "message"},
 ///      "validation": {"passed", "forced", "reason", "nominal": {...}, "robustness": {...}},

@@ -45,8 +45,7 @@ bool GraspQualityOptions::IsValid(std::string* why) const {
 }
 
 GraspQuality EvaluateGraspQuality(const std::vector<GraspContact>& contacts,
-                                  const Eigen::Vector3d& p_WR,
-                                  const GraspQualityOptions& options) {
+                                  const Eigen::Vector3d& p_WR, const GraspQualityOptions& options) {
   GS_DEMAND(options.IsValid(nullptr), "invalid GraspQualityOptions");
   GraspQuality q;
   double rho = options.torque_scale;

@@ -129,6 +129,7 @@ std::string StudyMethod::Label() const {
   if (refine && !ceres && nlopt) label += "+nlopt";
   if (resample == ResampleMode::kArcLength) label += "/arc";
   if (reach != ReachMethod::kAuto) label += std::string("/") + ToString(reach);
+  if (!thresholds_from_sources) label += "/strict";
   return label;
 }
 
@@ -140,6 +141,7 @@ SynthesisOptions StudyMethod::Options() const {
   o.refinement.run_nlopt = nlopt;
   o.blend.resample = resample;
   o.reach_method = reach;
+  o.thresholds_from_sources = thresholds_from_sources;
   return o;
 }
 
@@ -147,7 +149,7 @@ StudyMethod ParseStudyMethod(const std::string& label) {
   const auto fail = [&](const std::string& part) {
     return InputError("unknown method '" + label + "': '" + part +
                       "' is not known (a method interp, line or nearest, then optionally "
-                      "+refine, +ceres or +nlopt, /arc, /spline or /joint; e.g. "
+                      "+refine, +ceres or +nlopt, /arc, /spline or /joint, /strict; e.g. "
                       "interp+refine/arc)");
   };
   StudyMethod m;
@@ -174,6 +176,8 @@ StudyMethod ParseStudyMethod(const std::string& label) {
       m.resample = ResampleMode::kArcLength;
     } else if ((part == "/spline" || part == "/joint") && m.reach == ReachMethod::kAuto) {
       m.reach = ParseReachMethod(part.substr(1));
+    } else if (part == "/strict" && m.thresholds_from_sources) {
+      m.thresholds_from_sources = false;
     } else {
       throw fail(part);
     }

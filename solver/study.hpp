@@ -50,11 +50,13 @@ struct StudyMethod {
   bool nlopt = true;  ///< the refinement's stage 2 (with refine)
   ResampleMode resample = ResampleMode::kNormalizedTime;  ///< of the blend
   ReachMethod reach = ReachMethod::kAuto;
+  bool thresholds_from_sources = true;  ///< SynthesisOptions' (false: "/strict")
 
   /// The name: the method ("interp", "line", "nearest"), then "+refine" when both refinement
   /// stages run, "+ceres" or "+nlopt" when only that one does, then "/arc" for arc-length
-  /// resampling and "/spline" or "/joint" for a reach other than auto. E.g. "interp+refine",
-  /// "line", "interp+ceres/arc".
+  /// resampling, "/spline" or "/joint" for a reach other than auto, and "/strict" for the
+  /// refinement's default thresholds whatever the sources did. E.g. "interp+refine", "line",
+  /// "interp+ceres/arc".
   std::string Label() const;
   /// The synthesis options of this method.
   SynthesisOptions Options() const;

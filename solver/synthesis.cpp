@@ -273,6 +273,17 @@ SynthesisModel::SynthesisModel(RobotModel robot, SceneModel scene, GraspLibrary 
   std::string why;
   if (!line_options.IsValid(&why)) throw InputError("invalid line-principle option: " + why);
   line_ = FitLinePrinciple(library_, scene_, line_options);
+  CollisionData data(collision_);
+  for (const LibraryEntry& e : library_.entries) {
+    RefinementInputs in;
+    in.q_start = DefaultRestConfiguration(robot_, scene_, e.motion.grasp().q_WH.toRotationMatrix());
+    if (line_.valid) {
+      in.wrist_line = line_.wrist_line.line;
+      in.handle_in_hand = line_.handle_in_hand;
+    }
+    entry_constraints_.push_back(EvaluateRefinementConstraints(robot_, scene_, collision_, e.motion,
+                                                               in, RefinementOptions{}, &data));
+  }
 }
 
 bool SynthesisOptions::IsValid(std::string* why) const {
@@ -447,8 +458,28 @@ SynthesisResult SynthesizeGrasp(const SynthesisModel& model, double theta_deg,
       in.wrist_line = line.wrist_line.line;
       in.handle_in_hand = line.handle_in_hand;
     }
+    RefinementOptions ro = options.refinement;
+    if (options.thresholds_from_sources) {
+      std::vector<int> sources;
+      if (r.used == SynthesisMethod::kLine) {
+        sources.push_back(b.nearest);
+      } else {
+        for (const SourceDemo& s : r.sources) sources.push_back(s.entry);
+      }
+      for (int i : sources) {
+        const RefinementConstraints& c = model.entry_constraints()[i];
+        ro.clearance_margin = std::min(ro.clearance_margin, c.approach_clearance);
+        ro.penetration_tolerance = std::max(ro.penetration_tolerance, -c.grasp_clearance);
+        if (std::isfinite(c.contact_error)) {
+          ro.contact_tolerance = std::max(ro.contact_tolerance, c.contact_error);
+        }
+      }
+    }
+    r.clearance_margin = ro.clearance_margin;
+    r.penetration_tolerance = ro.penetration_tolerance;
+    r.contact_tolerance = ro.contact_tolerance;
     RefinementResult rr =
-        RefineGraspingMotion(robot, scene, model.collision(), motion, in, options.refinement, data);
+        RefineGraspingMotion(robot, scene, model.collision(), motion, in, ro, data);
     motion = std::move(rr.motion);
     r.refinement = std::move(rr.report);
     r.refined = true;

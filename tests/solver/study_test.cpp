@@ -240,7 +240,7 @@ TEST(StudyReportMarkdown, SaysWhyFig8IsMissing) {
 TEST(StudyMethod, LabelsRoundTripThroughTheParser) {
   for (const std::string label :
        {"interp", "interp+refine", "line+refine", "nearest", "interp+ceres", "interp+nlopt",
-        "interp+refine/arc", "interp/arc/joint", "line+nlopt/spline"}) {
+        "interp+refine/arc", "interp/arc/joint", "line+nlopt/spline", "interp+refine/strict"}) {
     EXPECT_EQ(ParseStudyMethod(label).Label(), label);
   }
   const StudyMethod m = ParseStudyMethod("interp+ceres/arc/spline");

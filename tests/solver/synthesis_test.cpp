@@ -215,5 +215,35 @@ TEST(SynthesisReach, ParsesItsNames) {
   EXPECT_THROW(ParseReachMethod("dmp"), InputError);
 }
 
+TEST(SynthesisThresholds, TheSourcesLoosenOnlyWhatTheyBreakThemselves) {
+  // the shipped 30 deg representative held the pan in physics with its thumb 3.4 mm into the
+  // handle's shape at the grasp, beyond the default 2 mm tolerance.
+  const SynthesisModel& model = ShippedModel();
+  const RefinementConstraints& c30 = model.entry_constraints()[1];
+  ASSERT_EQ(model.library().entries[1].theta_deg, 30.0);
+  ASSERT_GT(-c30.grasp_clearance, RefinementOptions{}.penetration_tolerance);
+  CollisionData data(model.collision());
+  SynthesisOptions o;
+  const SynthesisResult r = SynthesizeGrasp(model, 30.0, o, &data);
+  ASSERT_TRUE(r.ok()) << r.message;
+  EXPECT_DOUBLE_EQ(r.penetration_tolerance, -c30.grasp_clearance);
+  EXPECT_DOUBLE_EQ(r.clearance_margin, std::min(0.005, c30.approach_clearance));
+  EXPECT_TRUE(r.refinement.before.feasible);
+  EXPECT_EQ(r.refinement.kept, "input");  // the demonstration itself is left alone
+  // with the default thresholds the same demonstration counts as infeasible and is moved.
+  o.thresholds_from_sources = false;
+  const SynthesisResult strict = SynthesizeGrasp(model, 30.0, o, &data);
+  ASSERT_TRUE(strict.ok()) << strict.message;
+  EXPECT_FALSE(strict.refinement.before.feasible);
+  EXPECT_NE(strict.refinement.kept, "input");
+  EXPECT_EQ(strict.penetration_tolerance, RefinementOptions{}.penetration_tolerance);
+  // a source within every default changes nothing: 90 deg keeps the defaults.
+  const SynthesisResult r90 = SynthesizeGrasp(model, 90.0, SynthesisOptions{}, &data);
+  ASSERT_TRUE(r90.ok());
+  EXPECT_EQ(r90.penetration_tolerance, RefinementOptions{}.penetration_tolerance);
+  EXPECT_EQ(r90.clearance_margin, RefinementOptions{}.clearance_margin);
+  EXPECT_EQ(r90.contact_tolerance, RefinementOptions{}.contact_tolerance);
+}
+
 }  // namespace
 }  // namespace graspsynth
