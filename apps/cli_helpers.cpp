@@ -74,7 +74,11 @@ void ProgressBar::Update(const std::string& name, int done, int total, const std
                  total, what.c_str());
   } else if (done * 10 / total != last_tenth_) {
     last_tenth_ = done * 10 / total;
-    std::fprintf(stderr, "%s: %d/%d (%s)\n", name.c_str(), done, total, what.c_str());
+    if (what.empty()) {
+      std::fprintf(stderr, "%s: %d/%d\n", name.c_str(), done, total);
+    } else {
+      std::fprintf(stderr, "%s: %d/%d (%s)\n", name.c_str(), done, total, what.c_str());
+    }
   }
   std::fflush(stderr);
 }

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/cli_helpers.hpp"
 #include "common/errors.hpp"
 #include "kinematics/robot_description.hpp"
 #include "kinematics/scene_model.hpp"
@@ -41,17 +42,6 @@ struct DemosOptions {
   double damping = 0.7;
   bool quiet = false;
 };
-
-// A one-line progress bar on stderr.
-void ShowProgress(const std::string& what, int done, int total, bool quiet) {
-  if (quiet) return;
-  const int width = 30;
-  const int filled = total > 0 ? done * width / total : width;
-  std::fprintf(stderr, "\r%s [%s%s] %d/%d", what.c_str(), std::string(filled, '#').c_str(),
-               std::string(width - filled, '.').c_str(), done, total);
-  if (done == total) std::fprintf(stderr, "\n");
-  std::fflush(stderr);
-}
 
 OperatorOptions LoadOperator(const DemosOptions& o) {
   OperatorOptions options =
@@ -116,9 +106,12 @@ void PrintSummary(const TableAnalysis& table, const std::vector<OperatorTrial>& 
 int Generate(const DemosOptions& o) {
   const OperatorOptions options = LoadOperator(o);
   const std::unique_ptr<SimulationModel> model = LoadModel(o);
-  const std::vector<OperatorTrial> trials = GenerateDemonstrations(
-      *model, options, o.threads,
-      [&](int done, int total) { ShowProgress("simulating trials", done, total, o.quiet); });
+  ProgressBar bar;
+  const std::vector<OperatorTrial> trials =
+      GenerateDemonstrations(*model, options, o.threads, [&](int done, int total) {
+        if (!o.quiet) bar.Update("simulating trials", done, total, "");
+      });
+  bar.Finish();
   fs::create_directories(o.out);
   for (const OperatorTrial& t : trials) WriteDemoLog(fs::path(o.out) / t.log.source, t.log);
   OperatorOptions used = options;
@@ -159,11 +152,13 @@ int Calibrate(const DemosOptions& o) {
   for (const PaperTableRow& r : PaperTableI()) paper[r.theta_deg] = r;
   std::vector<OrientationPlan> best = options.plans;
   std::vector<double> best_error(options.plans.size(), 1e300);
+  ProgressBar bar;
   for (int iteration = 1; iteration <= o.iterations; ++iteration) {
     const std::vector<OperatorTrial> trials =
         GenerateDemonstrations(*model, options, o.threads, [&](int done, int total) {
-          ShowProgress("round " + std::to_string(iteration), done, total, o.quiet);
+          if (!o.quiet) bar.Update("round " + std::to_string(iteration), done, total, "");
         });
+    bar.Finish();
     const TableAnalysis table = Analyze(*model, trials);
     PrintSummary(table, trials);
     for (size_t k = 0; k < options.plans.size(); ++k) {

@@ -4,15 +4,13 @@
 
 #include "apps/select_command.hpp"
 
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdio>
 #include <map>
 #include <memory>
-#include <mutex>
 #include <string>
 
+#include "apps/cli_helpers.hpp"
 #include "common/errors.hpp"
 #include "kinematics/robot_description.hpp"
 #include "kinematics/scene_model.hpp"
@@ -33,35 +31,6 @@ struct SelectCommandOptions {
   std::string scene;
 };
 
-// A one-line progress bar on stderr, redrawn in place on a terminal; elsewhere (logs, pipes)
-// a line at every tenth of the run.
-class ProgressBar {
- public:
-  ProgressBar() : tty_(::isatty(STDERR_FILENO) != 0) {}
-
-  void Update(int done, int total, const std::string& file) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (total <= 0) return;
-    const int width = 30;
-    const int filled = done * width / total;
-    if (tty_) {
-      std::fprintf(stderr, "\rselecting [%s%s] %d/%d replays  %-40.40s",
-                   std::string(filled, '#').c_str(), std::string(width - filled, ' ').c_str(), done,
-                   total, file.c_str());
-      if (done == total) std::fprintf(stderr, "\n");
-    } else if (done * 10 / total != last_tenth_ || done == total) {
-      last_tenth_ = done * 10 / total;
-      std::fprintf(stderr, "selecting: %d/%d replays (%s)\n", done, total, file.c_str());
-    }
-    std::fflush(stderr);
-  }
-
- private:
-  bool tty_;
-  int last_tenth_ = 0;
-  std::mutex mutex_;
-};
-
 int RunSelect(const SelectCommandOptions& o) {
   const SceneModel scene =
       LoadSceneModel(o.scene.empty() ? DefaultSceneModelPath() : std::filesystem::path(o.scene));
@@ -77,9 +46,12 @@ int RunSelect(const SelectCommandOptions& o) {
   if (!options.IsValid(&why)) throw InputError("select: " + why);
 
   ProgressBar bar;
-  const SelectionResult result = SelectRepresentatives(
-      model, std::filesystem::path(o.directory), options,
-      [&](int done, int total, const std::string& file) { bar.Update(done, total, file); });
+  const SelectionResult result =
+      SelectRepresentatives(model, std::filesystem::path(o.directory), options,
+                            [&](int done, int total, const std::string& file) {
+                              bar.Update("selecting replays", done, total, file);
+                            });
+  bar.Finish();
   const GraspLibrary& library = result.library;
   WriteGraspLibrary(library, o.out);
 

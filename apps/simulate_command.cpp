@@ -4,17 +4,15 @@
 
 #include "apps/simulate_command.hpp"
 
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
-#include <mutex>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 
+#include "apps/cli_helpers.hpp"
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
 #include "kinematics/pose_math.hpp"
@@ -105,34 +103,6 @@ std::string StatesCsv(const std::vector<TrialState>& states) {
   return s.str();
 }
 
-// A one-line progress bar on stderr, redrawn in place on a terminal; elsewhere (logs,
-// pipes) a line at every tenth of the run.
-class ProgressBar {
- public:
-  explicit ProgressBar(int total) : total_(total), tty_(::isatty(STDERR_FILENO) != 0) {}
-
-  void Update(int done) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    const int width = 30;
-    const int filled = done * width / total_;
-    if (tty_) {
-      std::fprintf(stderr, "\rsimulating [%s%s] %d/%d trials", std::string(filled, '#').c_str(),
-                   std::string(width - filled, ' ').c_str(), done, total_);
-      if (done == total_) std::fprintf(stderr, "\n");
-    } else if (done * 10 / total_ != last_tenth_ || done == total_) {
-      last_tenth_ = done * 10 / total_;
-      std::fprintf(stderr, "simulating: %d/%d trials\n", done, total_);
-    }
-    std::fflush(stderr);
-  }
-
- private:
-  int total_;
-  bool tty_;
-  int last_tenth_ = 0;
-  std::mutex mutex_;
-};
-
 int RunSimulate(const SimulateOptions& o) {
   if (o.fidelity != "fast" && o.fidelity != "full") {
     throw InputError("--fidelity must be 'fast' or 'full', not '" + o.fidelity + "'");
@@ -183,9 +153,11 @@ int RunSimulate(const SimulateOptions& o) {
                        {"final_object_pose", PoseJson(nominal.final_object_pose)}};
   json trials = json::array();
   if (o.perturb > 0) {
-    ProgressBar bar(o.perturb);
-    const RobustnessResult r =
-        EvaluateRobustness(model, trajectory, ro, [&](int done, int) { bar.Update(done); });
+    ProgressBar bar;
+    const RobustnessResult r = EvaluateRobustness(model, trajectory, ro, [&](int done, int total) {
+      bar.Update("simulating", done, total, "perturbed trials");
+    });
+    bar.Finish();
     report["robustness"] = {{"trials", o.perturb},
                             {"successes", r.successes},
                             {"score", Round(r.score)},

@@ -10,6 +10,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "learning_data/grasp_library.hpp"
 #include "simulation/simulation_model.hpp"
 #include "solver/physics_gate.hpp"
 #include "solver/synthesis.hpp"
@@ -87,6 +88,21 @@ void BM_SynthesizeHardCase45(benchmark::State& s) {
   Synthesize(s, SideSwitch(), 45.0, SynthesisMethod::kInterp, true);
 }
 
+// The shipped library (learning_data/library.json: the synthetic operator's representatives at
+// 20, 30, ..., 100 deg): one query per orientation 20, 25, ..., 100 deg, interp and line with
+// the refinement.
+const SynthesisModel& Shipped() {
+  static const SynthesisModel model(Sim().robot(), Sim().scene(),
+                                    ReadGraspLibrary(DefaultGraspLibraryPath()));
+  return model;
+}
+void BM_ShippedInterp(benchmark::State& s) {
+  Synthesize(s, Shipped(), static_cast<double>(s.range(0)), SynthesisMethod::kInterp, true);
+}
+void BM_ShippedLine(benchmark::State& s) {
+  Synthesize(s, Shipped(), static_cast<double>(s.range(0)), SynthesisMethod::kLine, true);
+}
+
 // The gate of the 50 deg grasp: the nominal trial alone, and with 10 perturbed replays on one
 // thread (the command's default of 30 replays spreads over every core).
 void Gate(benchmark::State& state, int perturbations) {
@@ -109,6 +125,8 @@ BENCHMARK(BM_SynthesizeNearest70)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SynthesizeLine30)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SynthesizeLine110)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SynthesizeHardCase45)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ShippedInterp)->DenseRange(20, 100, 5)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ShippedLine)->DenseRange(20, 100, 5)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_GateNominal)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_GateNominalPlus10)->Unit(benchmark::kMillisecond)->Iterations(1);
 

@@ -30,7 +30,7 @@ set multiplot layout 2,1
 set xrange [0:120]
 set grid
 set key outside right
-set ylabel 'robustness (5 replays)'
+set ylabel 'robustness (10 replays)'
 set yrange [-0.05:1.05]
 set title 'Robustness of the synthesized grasp against orientation'
 plot $(plot_lines 3)

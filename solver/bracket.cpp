@@ -22,6 +22,9 @@ bool BracketOptions::IsValid(std::string* why) const {
   if (!(std::isfinite(side_dead_band) && side_dead_band >= 0.0)) {
     return fail("side_dead_band must be >= 0 (m)");
   }
+  if (!(std::isfinite(min_score) && min_score >= 0.0 && min_score <= 1.0)) {
+    return fail("min_score must be in [0, 1]");
+  }
   if (!(std::isfinite(exact_tolerance) && exact_tolerance >= 0.0)) {
     return fail("exact_tolerance must be >= 0 (deg)");
   }
@@ -70,9 +73,11 @@ Bracket SelectBracket(const GraspLibrary& library, const SceneModel& scene, doub
       b.nearest = i;
     }
   }
+  const auto weak = [&](int i) { return e[i].score < options.min_score; };
   if (std::abs(e[b.nearest].theta_deg - theta_deg) <= options.exact_tolerance) {
     b.kind = BracketKind::kExact;
     b.lower = b.upper = b.nearest;
+    b.weak_lower = b.weak_upper = weak(b.nearest);
     return b;
   }
   if (theta_deg < e.front().theta_deg) {
@@ -90,6 +95,8 @@ Bracket SelectBracket(const GraspLibrary& library, const SceneModel& scene, doub
   while (i + 1 < n && e[i + 1].theta_deg < theta_deg) ++i;
   b.lower = i;
   b.upper = i + 1;
+  b.weak_lower = weak(b.lower);
+  b.weak_upper = weak(b.upper);
   const LibraryEntry& a = e[b.lower];
   const LibraryEntry& c = e[b.upper];
   b.t = (theta_deg - a.theta_deg) / (c.theta_deg - a.theta_deg);
@@ -116,6 +123,13 @@ Bracket SelectBracket(const GraspLibrary& library, const SceneModel& scene, doub
     b.blendable = false;
     why << "the grasp orientations relative to the object differ by " << b.orientation_change / kDeg
         << " deg (more than " << options.max_orientation_change / kDeg << ")";
+  }
+  if (b.weak_lower != b.weak_upper) {
+    const LibraryEntry& w = b.weak_lower ? a : c;
+    if (!b.blendable) why << "; ";
+    b.blendable = false;
+    why << "the " << w.theta_deg << " deg representative is weak (robustness score " << w.score
+        << " < " << options.min_score << ")";
   }
   b.reason = why.str();
   return b;

@@ -11,6 +11,11 @@
 /// Side of the handle: seen along the handle from the pan, +1 when the wrist is right of the
 /// handle's line, -1 when left (ScriptedGraspOptions::side's convention), 0 when the wrist is
 /// within BracketOptions::side_dead_band of the line.
+///
+/// A weak end: a representative whose robustness score in the library is below
+/// BracketOptions::min_score (the most robust demonstration of its orientation still failed
+/// most perturbed replays, e.g. the shipped 20 deg one: 0.20). A bracket with one weak end is
+/// not blended either; the synthesis uses its robust end instead (synthesis.hpp).
 
 #include <string>
 #include <vector>
@@ -29,6 +34,8 @@ struct BracketOptions {
   double side_dead_band = 0.01;
   /// A query within this of a demonstrated orientation is that demonstration, deg.
   double exact_tolerance = 1e-6;
+  /// A representative whose library score is below this is weak, [0, 1] (0: none is).
+  double min_score = 0.5;
 
   bool IsValid(std::string* why) const;
 };
@@ -57,6 +64,8 @@ struct Bracket {
   double orientation_change = 0.0;
   int side_lower = 0;  ///< side of the handle of the lower grasp (+1, -1, 0)
   int side_upper = 0;
+  bool weak_lower = false;  ///< entry `lower` is weak (score < min_score); kExact: the entry
+  bool weak_upper = false;  ///< entry `upper` is weak
   /// False when the two grasps must not be blended (kInside only); `reason` says why.
   bool blendable = true;
   std::string reason;

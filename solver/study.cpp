@@ -282,6 +282,19 @@ std::vector<ReachabilityRow> TableIReachability(const RobotModel& robot, const S
   return rows;
 }
 
+namespace {
+
+// The row of (theta, method) of a table with `seed`, before anything is known of it.
+StudyRow NewRow(double theta, const StudyMethod& method, uint64_t seed) {
+  StudyRow row;
+  row.theta_deg = theta;
+  row.method = method.Label();
+  row.seed = StudyRowSeed(seed, theta, row.method);
+  return row;
+}
+
+}  // namespace
+
 std::vector<StudyRow> SynthesisTable(const SimulationModel& model, const GraspLibrary& library,
                                      const SynthesisTableOptions& options,
                                      const SynthesisTableProgress& progress) {
@@ -297,10 +310,7 @@ std::vector<StudyRow> SynthesisTable(const SimulationModel& model, const GraspLi
   int base = 0;
   for (double theta : options.orientations) {
     for (const StudyMethod& method : options.methods) {
-      StudyRow row;
-      row.theta_deg = theta;
-      row.method = method.Label();
-      row.seed = StudyRowSeed(options.seed, theta, row.method);
+      StudyRow row = NewRow(theta, method, options.seed);
       const std::string what = "theta " + Deg(theta) + " " + row.method;
       report(base, total, what);
       const auto t0 = std::chrono::steady_clock::now();
@@ -414,10 +424,7 @@ StudyResult RunStudy(const SimulationModel& model, const StudyOptions& options,
   if (!no_model.empty()) {
     for (double theta : options.orientations) {
       for (const StudyMethod& method : options.methods) {
-        StudyRow row;
-        row.theta_deg = theta;
-        row.method = method.Label();
-        row.seed = StudyRowSeed(options.seed, theta, row.method);
+        StudyRow row = NewRow(theta, method, options.seed);
         row.status = "no_library";
         row.message = no_model;
         result.rows.push_back(row);

@@ -372,6 +372,30 @@ SynthesisResult SynthesizeGrasp(const SynthesisModel& model, double theta_deg,
       }
       if (b.kind == BracketKind::kExact) {
         use_nearest(b.lower);
+        if (b.weak_lower) {
+          // a weak representative: its robust neighbour turned with the object, if there is one.
+          const auto& e = library.entries;
+          int robust = -1;
+          for (int i : {b.lower - 1, b.lower + 1}) {
+            if (i < 0 || i >= static_cast<int>(e.size())) continue;
+            if (e[i].score < options.bracket.min_score) continue;
+            if (robust < 0 ||
+                std::abs(e[i].theta_deg - theta_deg) < std::abs(e[robust].theta_deg - theta_deg)) {
+              robust = i;
+            }
+          }
+          if (robust >= 0) {
+            use_nearest(robust);
+            r.used = SynthesisMethod::kNearest;
+            r.fallback = true;
+            std::ostringstream f;
+            f << "the " << e[b.lower].theta_deg << " deg representative is weak (robustness score "
+              << e[b.lower].score << " < " << options.bracket.min_score
+              << "); used its robust neighbour (" << e[robust].theta_deg
+              << " deg) turned with the object";
+            r.fallback_reason = f.str();
+          }
+        }
       } else if (b.blendable) {
         motion = BlendMotions(library.entries[b.lower].motion, library.entries[b.upper].motion, b.t,
                               options.blend);
@@ -380,7 +404,10 @@ SynthesisResult SynthesizeGrasp(const SynthesisModel& model, double theta_deg,
       } else {
         // the hard case: documented fallback order (synthesis.hpp).
         r.fallback = true;
-        const int nearer = b.t <= 0.5 ? b.lower : b.upper;
+        // the robust end when exactly one is weak, else the nearer one.
+        const int nearer = b.weak_lower != b.weak_upper ? (b.weak_lower ? b.upper : b.lower)
+                           : b.t <= 0.5                 ? b.lower
+                                                        : b.upper;
         std::ostringstream f;
         f << "the bracket " << library.entries[b.lower].theta_deg << " - "
           << library.entries[b.upper].theta_deg << " deg cannot be blended (" << b.reason << ")";
@@ -388,7 +415,8 @@ SynthesisResult SynthesizeGrasp(const SynthesisModel& model, double theta_deg,
         if (Reachable(robot, turned, branch, min_width)) {
           use_nearest(nearer);
           r.used = SynthesisMethod::kNearest;
-          f << "; used the nearer demonstration (" << library.entries[nearer].theta_deg
+          f << "; used the " << (b.weak_lower != b.weak_upper ? "robust" : "nearer")
+            << " demonstration (" << library.entries[nearer].theta_deg
             << " deg) turned with the object";
         } else {
           f << "; the nearer demonstration turned with the object is not reachable with "

@@ -8,13 +8,15 @@
 ///
 /// Methods:
 /// - interp: the paper's blend (motion/interpolation.hpp) of the bracket theta1 < theta <
-///   theta2 (bracket.hpp); a demonstrated theta is that demonstration. Outside the library's
-///   range: an error (kOutOfRange) that names the range. A bracket that cannot be blended (the
-///   hard case) falls back, in this order: (1) the nearer demonstration of the bracket turned
-///   with the object about its vertical axis (the hand keeps the demonstrated hold of the
-///   handle; accepted when its grasp and pre-grasp are reachable on the start branch with
-///   min_psi_width to spare); (2) the line principle on the nearer demonstration's side of the
-///   handle; (3) the plain blend, left to the refinement. The result says which and why.
+///   theta2 (bracket.hpp); a demonstrated theta is that demonstration, unless it is weak
+///   (bracket.hpp) and a neighbour is not: then that neighbour turned with the object. Outside
+///   the library's range: an error (kOutOfRange) that names the range. A bracket that cannot be
+///   blended (the hard case, or one weak end) falls back, in this order: (1) the nearer
+///   demonstration of the bracket (the robust one when one end is weak) turned with the object
+///   about its vertical axis (the hand keeps the demonstrated hold of the handle; accepted when
+///   its grasp and pre-grasp are reachable on the start branch with min_psi_width to spare);
+///   (2) the line principle on that demonstration's side of the handle; (3) the plain blend,
+///   left to the refinement. The result says which and why.
 /// - nearest: the nearest demonstration turned with the object (any theta).
 /// - line: the line principle (line_principle.hpp) on the nearest demonstration's side (any
 ///   theta).

@@ -74,7 +74,7 @@ TEST_F(SimulateCommand, SimulatesTheExampleAndWritesReportAndRecord) {
     EXPECT_TRUE(t["reason"].is_string());
   }
   EXPECT_THAT(r.err, HasSubstr("nominal trial: success"));
-  EXPECT_THAT(r.err, HasSubstr("3/3 trials"));
+  EXPECT_THAT(r.err, HasSubstr("simulating: 3/3"));
   // the record: a header and one row per 10 ms of the 6.3 s trial.
   std::istringstream csv(ReadFileText(Path("states.csv")));
   std::string header, line;

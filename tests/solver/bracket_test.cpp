@@ -90,5 +90,28 @@ TEST(Bracket, HandleSideFollowsTheScriptedGraspsSide) {
   }
 }
 
+TEST(Bracket, OneWeakEndMakesABracketUnblendable) {
+  GraspLibrary library = Library406080();
+  library.entries[0].score = 0.2;  // 40 deg: its best demonstration failed 8 of 10 replays
+  const Bracket b = SelectBracket(library, Scene(), 50.0);
+  EXPECT_TRUE(b.weak_lower);
+  EXPECT_FALSE(b.weak_upper);
+  EXPECT_FALSE(b.blendable);
+  EXPECT_NE(b.reason.find("the 40 deg representative is weak"), std::string::npos) << b.reason;
+  EXPECT_TRUE(SelectBracket(library, Scene(), 70.0).blendable);
+  const Bracket exact = SelectBracket(library, Scene(), 40.0);
+  EXPECT_EQ(exact.kind, BracketKind::kExact);
+  EXPECT_TRUE(exact.weak_lower);
+  // both ends weak: nothing better to use, the bracket blends.
+  library.entries[1].score = 0.3;
+  EXPECT_TRUE(SelectBracket(library, Scene(), 50.0).blendable);
+  // min_score 0: no representative is weak.
+  BracketOptions o;
+  o.min_score = 0.0;
+  EXPECT_TRUE(SelectBracket(library, Scene(), 50.0, o).blendable);
+  o.min_score = 1.5;
+  EXPECT_FALSE(o.IsValid(nullptr));
+}
+
 }  // namespace
 }  // namespace graspsynth

@@ -245,5 +245,31 @@ TEST(SynthesisThresholds, TheSourcesLoosenOnlyWhatTheyBreakThemselves) {
   EXPECT_EQ(r90.contact_tolerance, RefinementOptions{}.contact_tolerance);
 }
 
+TEST(SynthesisWeak, AWeakRepresentativeGivesWayToItsRobustNeighbour) {
+  // the shipped 20 deg representative scored 0.20 in the selection, the 30 deg one 0.75.
+  const SynthesisModel& model = ShippedModel();
+  ASSERT_LT(model.library().entries[0].score, 0.5);
+  ASSERT_GE(model.library().entries[1].score, 0.5);
+  for (double theta : {20.0, 25.0}) {
+    const SynthesisResult r = WithReach(theta, ReachMethod::kAuto);
+    ASSERT_TRUE(r.ok()) << r.message;
+    EXPECT_TRUE(r.fallback) << theta;
+    EXPECT_EQ(r.used, SynthesisMethod::kNearest) << theta;
+    ASSERT_EQ(r.sources.size(), 1u);
+    EXPECT_EQ(r.sources[0].theta_deg, 30.0) << theta;
+    EXPECT_NE(r.fallback_reason.find("weak"), std::string::npos) << r.fallback_reason;
+  }
+  // the 20 deg demonstration itself drops the pan; its neighbour turned by -10 deg lifts it.
+  const SynthesisResult r = WithReach(20.0, ReachMethod::kAuto);
+  const TrialResult t = RunTrial(ShippedSimulationModel(), r.trajectory);
+  EXPECT_TRUE(t.success()) << t.BriefReport();
+  SynthesisOptions o;
+  o.method = SynthesisMethod::kNearest;
+  CollisionData data(model.collision());
+  const SynthesisResult own = SynthesizeGrasp(model, 20.0, o, &data);
+  ASSERT_TRUE(own.ok());
+  EXPECT_FALSE(RunTrial(ShippedSimulationModel(), own.trajectory).success());
+}
+
 }  // namespace
 }  // namespace graspsynth
