@@ -65,6 +65,10 @@ LinearFit FitLinear(const std::vector<double>& x, const std::vector<double>& y) 
 }  // namespace
 
 bool LinePrincipleOptions::IsValid(std::string* why) const {
+  if (!(std::isfinite(min_score) && min_score >= 0.0 && min_score <= 1.0)) {
+    if (why) *why = "min_score must be in [0, 1]";
+    return false;
+  }
   if (!line.IsValid(why)) return false;
   if (waypoints < 2) {
     if (why) *why = "waypoints must be >= 2";
@@ -85,15 +89,37 @@ LinePrincipleModel FitLinePrinciple(const GraspLibrary& library, const SceneMode
     model.message = "the line principle needs at least two library entries";
     return model;
   }
+  // every entry's side of the handle (the yaw's sign when the wrist is on the handle's line).
+  for (const LibraryEntry& e : entries) {
+    const double th = e.theta_deg * kDeg;
+    const MotionWaypoint& g = e.motion.grasp();
+    const double rel = Wrap(HandYaw(g.q_WH.toRotationMatrix()) - HandleAngle(scene, th));
+    int side = HandleSide(scene, th, g.p_WH, options.side_dead_band);
+    if (side == 0) side = rel > 0.0 ? 1 : -1;
+    model.entry_sides.push_back(side);
+  }
+  // the entries the models are fitted over: the robust ones when two or more are.
+  std::vector<size_t> used;
+  for (size_t k = 0; k < entries.size(); ++k) {
+    if (entries[k].score >= options.min_score) used.push_back(k);
+  }
+  if (used.size() < 2) {
+    used.clear();
+    for (size_t k = 0; k < entries.size(); ++k) used.push_back(k);
+  }
+  model.fitted_entries = static_cast<int>(used.size());
   std::vector<double> theta;
   std::vector<Eigen::Vector2d> points;
-  for (const LibraryEntry& e : entries) {
+  std::vector<int> sides;
+  for (size_t k : used) {
+    const LibraryEntry& e = entries[k];
     const Eigen::Isometry3d X_WO = scene.ObjectPose(e.theta_deg * kDeg);
     theta.push_back(e.theta_deg * kDeg);
     points.push_back((e.motion.grasp().p_WH - X_WO.translation()).head<2>());
+    sides.push_back(model.entry_sides[k]);
   }
-  model.theta_min = theta.front();
-  model.theta_max = theta.back();
+  model.theta_min = entries.front().theta_deg * kDeg;
+  model.theta_max = entries.back().theta_deg * kDeg;
   model.wrist_line = FitWristLine(points, options.line);
   if (!model.wrist_line.usable()) {
     model.message = "the wrist line could not be fitted: " + model.wrist_line.message;
@@ -108,9 +134,9 @@ LinePrincipleModel FitLinePrinciple(const GraspLibrary& library, const SceneMode
   const int n = options.waypoints;
   model.approach.assign(n, RelativeWaypoint{});
   model.duration = 0.0;
-  const double inv = 1.0 / static_cast<double>(entries.size());
-  for (size_t k = 0; k < entries.size(); ++k) {
-    const LibraryEntry& e = entries[k];
+  const double inv = 1.0 / static_cast<double>(used.size());
+  for (size_t k = 0; k < used.size(); ++k) {
+    const LibraryEntry& e = entries[used[k]];
     const Eigen::Isometry3d X_WO = scene.ObjectPose(theta[k]);
     const MotionWaypoint& g = e.motion.grasp();
     s.push_back(line.direction.dot(points[k] - line.point));
@@ -118,9 +144,7 @@ LinePrincipleModel FitLinePrinciple(const GraspLibrary& library, const SceneMode
     const Eigen::Matrix3d R_G = g.q_WH.toRotationMatrix();
     const double yaw = HandYaw(R_G);
     const double rel = Wrap(yaw - HandleAngle(scene, theta[k]));
-    int side = HandleSide(scene, theta[k], g.p_WH, options.side_dead_band);
-    if (side == 0) side = rel > 0.0 ? 1 : -1;
-    model.entry_sides.push_back(side);
+    const int side = sides[k];
     const int si = side > 0 ? 1 : 0;
     // unwrap about the side's nominal yaw (+-90 deg: z_H across the handle).
     yaw_side[si].push_back(side * M_PI / 2 + Wrap(rel - side * M_PI / 2));
@@ -170,8 +194,8 @@ LinePrincipleModel FitLinePrinciple(const GraspLibrary& library, const SceneMode
     // this side's own position model.
     std::vector<Eigen::Vector2d> side_points;
     std::vector<double> side_height;
-    for (size_t k = 0; k < entries.size(); ++k) {
-      if ((model.entry_sides[k] > 0 ? 1 : 0) != si) continue;
+    for (size_t k = 0; k < used.size(); ++k) {
+      if ((sides[k] > 0 ? 1 : 0) != si) continue;
       side_points.push_back(points[k]);
       side_height.push_back(height[k]);
     }

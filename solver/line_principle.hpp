@@ -3,7 +3,7 @@
 /// @file
 /// The line principle (the paper's first alternative to blending, which it did not build): a
 /// grasp for any object orientation theta from models fitted over the whole library, inside and
-/// outside its range.
+/// outside its range. Weak entries (LinePrincipleOptions::min_score) are left out of every fit.
 ///
 /// Models (object-centred table plane: world x, y axes, origin at the object centre):
 /// - position: the wrist line fitted to the grasp positions (solver/wrist_line.hpp) and the
@@ -39,6 +39,9 @@ struct LinePrincipleOptions {
   WristLineOptions line;  ///< the wrist-line fit
   int waypoints = 40;     ///< waypoints of the mean approach (and of generated motions), >= 2
   double side_dead_band = 0.01;  ///< m, as BracketOptions::side_dead_band
+  /// Entries scoring below this (weak, as BracketOptions::min_score) are left out of the fits
+  /// when two or more entries are not; [0, 1].
+  double min_score = 0.5;
 
   bool IsValid(std::string* why) const;
 };
@@ -89,6 +92,7 @@ struct LinePrincipleModel {
   Eigen::Vector3d handle_in_hand = Eigen::Vector3d::Zero();  ///< m, frame H
   double theta_min = 0.0, theta_max = 0.0;                   ///< library range, rad
   std::vector<int> entry_sides;                              ///< side of each entry
+  int fitted_entries = 0;  ///< entries the models were fitted over (the robust ones)
 
   /// The orientation model of `side` (+1 or -1).
   const SideOrientationModel& side_model(int side) const { return sides[side > 0 ? 1 : 0]; }

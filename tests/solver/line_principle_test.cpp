@@ -79,5 +79,24 @@ TEST(LinePrinciple, OneEntryIsNotEnough) {
   EXPECT_NE(m.message.find("two"), std::string::npos);
 }
 
+TEST(LinePrinciple, WeakEntriesAreLeftOutOfTheFits) {
+  GraspLibrary library = SideSwitchLibrary();  // 30, 40 deg left of the handle; 50, 60 right
+  const LinePrincipleModel all = FitLinePrinciple(library, Scene());
+  EXPECT_EQ(all.fitted_entries, 4);
+  // a weak 60 deg entry: the right side's models come from 50 deg alone (no line of its own),
+  // the sides of every entry are still known.
+  library.entries[3].score = 0.2;
+  const LinePrincipleModel robust = FitLinePrinciple(library, Scene());
+  ASSERT_TRUE(robust.valid) << robust.message;
+  EXPECT_EQ(robust.fitted_entries, 3);
+  ASSERT_EQ(robust.entry_sides.size(), 4u);
+  EXPECT_EQ(robust.entry_sides[3], all.entry_sides[3]);
+  EXPECT_EQ(robust.sides[1].entries, 1);
+  EXPECT_FALSE(robust.sides[1].has_line);
+  // fewer than two robust entries: every entry is used.
+  for (int k = 0; k < 3; ++k) library.entries[k].score = 0.1;
+  EXPECT_EQ(FitLinePrinciple(library, Scene()).fitted_entries, 4);
+}
+
 }  // namespace
 }  // namespace graspsynth
