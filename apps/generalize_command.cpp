@@ -140,7 +140,7 @@ int RunGeneralize(const GeneralizeOptions& o) {
   WriteFileAtomically(out / (o.name + ".md"), md.str());
   for (const StudyMethodSummary& s : SummarizeStudy(rows)) {
     std::printf(
-        "%s: %d/%d nominal successes (%.0f%%), %d passed the gate, mean robustness %.2f over "
+        "%s: %d/%d nominal successes (%.1f%%), %d passed the gate, mean robustness %.2f over "
         "all rows\n",
         s.method.c_str(), s.nominal_successes, s.rows, 100.0 * s.nominal_successes / s.rows,
         s.passed, s.mean_robustness_all);

@@ -9,9 +9,13 @@ tmp="$(mktemp -d)"
 trap 'rm -rf "${tmp}"' EXIT
 # one whitespace-separated file per method: theta nominal_success robustness
 for csv in generalization extrapolation; do
+  # a blank line where the orientations jump (0-19, then 101-120): gnuplot breaks the line.
   awk -F, -v dir="${tmp}" -v stem="${csv}" 'NR > 1 {
       gsub(/[+\/]/, "_", $2);
-      print $1, $7, $11 > (dir "/" stem "_" $2 ".dat") }' "${out}/${csv}.csv"
+      f = dir "/" stem "_" $2 ".dat";
+      if ((f in last) && $1 - last[f] > 1.5) print "" > f;
+      last[f] = $1;
+      print $1, $7, $11 > f }' "${out}/${csv}.csv"
 done
 plot_lines() {
   local column="$1" first=1

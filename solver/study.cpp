@@ -584,9 +584,9 @@ std::string SummaryMarkdown(const std::vector<StudyRow>& rows) {
         "| passed the gate | fallbacks |\n|---|---|---|---|---|---|---|\n";
   for (const StudyMethodSummary& s : SummarizeStudy(rows)) {
     md << "| " << s.method << " | " << s.rows << " | " << s.synthesized << " | "
-       << Format("%d (%.0f%%)", s.nominal_successes, 100.0 * s.nominal_successes / s.rows) << " | "
+       << Format("%d (%.1f%%)", s.nominal_successes, 100.0 * s.nominal_successes / s.rows) << " | "
        << Format("%.2f", s.mean_robustness_all) << " | "
-       << Format("%d (%.0f%%)", s.passed, 100.0 * s.passed / s.rows) << " | " << s.fallbacks
+       << Format("%d (%.1f%%)", s.passed, 100.0 * s.passed / s.rows) << " | " << s.fallbacks
        << " |\n";
   }
   return md.str();
