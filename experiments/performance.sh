@@ -29,7 +29,7 @@ study_time() {
   local threads="$1"
   "${build}/apps/graspsynth" run --threads "${threads}" --out "${tmp}/study_${threads}" \
     >"${tmp}/study_${threads}.txt" 2>/dev/null
-  grep -o '"total_s": [0-9.]*' "${tmp}/study_${threads}/timing.json" | awk '{print $2}'
+  grep -o '"total_s": [0-9.]*' "${tmp}/study_${threads}/timing.json" | awk '{printf "%.1f", $2}'
 }
 echo "graspsynth run with 2 threads, then 1 thread (about 15 minutes)..." >&2
 t2="$(study_time 2)"
