@@ -74,10 +74,26 @@ Bracket SelectBracket(const GraspLibrary& library, const SceneModel& scene, doub
     }
   }
   const auto weak = [&](int i) { return e[i].score < options.min_score; };
+  const auto weak_reason = [&](const LibraryEntry& w) {
+    std::ostringstream s;
+    s << "the " << w.theta_deg << " deg representative is weak (robustness score " << w.score
+      << " < " << options.min_score << ")";
+    return s.str();
+  };
   if (std::abs(e[b.nearest].theta_deg - theta_deg) <= options.exact_tolerance) {
     b.kind = BracketKind::kExact;
     b.lower = b.upper = b.nearest;
     b.weak_lower = b.weak_upper = weak(b.nearest);
+    if (b.weak_lower) {
+      for (int i : {b.nearest - 1, b.nearest + 1}) {
+        if (i < 0 || i >= n || weak(i)) continue;
+        if (b.substitute < 0 || std::abs(e[i].theta_deg - theta_deg) <
+                                    std::abs(e[b.substitute].theta_deg - theta_deg)) {
+          b.substitute = i;
+        }
+      }
+      if (b.substitute >= 0) b.reason = weak_reason(e[b.nearest]);
+    }
     return b;
   }
   if (theta_deg < e.front().theta_deg) {
@@ -125,11 +141,9 @@ Bracket SelectBracket(const GraspLibrary& library, const SceneModel& scene, doub
         << " deg (more than " << options.max_orientation_change / kDeg << ")";
   }
   if (b.weak_lower != b.weak_upper) {
-    const LibraryEntry& w = b.weak_lower ? a : c;
     if (!b.blendable) why << "; ";
     b.blendable = false;
-    why << "the " << w.theta_deg << " deg representative is weak (robustness score " << w.score
-        << " < " << options.min_score << ")";
+    why << weak_reason(b.weak_lower ? a : c);
   }
   b.reason = why.str();
   return b;

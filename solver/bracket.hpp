@@ -15,7 +15,8 @@
 /// A weak end: a representative whose robustness score in the library is below
 /// BracketOptions::min_score (the most robust demonstration of its orientation still failed
 /// most perturbed replays, e.g. the shipped 20 deg one: 0.20). A bracket with one weak end is
-/// not blended either; the synthesis uses its robust end instead (synthesis.hpp).
+/// not blended either; the synthesis uses its robust end instead (synthesis.hpp). A query on a
+/// weak entry's own orientation names the robust neighbour to use in its place.
 
 #include <string>
 #include <vector>
@@ -66,6 +67,9 @@ struct Bracket {
   int side_upper = 0;
   bool weak_lower = false;  ///< entry `lower` is weak (score < min_score); kExact: the entry
   bool weak_upper = false;  ///< entry `upper` is weak
+  /// kExact on a weak entry: the nearer of its neighbours that is not weak (ties: the lower),
+  /// to use in its place; -1 otherwise. `reason` then says why.
+  int substitute = -1;
   /// False when the two grasps must not be blended (kInside only); `reason` says why.
   bool blendable = true;
   std::string reason;

@@ -69,10 +69,11 @@ struct ReachAttempt {
   CartesianPath path;
   size_t reach_samples = 0;  // path samples of the reach, pre-grasp included
   JointSpaceResult joints;
-  bool margin_ok = false;         // spline: every reach pose survives the margin test
-  int margin_failed_sample = -1;  // spline: the first that does not
+  int margin_failed_sample = -1;  // spline: the first reach pose that fails the margin test
 
   bool ok() const { return joints.status == JointSpaceStatus::kOk; }
+  // spline: playable, and every reach pose survives the margin test.
+  bool margin_ok() const { return ok() && margin_failed_sample < 0; }
 };
 
 // `tail` shifted to start at `t0`, its first sample (the pre-grasp) left out.
@@ -120,7 +121,6 @@ ReachAttempt SplineReachAttempt(const RobotModel& robot, const GraspingMotion& m
   if (a.ok()) {
     a.margin_failed_sample = FirstPoseWithoutMargin(robot, a.path, a.reach_samples,
                                                     BranchOf(q_start), options.reach_margin);
-    a.margin_ok = a.margin_failed_sample < 0;
   }
   return a;
 }
@@ -370,32 +370,17 @@ SynthesisResult SynthesizeGrasp(const SynthesisModel& model, double theta_deg,
                     "'line' (the line principle) or 'nearest' beyond the range";
         return r;
       }
-      if (b.kind == BracketKind::kExact) {
+      if (b.kind == BracketKind::kExact && b.substitute >= 0) {
+        // a weak representative: its robust neighbour turned with the object.
+        use_nearest(b.substitute);
+        r.used = SynthesisMethod::kNearest;
+        r.fallback = true;
+        std::ostringstream f;
+        f << b.reason << "; used its robust neighbour (" << library.entries[b.substitute].theta_deg
+          << " deg) turned with the object";
+        r.fallback_reason = f.str();
+      } else if (b.kind == BracketKind::kExact) {
         use_nearest(b.lower);
-        if (b.weak_lower) {
-          // a weak representative: its robust neighbour turned with the object, if there is one.
-          const auto& e = library.entries;
-          int robust = -1;
-          for (int i : {b.lower - 1, b.lower + 1}) {
-            if (i < 0 || i >= static_cast<int>(e.size())) continue;
-            if (e[i].score < options.bracket.min_score) continue;
-            if (robust < 0 ||
-                std::abs(e[i].theta_deg - theta_deg) < std::abs(e[robust].theta_deg - theta_deg)) {
-              robust = i;
-            }
-          }
-          if (robust >= 0) {
-            use_nearest(robust);
-            r.used = SynthesisMethod::kNearest;
-            r.fallback = true;
-            std::ostringstream f;
-            f << "the " << e[b.lower].theta_deg << " deg representative is weak (robustness score "
-              << e[b.lower].score << " < " << options.bracket.min_score
-              << "); used its robust neighbour (" << e[robust].theta_deg
-              << " deg) turned with the object";
-            r.fallback_reason = f.str();
-          }
-        }
       } else if (b.blendable) {
         motion = BlendMotions(library.entries[b.lower].motion, library.entries[b.upper].motion, b.t,
                               options.blend);
@@ -561,7 +546,7 @@ SynthesisResult SynthesizeGrasp(const SynthesisModel& model, double theta_deg,
     }
   } else {
     if (options.reach_method == ReachMethod::kAuto) {
-      if (spline.ok() && spline.margin_ok) {
+      if (spline.margin_ok()) {
         chosen = spline;
         reach_why << "spline reach (reachable with " << options.reach_margin * 1000.0
                   << " mm to spare)";

@@ -102,9 +102,13 @@ TEST(Bracket, OneWeakEndMakesABracketUnblendable) {
   const Bracket exact = SelectBracket(library, Scene(), 40.0);
   EXPECT_EQ(exact.kind, BracketKind::kExact);
   EXPECT_TRUE(exact.weak_lower);
+  EXPECT_EQ(exact.substitute, 1);  // 60 deg stands in for it
+  EXPECT_NE(exact.reason.find("the 40 deg representative is weak"), std::string::npos);
+  EXPECT_EQ(SelectBracket(library, Scene(), 60.0).substitute, -1);  // a robust entry is itself
   // both ends weak: nothing better to use, the bracket blends.
   library.entries[1].score = 0.3;
   EXPECT_TRUE(SelectBracket(library, Scene(), 50.0).blendable);
+  EXPECT_EQ(SelectBracket(library, Scene(), 40.0).substitute, -1);
   // min_score 0: no representative is weak.
   BracketOptions o;
   o.min_score = 0.0;
