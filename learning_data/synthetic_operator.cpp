@@ -43,10 +43,12 @@ struct PlannedTrial {
   double grasp_time = 0.0;  // end of the settle: the grasp button
 };
 
-// The hand's frame at the grasp for wrist position w (world) and hand direction z (horizontal).
-Eigen::Matrix3d HandFrame(const Eigen::Vector3d& z_horizontal) {
-  const Eigen::Vector3d x = -Eigen::Vector3d::UnitZ();
-  const Eigen::Vector3d z = z_horizontal.normalized();
+// The hand's frame at the grasp for hand direction z_horizontal (on the table) and a
+// fingers-down pitch: palm down (x_H = -z_W) at zero pitch.
+Eigen::Matrix3d HandFrame(const Eigen::Vector3d& z_horizontal, double pitch) {
+  const Eigen::Vector3d u = z_horizontal.normalized();
+  const Eigen::Vector3d x = -std::sin(pitch) * u - std::cos(pitch) * Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d z = std::cos(pitch) * u - std::sin(pitch) * Eigen::Vector3d::UnitZ();
   Eigen::Matrix3d R;
   R.col(0) = x;
   R.col(1) = z.cross(x);
@@ -62,27 +64,49 @@ PlannedTrial PlanTrial(const SceneModel& scene, const HandModel& hand, const Ope
                        const OrientationPlan& plan, const GraspStrategy& strategy, bool sloppy,
                        SplitMix64& rng) {
   const double k = sloppy ? o.sloppy_scale : 1.0;
+  const GraspStyle& style = strategy.grasp ? *strategy.grasp : o.grasp;
   const Eigen::Isometry3d X_WO = scene.ObjectPose(plan.theta_deg * kDeg);
   const Eigen::Vector2d c = scene.object.centre_xy;
   const Eigen::Vector3d h = X_WO.linear().col(0);
   const Eigen::Vector3d n = Eigen::Vector3d::UnitZ().cross(h);
   const double handle_z = scene.table.top_z + scene.object.handle_axis_height;
 
-  // the wrist at the grasp, and the grip point on the handle hook_reach ahead of it.
-  Eigen::Vector3d w = Polar(c, strategy.d, strategy.eta_deg * kDeg,
-                            handle_z + o.wrist_above_handle + k * o.height_noise * rng.Normal());
+  // the wrist at the grasp (its height follows from the hook below).
+  Eigen::Vector3d w =
+      Polar(c, strategy.d, strategy.eta_deg * kDeg, k * o.height_noise * rng.Normal());
   w.x() += k * o.position_noise * rng.Normal();
   w.y() += k * o.position_noise * rng.Normal();
   const Eigen::Vector3d rel(w.x() - c.x(), w.y() - c.y(), 0.0);
   const double a = rel.dot(h);
-  const double l = std::clamp(rel.dot(n), -0.98 * o.hook_reach, 0.98 * o.hook_reach);
-  const double r = a - std::sqrt(o.hook_reach * o.hook_reach - l * l);
+  const double lateral = rel.dot(n);
+  // the pitch that brings the handle's axis, hook_reach along z_H and wrist_above_handle
+  // below it, to the wrist's horizontal distance from the handle's line (a square crossing).
+  const double depth = style.wrist_above_handle;
+  double pitch = 0.0;
+  if (style.max_pitch > 0.0) {
+    const double norm = std::hypot(style.hook_reach, depth);
+    pitch = std::clamp(
+        std::acos(std::min(1.0, std::abs(lateral) / norm)) - std::atan2(depth, style.hook_reach),
+        0.0, style.max_pitch);
+  }
+  const double reach = style.hook_reach * std::cos(pitch) - depth * std::sin(pitch);
+  w.z() += handle_z + depth * std::cos(pitch) + style.hook_reach * std::sin(pitch);
+  // the grip point: where the handle's axis is `reach` from the wrist, on the pan's side (the
+  // point under the wrist's foot for a square crossing); a wrist farther from the handle's
+  // line than the reach points the hand almost square to it.
+  const double l =
+      std::abs(lateral) <= reach ? lateral : std::clamp(lateral, -0.98 * reach, 0.98 * reach);
+  const double r = a - std::sqrt(std::max(0.0, reach * reach - l * l));
   Eigen::Vector3d grip(c.x(), c.y(), 0.0);
   grip += r * h;
   Eigen::Vector3d z_dir = grip - Eigen::Vector3d(w.x(), w.y(), 0.0);
   z_dir.z() = 0.0;
-  z_dir = Eigen::AngleAxisd(k * o.yaw_noise * rng.Normal(), Eigen::Vector3d::UnitZ()) * z_dir;
-  const Eigen::Matrix3d R_grasp = HandFrame(z_dir);
+  const double side = lateral >= 0.0 ? 1.0 : -1.0;
+  z_dir = Eigen::AngleAxisd(side * style.yaw_offset + k * o.yaw_noise * rng.Normal(),
+                            Eigen::Vector3d::UnitZ()) *
+          z_dir;
+  const Eigen::Matrix3d R_grasp =
+      HandFrame(z_dir, pitch) * Eigen::AngleAxisd(style.roll, Eigen::Vector3d::UnitZ()).matrix();
   const Eigen::Quaterniond q_grasp(R_grasp);
 
   // rest: toward the object from the base, the hand turned like the grasp and pitched 30 deg.
@@ -101,13 +125,13 @@ PlannedTrial PlanTrial(const SceneModel& scene, const HandModel& hand, const Ope
 
   // the closed shape with noise, kept 2 deg inside the joint ranges (a target at a stop makes
   // the motor fight the stop).
-  HandVector closed = o.closed_hand;
+  HandVector closed = style.closed_hand;
   const double inset = 2.0 * kDeg;
   for (int j = 0; j < kHandDof; ++j) {
     closed[j] = std::clamp(closed[j] + k * o.finger_noise * rng.Normal(), hand.lower()[j] + inset,
                            hand.upper()[j] - inset);
   }
-  const HandVector& open = o.open_hand;
+  const HandVector& open = style.open_hand;
 
   auto scaled = [&](double duration) {
     return duration * rng.Uniform(1.0 - o.timing_spread, 1.0 + o.timing_spread);
@@ -292,8 +316,6 @@ struct ScalarField {
 };
 constexpr ScalarField kScalars[] = {
     {"sample_rate_hz", &OperatorOptions::sample_rate_hz, false},
-    {"hook_reach", &OperatorOptions::hook_reach, false},
-    {"wrist_above_handle", &OperatorOptions::wrist_above_handle, false},
     {"rest_distance", &OperatorOptions::rest_distance, false},
     {"rest_turn_deg", &OperatorOptions::rest_turn, true},
     {"rest_height", &OperatorOptions::rest_height, false},
@@ -321,9 +343,46 @@ constexpr ScalarField kScalars[] = {
     {"sloppy_scale", &OperatorOptions::sloppy_scale, false},
 };
 
+// Scalar fields of GraspStyle, as kScalars.
+struct StyleField {
+  const char* name;
+  double GraspStyle::*member;
+  bool degrees;
+};
+constexpr StyleField kStyleScalars[] = {
+    {"hook_reach", &GraspStyle::hook_reach, false},
+    {"wrist_above_handle", &GraspStyle::wrist_above_handle, false},
+    {"max_pitch_deg", &GraspStyle::max_pitch, true},
+    {"yaw_offset_deg", &GraspStyle::yaw_offset, true},
+    {"roll_deg", &GraspStyle::roll, true},
+};
+
+// Reads the GraspStyle fields present in `j` over `style`.
+void ReadStyle(const json& j, const std::string& source, const std::string& prefix,
+               GraspStyle* style) {
+  for (const StyleField& f : kStyleScalars) {
+    if (!j.contains(f.name)) continue;
+    style->*f.member = Number(j[f.name], source, prefix + f.name) * (f.degrees ? kDeg : 1.0);
+  }
+  if (j.contains("open_hand_deg")) {
+    style->open_hand = HandDeg(j["open_hand_deg"], source, prefix + "open_hand_deg");
+  }
+  if (j.contains("closed_hand_deg")) {
+    style->closed_hand = HandDeg(j["closed_hand_deg"], source, prefix + "closed_hand_deg");
+  }
+}
+
+void WriteStyle(const GraspStyle& style, json* j) {
+  for (const StyleField& f : kStyleScalars) {
+    (*j)[f.name] = style.*f.member / (f.degrees ? kDeg : 1.0);
+  }
+  (*j)["open_hand_deg"] = HandToDeg(style.open_hand);
+  (*j)["closed_hand_deg"] = HandToDeg(style.closed_hand);
+}
+
 }  // namespace
 
-HandVector OperatorOptions::DefaultOpenHook() {
+HandVector GraspStyle::DefaultOpenHook() {
   HandVector f = HandVector::Zero();
   f.head<4>() << 0.0, 40.0 * kDeg, -10.0 * kDeg, 0.0;
   f[4] = -20.0 * kDeg;  // index spread toward the thumb
@@ -332,13 +391,30 @@ HandVector OperatorOptions::DefaultOpenHook() {
   return f;
 }
 
-HandVector OperatorOptions::DefaultClosedHook() {
+HandVector GraspStyle::DefaultClosedHook() {
   HandVector f = DefaultOpenHook();
   for (int finger = 0; finger < 4; ++finger) {
     f[5 + 3 * finger] = 15.0 * kDeg;  // MCP
     f[6 + 3 * finger] = 85.0 * kDeg;  // PIP (the DIP follows)
   }
   return f;
+}
+
+bool GraspStyle::IsValid(std::string* why) const {
+  auto fail = [&](const std::string& what) {
+    if (why) *why = what;
+    return false;
+  };
+  for (const StyleField& f : kStyleScalars) {
+    if (!std::isfinite(this->*f.member)) return fail(std::string(f.name) + " must be finite");
+  }
+  if (!(hook_reach > 0.0)) return fail("hook_reach must be > 0");
+  if (!(wrist_above_handle >= 0.0)) return fail("wrist_above_handle must be >= 0");
+  if (!(max_pitch >= 0.0 && max_pitch < 0.5 * M_PI)) {
+    return fail("max_pitch_deg must be in [0, 90)");
+  }
+  if (!open_hand.allFinite() || !closed_hand.allFinite()) return fail("hand shapes not finite");
+  return true;
 }
 
 bool OperatorOptions::IsValid(std::string* why) const {
@@ -357,7 +433,8 @@ bool OperatorOptions::IsValid(std::string* why) const {
   if (!(sample_rate_hz >= 10.0 && sample_rate_hz <= 1000.0)) {
     return fail("sample_rate_hz must be in [10, 1000]");
   }
-  if (!(hook_reach > 0.0)) return fail("hook_reach must be > 0");
+  std::string style_why;
+  if (!grasp.IsValid(&style_why)) return fail(style_why);
   if (timing_spread >= 0.9) return fail("timing_spread must be < 0.9");
   if (sloppy_fraction > 1.0) return fail("sloppy_fraction must be <= 1");
   if (!(entry_out > entry_in)) return fail("entry_out must be larger than entry_in");
@@ -366,7 +443,6 @@ bool OperatorOptions::IsValid(std::string* why) const {
         close_duration, settle_duration, lift_duration, hold_duration}) {
     if (!(d > 0.0)) return fail("every duration must be > 0");
   }
-  if (!open_hand.allFinite() || !closed_hand.allFinite()) return fail("hand shapes not finite");
   for (const OrientationPlan& p : plans) {
     const std::string at = "plan theta " + std::to_string(p.theta_deg);
     if (!std::isfinite(p.theta_deg) || !std::isfinite(p.pregrasp_eta_deg)) {
@@ -378,6 +454,9 @@ bool OperatorOptions::IsValid(std::string* why) const {
       if (!(s.weight > 0.0) || !std::isfinite(s.weight)) return fail(at + ": weight must be > 0");
       if (!(s.d > 0.0) || !std::isfinite(s.d) || !std::isfinite(s.eta_deg)) {
         return fail(at + ": strategy d must be > 0 and eta finite");
+      }
+      if (s.grasp && !s.grasp->IsValid(&style_why)) {
+        return fail(at + ": strategy grasp: " + style_why);
       }
     }
   }
@@ -415,11 +494,7 @@ OperatorOptions ReadOperatorOptions(const std::filesystem::path& path) {
     if (!root.contains(f.name)) continue;
     o.*f.member = Number(root[f.name], source, f.name) * (f.degrees ? kDeg : 1.0);
   }
-  if (root.contains("open_hand_deg"))
-    o.open_hand = HandDeg(root["open_hand_deg"], source, "open_hand_deg");
-  if (root.contains("closed_hand_deg")) {
-    o.closed_hand = HandDeg(root["closed_hand_deg"], source, "closed_hand_deg");
-  }
+  ReadStyle(root, source, "", &o.grasp);
   if (!root.contains("plans") || !root["plans"].is_array()) {
     Bad(source, "plans", "required: an array of orientation plans");
   }
@@ -449,6 +524,11 @@ OperatorOptions ReadOperatorOptions(const std::filesystem::path& path) {
       g.weight = Number(s["weight"], source, sat + ".weight");
       g.d = Number(s["d"], source, sat + ".d");
       g.eta_deg = Number(s["eta_deg"], source, sat + ".eta_deg");
+      if (s.contains("grasp")) {
+        if (!s["grasp"].is_object()) Bad(source, sat + ".grasp", "expected an object");
+        g.grasp = o.grasp;
+        ReadStyle(s["grasp"], source, sat + ".grasp.", &*g.grasp);
+      }
       plan.strategies.push_back(g);
     }
     o.plans.push_back(plan);
@@ -471,8 +551,7 @@ void WriteOperatorOptions(const OperatorOptions& o, const std::filesystem::path&
   for (const ScalarField& f : kScalars) {
     root[f.name] = o.*f.member / (f.degrees ? kDeg : 1.0);
   }
-  root["open_hand_deg"] = HandToDeg(o.open_hand);
-  root["closed_hand_deg"] = HandToDeg(o.closed_hand);
+  WriteStyle(o.grasp, &root);
   json plans = json::array();
   for (const OrientationPlan& p : o.plans) {
     json jp;
@@ -481,7 +560,9 @@ void WriteOperatorOptions(const OperatorOptions& o, const std::filesystem::path&
     jp["trials"] = p.trials;
     jp["strategies"] = json::array();
     for (const GraspStrategy& s : p.strategies) {
-      jp["strategies"].push_back({{"weight", s.weight}, {"d", s.d}, {"eta_deg", s.eta_deg}});
+      json js = {{"weight", s.weight}, {"d", s.d}, {"eta_deg", s.eta_deg}};
+      if (s.grasp) WriteStyle(*s.grasp, &js["grasp"]);
+      jp["strategies"].push_back(js);
     }
     plans.push_back(jp);
   }

@@ -14,12 +14,16 @@
 /// fingers `hook_reach` ahead of the wrist, the fingers curling around its far side and under
 /// it. Where the wrist goes is the operator's intention for the orientation: a few grasp
 /// strategies, each an intended wrist position in the paper's polar form (d, eta) around the
-/// object centre. The shipped plans (learning_data/demos/operator.json) are calibrated so that
-/// the successful trials reproduce the paper's Table I (CalibrateOperator).
+/// object centre, and the grip the hand takes there (GraspStyle: a skilled operator holds the
+/// handle differently on either side of it and where the wrist is near its line). The shipped
+/// plans (learning_data/demos/operator.json) are calibrated so that the successful trials
+/// reproduce the paper's Table I (`graspsynth demos calibrate`), and their grips were tuned in
+/// the simulator for robustness (experiments/tune_operator.py).
 
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,11 +34,43 @@
 
 namespace graspsynth {
 
-/// One way the operator grasps at an orientation: where the wrist should end up at the grasp.
+/// How the operator's hand takes the handle: a hook (learning_data/README.md). At the grasp
+/// the handle's axis passes through the point (wrist_above_handle, 0, hook_reach) of the hand
+/// frame H: `hook_reach` along the hand's long axis z_H and `wrist_above_handle` along the
+/// palm normal x_H, which points down; with the hand level, the handle is that far ahead of
+/// the wrist and that far below it. The hand pitches fingers-down by up to `max_pitch` so that it
+/// crosses the handle squarely where the wrist is closer to the handle's line than the reach
+/// (the rest of the difference is taken by turning the hand toward the handle's axis, as with
+/// max_pitch = 0); it is then turned about the vertical by `yaw_offset` (positive turns the
+/// fingertips toward the handle's free end, whichever side of the handle the wrist is on) and
+/// rolled about z_H by `roll`. Lengths in m, angles in rad.
+struct GraspStyle {
+  double hook_reach = 0.135;         ///< handle axis along z_H from the wrist, m
+  double wrist_above_handle = 0.04;  ///< handle axis along x_H from the wrist, m
+  double max_pitch = 0.0;            ///< largest fingers-down pitch, rad, in [0, pi/2)
+  double yaw_offset = 0.0;           ///< rad
+  double roll = 0.0;                 ///< rad, about z_H
+  HandVector open_hand = DefaultOpenHook();
+  HandVector closed_hand = DefaultClosedHook();
+
+  /// Open hook: fingers straight and spread (index -20, ring and little +20 deg), the thumb
+  /// laid along the index (thumb_j1 0, thumb_j2 40, thumb_j3 -10 deg), clear of the handle.
+  static HandVector DefaultOpenHook();
+  /// Closed hook: MCP 15 deg, PIP (= DIP) 85 deg for the four fingers (they stall on the
+  /// handle and squeeze it against the proximal phalanges), the thumb as when open.
+  static HandVector DefaultClosedHook();
+
+  bool IsValid(std::string* why) const;
+};
+
+/// One way the operator grasps at an orientation: where the wrist should end up at the grasp,
+/// and how the hand takes the handle there.
 struct GraspStrategy {
   double weight = 1.0;     ///< relative frequency among the orientation's strategies, > 0
   double d = 0.35;         ///< intended horizontal wrist distance from the object centre, m
   double eta_deg = -60.0;  ///< intended polar angle of the wrist, deg from world +x
+  /// The hand's grip for this strategy; empty takes OperatorOptions::grasp.
+  std::optional<GraspStyle> grasp;
 };
 
 /// What the operator does at one object orientation.
@@ -55,11 +91,8 @@ struct OperatorOptions {
   double sample_rate_hz = 60.0;     ///< log rate (the paper's tracker: 30-60 Hz)
   std::vector<OrientationPlan> plans;
 
-  // The hook grasp.
-  double hook_reach = 0.135;         ///< horizontal distance from the wrist to the handle's axis
-  double wrist_above_handle = 0.04;  ///< wrist height above the handle's axis at the grasp
-  HandVector open_hand = DefaultOpenHook();
-  HandVector closed_hand = DefaultClosedHook();
+  /// The hook of the strategies that have no grip of their own.
+  GraspStyle grasp;
 
   // The path: rest -> outside the region -> inside -> above the grasp -> grasp -> lift.
   /// Rest wrist: rest_distance from the base in the direction of the object turned by
@@ -92,18 +125,14 @@ struct OperatorOptions {
   double sloppy_fraction = 0.15;             ///< share of trials made with sloppy_scale x the noise
   double sloppy_scale = 3.0;
 
-  /// Open hook: fingers straight and spread (index -20, ring and little +20 deg), the thumb
-  /// laid along the index (thumb_j1 0, thumb_j2 40, thumb_j3 -10 deg), clear of the handle.
-  static HandVector DefaultOpenHook();
-  /// Closed hook: MCP 15 deg, PIP (= DIP) 85 deg for the four fingers (they stall on the
-  /// handle and squeeze it against the proximal phalanges), the thumb as when open.
-  static HandVector DefaultClosedHook();
-
   bool IsValid(std::string* why) const;
 };
 
 /// Reads operator options (format graspsynth-operator/1, JSON). Fields that are absent keep
-/// their defaults; `plans` is required. Throws InputError naming the file and the field.
+/// their defaults; `plans` is required. A strategy's optional `grasp` object holds the fields
+/// of its own grip (the GraspStyle fields of the top level: hook_reach, wrist_above_handle,
+/// max_pitch_deg, yaw_offset_deg, roll_deg, open_hand_deg, closed_hand_deg); the ones it leaves
+/// out come from the top level. Throws InputError naming the file and the field.
 OperatorOptions ReadOperatorOptions(const std::filesystem::path& path);
 /// Writes them (atomically), every field included.
 void WriteOperatorOptions(const OperatorOptions& options, const std::filesystem::path& path);

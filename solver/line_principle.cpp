@@ -1,5 +1,6 @@
 #include "solver/line_principle.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "motion/resample.hpp"
@@ -63,6 +64,11 @@ LinearFit FitLinear(const std::vector<double>& x, const std::vector<double>& y) 
 }
 
 }  // namespace
+
+Eigen::Vector3d SideOrientationModel::Residual(double theta) const {
+  const double t = std::clamp(theta, theta_lo, theta_hi);
+  return Eigen::Vector3d(residual[0](t), residual[1](t), residual[2](t));
+}
 
 bool LinePrincipleOptions::IsValid(std::string* why) const {
   if (!(std::isfinite(min_score) && min_score >= 0.0 && min_score <= 1.0)) {
@@ -190,7 +196,16 @@ LinePrincipleModel FitLinePrinciple(const GraspLibrary& library, const SceneMode
     m.side = si == 1 ? 1 : -1;
     m.entries = static_cast<int>(yaw_side[si].size());
     m.yaw = FitLinear(theta_side[si], yaw_side[si]);
-    for (const Eigen::Vector3d& r : residual_side[si]) m.residual_rotation += r / m.entries;
+    for (int c = 0; c < 3; ++c) {
+      std::vector<double> component;
+      for (const Eigen::Vector3d& r : residual_side[si]) component.push_back(r[c]);
+      m.residual[c] = FitLinear(theta_side[si], component);
+    }
+    if (m.entries > 0) {
+      const auto [lo, hi] = std::minmax_element(theta_side[si].begin(), theta_side[si].end());
+      m.theta_lo = *lo;
+      m.theta_hi = *hi;
+    }
     // this side's own position model.
     std::vector<Eigen::Vector2d> side_points;
     std::vector<double> side_height;
@@ -235,7 +250,7 @@ Eigen::Isometry3d LinePrincipleGraspPose(const LinePrincipleModel& model, const 
   }
   const double yaw = HandleAngle(scene, theta) + m->yaw(theta) + turn;
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.linear() = Rz(yaw) * CanonicalHand() * FromRotationVector(m->residual_rotation);
+  X.linear() = Rz(yaw) * CanonicalHand() * FromRotationVector(m->Residual(theta));
   X.translation() = X_WO.translation() + Eigen::Vector3d(p_xy.x(), p_xy.y(), z);
   return X;
 }

@@ -14,7 +14,9 @@
 ///   table, measured from the handle direction, linear in theta and fitted per side of the
 ///   handle (bracket.hpp; a side switch turns this yaw by about 180 deg, which no smooth fit
 ///   over both sides could follow); the rest of the orientation (roll and pitch away from
-///   "palm down, z_H horizontal") as the mean rotation vector of that side's entries;
+///   "palm down, z_H horizontal", as a rotation vector in the hand frame) linear in theta per
+///   side, held at its value at the side's first or last entry outside their range (a tilt
+///   the operator never showed is not extrapolated);
 /// - fingers: per joint, linear in theta, clamped to the range the entries span;
 /// - approach: the mean of the entries' grasping motions expressed relative to their grasp pose
 ///   (positions in the grasp's yaw frame, rotations in the grasp's hand frame, finger offsets
@@ -58,7 +60,14 @@ struct SideOrientationModel {
   int side = 0;     ///< +1 or -1
   int entries = 0;  ///< entries of this side (0: the side was not demonstrated)
   LinearFit yaw;    ///< yaw of z_H from the handle direction, rad
-  Eigen::Vector3d residual_rotation = Eigen::Vector3d::Zero();  ///< mean rotation vector, rad
+  /// The roll and pitch left after the yaw: a rotation vector (rad) in the yawed, palm-down
+  /// hand frame, each component linear in theta over [theta_lo, theta_hi] (this side's entries)
+  /// and constant outside it.
+  LinearFit residual[3];
+  double theta_lo = 0.0, theta_hi = 0.0;  ///< rad
+
+  /// The residual rotation vector at theta (rad).
+  Eigen::Vector3d Residual(double theta) const;
   /// The position model of this side alone (a wrist line through this side's grasps, the
   /// position along it and the height), when the side has two or more entries with distinct
   /// grasp positions; otherwise the library-wide model is used. On a library whose grasps

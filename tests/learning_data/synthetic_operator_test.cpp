@@ -6,8 +6,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 #include "common/errors.hpp"
 #include "learning_data/segmentation.hpp"
@@ -52,7 +54,14 @@ TEST(OperatorOptions, WriteThenReadGivesTheSameOptions) {
   OperatorOptions a = ReadOperatorOptions(DefaultOperatorOptionsPath());
   a.seed = 99;
   a.yaw_noise = 0.1;
-  a.plans.front().strategies.push_back({0.5, 0.3, -70.0});
+  a.plans.front().strategies.push_back({0.5, 0.3, -70.0, std::nullopt});
+  GraspStyle own;
+  own.hook_reach = 0.12;
+  own.max_pitch = 0.5;
+  own.yaw_offset = -0.2;
+  own.roll = 0.1;
+  own.closed_hand[2] = 0.7;
+  a.plans.back().strategies.push_back({1.0, 0.33, -50.0, own});
   const fs::path path = TempFile("roundtrip.json");
   WriteOperatorOptions(a, path);
   const OperatorOptions b = ReadOperatorOptions(path);
@@ -61,7 +70,17 @@ TEST(OperatorOptions, WriteThenReadGivesTheSameOptions) {
   EXPECT_EQ(b.plans.size(), a.plans.size());
   EXPECT_EQ(b.plans.front().strategies.size(), a.plans.front().strategies.size());
   EXPECT_EQ(b.plans.front().strategies.back().eta_deg, -70.0);
-  EXPECT_TRUE(testing::MatricesNear(b.closed_hand, a.closed_hand, 1e-12));
+  EXPECT_TRUE(testing::MatricesNear(b.grasp.closed_hand, a.grasp.closed_hand, 1e-12));
+  EXPECT_FALSE(b.plans.front().strategies.back().grasp.has_value());
+  // a strategy's own grip comes back whole.
+  const std::optional<GraspStyle>& back = b.plans.back().strategies.back().grasp;
+  ASSERT_TRUE(back.has_value());
+  EXPECT_NEAR(back->hook_reach, 0.12, 1e-15);
+  EXPECT_NEAR(back->max_pitch, 0.5, 1e-15);
+  EXPECT_NEAR(back->yaw_offset, -0.2, 1e-15);
+  EXPECT_NEAR(back->roll, 0.1, 1e-15);
+  EXPECT_TRUE(testing::MatricesNear(back->closed_hand, own.closed_hand, 1e-12));
+  EXPECT_TRUE(testing::MatricesNear(back->open_hand, own.open_hand, 1e-12));
   fs::remove(path);
 }
 
@@ -86,6 +105,14 @@ TEST(OperatorOptions, BadFilesNameTheFileAndTheField) {
   expect_error(R"({"format": "graspsynth-operator/1", "plans": [{"theta_deg": 20,
       "pregrasp_eta_deg": -70, "strategies": [{"weight": 1, "d": -0.3, "eta_deg": -70}]}]})",
                "strategy d must be > 0");
+  expect_error(R"({"format": "graspsynth-operator/1", "plans": [{"theta_deg": 20,
+      "pregrasp_eta_deg": -70, "strategies": [{"weight": 1, "d": 0.3, "eta_deg": -70,
+      "grasp": {"roll_deg": "left"}}]}]})",
+               "plans[0].strategies[0].grasp.roll_deg");
+  expect_error(R"({"format": "graspsynth-operator/1", "plans": [{"theta_deg": 20,
+      "pregrasp_eta_deg": -70, "strategies": [{"weight": 1, "d": 0.3, "eta_deg": -70,
+      "grasp": {"max_pitch_deg": 95}}]}]})",
+               "max_pitch_deg must be in [0, 90)");
   GS_EXPECT_THROW_WITH(ReadOperatorOptions(TempFile("missing.json")), InputError, "cannot open");
   fs::remove(path);
 }
@@ -116,6 +143,55 @@ TEST(SyntheticOperator, TrialsAreCompleteLogsLabelledByTheSimulation) {
     if (t.success) {
       EXPECT_GT(s.lift, 0.05);
     }
+  }
+}
+
+// The operator without its trial-to-trial variability.
+void Steady(OperatorOptions* o) {
+  o->timing_spread = o->position_noise = o->height_noise = o->yaw_noise = o->path_noise =
+      o->finger_noise = o->sloppy_fraction = 0.0;
+}
+
+TEST(SyntheticOperator, TheHookPutsTheHandleWhereTheStyleSays) {
+  const SimulationModel model = LoadDefaultSimulationModel();
+  const SceneModel& scene = model.scene();
+  for (const double theta_deg : {40.0, 70.0}) {
+    SCOPED_TRACE(theta_deg);
+    OperatorOptions options = OneOrientation(theta_deg, 1);
+    Steady(&options);
+    GraspStyle style;
+    style.hook_reach = 0.12;
+    style.wrist_above_handle = 0.03;
+    style.max_pitch = 80.0 * M_PI / 180.0;
+    options.plans.front().strategies.resize(1);
+    options.plans.front().strategies.front().grasp = style;
+    const std::vector<OperatorTrial> trials = GenerateDemonstrations(model, options, 1);
+    ASSERT_EQ(trials.size(), 1u);
+    const DemoLog& log = trials.front().log;
+    const auto grasp =
+        std::find_if(log.samples.begin(), log.samples.end(),
+                     [](const DemoSample& s) { return s.event == DemoEvent::kGrasp; });
+    ASSERT_NE(grasp, log.samples.end());
+    Eigen::Isometry3d X_WH = Eigen::Isometry3d::Identity();
+    X_WH.linear() = grasp->q_WH.toRotationMatrix();
+    X_WH.translation() = grasp->p_WH;
+    // the handle's axis in H: across the hand (along y_H, a square crossing) through
+    // (wrist_above_handle, 0, hook_reach); the wrist where the strategy put it.
+    const Eigen::Isometry3d X_WO = scene.ObjectPose(theta_deg * M_PI / 180.0);
+    const double up = scene.object.handle_axis_height - scene.object.rest_height();
+    const Eigen::Vector3d a0 = X_WH.inverse() * (X_WO * Eigen::Vector3d(0.1, 0.0, up));
+    const Eigen::Vector3d a1 = X_WH.inverse() * (X_WO * Eigen::Vector3d(0.3, 0.0, up));
+    const Eigen::Vector3d dir = (a1 - a0).normalized();
+    EXPECT_GT(std::abs(dir.y()), 0.999) << dir.transpose();
+    const Eigen::Vector3d at = a0 - (a0.y() / dir.y()) * dir;
+    EXPECT_NEAR(at.x(), 0.03, 1e-6);
+    EXPECT_NEAR(at.z(), 0.12, 1e-6);
+    const GraspStrategy& s = options.plans.front().strategies.front();
+    const Eigen::Vector2d c = scene.object.centre_xy;
+    EXPECT_NEAR((grasp->p_WH.head<2>() - c).norm(), s.d, 1e-9);
+    // palm down and fingers down: x_H points below the horizon, z_H not above it.
+    EXPECT_LT(X_WH.linear().col(0).z(), 0.0);
+    EXPECT_LE(X_WH.linear().col(2).z(), 1e-12);
   }
 }
 

@@ -71,6 +71,30 @@ TEST(LinePrinciple, OrientationIsFittedPerSideOfTheHandle) {
   EXPECT_EQ(HandleSide(Scene(), 45.0 * kDeg, right.translation(), 0.01), 1);
 }
 
+TEST(LinePrinciple, TheHandsTiltFollowsTheOrientationAndIsHeldOutsideTheRange) {
+  // the 40, 60 and 80 deg grasps pitched fingers-down by 0, 10 and 20 deg (about y_H).
+  GraspLibrary library = Library406080();
+  auto pitch_at = [](double theta_deg) { return (theta_deg - 40.0) / 2.0 * kDeg; };
+  for (LibraryEntry& e : library.entries) {
+    const Eigen::Quaterniond tilt(
+        Eigen::AngleAxisd(pitch_at(e.theta_deg), Eigen::Vector3d::UnitY()));
+    for (MotionWaypoint& w : e.motion.waypoints) w.q_WH = (w.q_WH * tilt).normalized();
+  }
+  const LinePrincipleModel m = FitLinePrinciple(library, Scene());
+  ASSERT_TRUE(m.valid) << m.message;
+  // how far the fingers point below the table plane at the modelled grasp.
+  auto pitch_of = [&](double theta_deg) {
+    const Eigen::Isometry3d X = LinePrincipleGraspPose(m, Scene(), theta_deg * kDeg, +1);
+    return std::asin(-X.linear().col(2).z());
+  };
+  for (double theta_deg : {40.0, 50.0, 60.0, 80.0}) {
+    EXPECT_NEAR(pitch_of(theta_deg), pitch_at(theta_deg) + pitch_of(40.0), 0.5 * kDeg) << theta_deg;
+  }
+  // outside the demonstrated range the tilt of the nearest end is kept.
+  EXPECT_NEAR(pitch_of(110.0), pitch_of(80.0), 1e-9);
+  EXPECT_NEAR(pitch_of(10.0), pitch_of(40.0), 1e-9);
+}
+
 TEST(LinePrinciple, OneEntryIsNotEnough) {
   GraspLibrary one;
   one.entries.push_back(Library406080().entries[0]);

@@ -5,6 +5,7 @@
 #include "common/errors.hpp"
 #include "kinematics/pose_math.hpp"
 #include "learning_data/grasp_library.hpp"
+#include "simulation/scripted_grasp.hpp"
 #include "simulation/trial.hpp"
 #include "tests/solver/synthesis_fixtures.hpp"
 
@@ -150,58 +151,63 @@ TEST(Synthesis, HardCaseGraspLiftsTheObject) {
   EXPECT_TRUE(t.success()) << t.BriefReport();
 }
 
-// The shipped library's 30 deg representative holds the handle with the hand turned away from
-// the robot: the paper's spline reach from the default rest pose passes where the elbow would
-// have to bend past its limit (the wrist too near the shoulder).
-const SynthesisModel& ShippedModel() {
-  static const SynthesisModel model(ShippedSimulationModel().robot(),
-                                    ShippedSimulationModel().scene(),
-                                    ReadGraspLibrary(DefaultGraspLibraryPath()));
-  return model;
+// A start across the robot from the object (S1 1.5 rad to the other side of the base): the
+// paper's spline reach, a straight-ish wrist path from there to the pre-grasp, passes where
+// the arm has no solution on the start's branch.
+Vector7d StartAcrossTheRobot(double theta_deg) {
+  const LibraryEntry& e = Library406080().entries[theta_deg == 40.0 ? 0 : 1];
+  Vector7d q =
+      DefaultRestConfiguration(ShippedSimulationModel().robot(), ShippedSimulationModel().scene(),
+                               e.motion.grasp().q_WH.toRotationMatrix());
+  q[0] = -1.5;
+  return q;
 }
 
-SynthesisResult WithReach(double theta_deg, ReachMethod reach) {
+SynthesisResult WithReach(double theta_deg, ReachMethod reach,
+                          const Vector7d& start = Vector7d::Constant(NAN)) {
   SynthesisOptions o;
   o.reach_method = reach;
-  CollisionData data(ShippedModel().collision());
-  return SynthesizeGrasp(ShippedModel(), theta_deg, o, &data);
+  o.start = start;
+  CollisionData data(Model406080().collision());
+  return SynthesizeGrasp(Model406080(), theta_deg, o, &data);
 }
 
 TEST(SynthesisReach, AutoUsesTheJointReachWhereTheSplineCannotBePlayed) {
-  const SynthesisResult spline = WithReach(30.0, ReachMethod::kSpline);
+  const Vector7d start = StartAcrossTheRobot(60.0);
+  const SynthesisResult spline = WithReach(60.0, ReachMethod::kSpline, start);
   EXPECT_EQ(spline.status, SynthesisStatus::kUnreachable);
-  const SynthesisResult r = WithReach(30.0, ReachMethod::kAuto);
+  const SynthesisResult r = WithReach(60.0, ReachMethod::kAuto, start);
   ASSERT_TRUE(r.ok()) << r.message;
   EXPECT_EQ(r.reach_used, ReachMethod::kJoint);
   EXPECT_NE(r.reach_reason.find("cannot be played"), std::string::npos) << r.reach_reason;
   // the trajectory starts at the start, passes the pre-grasp and grasp poses, is continuous.
   const JointTrajectory& t = r.trajectory;
-  EXPECT_EQ(t.samples.front().arm, r.start);
+  EXPECT_EQ(t.samples.front().arm, start);
   ASSERT_EQ(t.waypoints.size(), 5u);
   for (size_t k = 1; k < t.samples.size(); ++k) {
     ASSERT_GT(t.samples[k].t, t.samples[k - 1].t);
     EXPECT_LE((t.samples[k].arm - t.samples[k - 1].arm).cwiseAbs().maxCoeff(), 0.1) << k;
   }
+  const RobotModel& robot = ShippedSimulationModel().robot();
   for (const WristWaypoint& w : t.waypoints) {
     const TrajectorySample s = SampleAt(t, w.t);
-    const Eigen::Isometry3d X =
-        ArmFlangePose(ShippedModel().robot().arm, s.arm) * ShippedModel().robot().X_FH;
+    const Eigen::Isometry3d X = ArmFlangePose(robot.arm, s.arm) * robot.X_FH;
     EXPECT_LT((X.translation() - w.p_WH).norm(), 1e-6) << w.t;
   }
   EXPECT_LT((t.waypoints[2].p_WH - r.motion.grasp().p_WH).norm(), 1e-9);
 }
 
 TEST(SynthesisReach, AutoKeepsTheSplineWithRoomToSpare) {
-  const SynthesisResult r = WithReach(90.0, ReachMethod::kAuto);
+  const SynthesisResult r = WithReach(60.0, ReachMethod::kAuto);
   ASSERT_TRUE(r.ok()) << r.message;
   EXPECT_EQ(r.reach_used, ReachMethod::kSpline);
-  const SynthesisResult spline = WithReach(90.0, ReachMethod::kSpline);
+  const SynthesisResult spline = WithReach(60.0, ReachMethod::kSpline);
   ASSERT_TRUE(spline.ok());
   EXPECT_EQ(spline.trajectory.samples.size(), r.trajectory.samples.size());
 }
 
 TEST(SynthesisReach, JointReachGraspLiftsTheObject) {
-  const SynthesisResult r = WithReach(35.0, ReachMethod::kJoint);
+  const SynthesisResult r = WithReach(50.0, ReachMethod::kJoint, StartAcrossTheRobot(40.0));
   ASSERT_TRUE(r.ok()) << r.message;
   EXPECT_EQ(r.reach_used, ReachMethod::kJoint);
   const TrialResult t = RunTrial(ShippedSimulationModel(), r.trajectory);
@@ -213,6 +219,13 @@ TEST(SynthesisReach, ParsesItsNames) {
     EXPECT_EQ(ParseReachMethod(ToString(m)), m);
   }
   EXPECT_THROW(ParseReachMethod("dmp"), InputError);
+}
+
+const SynthesisModel& ShippedModel() {
+  static const SynthesisModel model(ShippedSimulationModel().robot(),
+                                    ShippedSimulationModel().scene(),
+                                    ReadGraspLibrary(DefaultGraspLibraryPath()));
+  return model;
 }
 
 TEST(SynthesisThresholds, TheSourcesLoosenOnlyWhatTheyBreakThemselves) {
@@ -248,13 +261,29 @@ TEST(SynthesisThresholds, TheSourcesLoosenOnlyWhatTheyBreakThemselves) {
   EXPECT_EQ(r90.contact_tolerance, RefinementOptions{}.contact_tolerance);
 }
 
+// A library whose 20 deg representative is weak: the scripted grasp 0.30 m out along the
+// handle, where the pan's weight pitches it out of the hand (it drops it), scored as the
+// selection would score such a grasp; scripted grasps near the pan at 30 and 40 deg.
+const SynthesisModel& WeakModel() {
+  static const SynthesisModel model = [] {
+    const RobotModel& robot = ShippedSimulationModel().robot();
+    const SceneModel& scene = ShippedSimulationModel().scene();
+    ScriptedGraspOptions far;
+    far.grasp_radius = 0.30;
+    GraspLibrary library;
+    library.entries.push_back(testing::ScriptedEntry(robot, scene, 20.0, +1, far));
+    library.entries.back().score = 0.1;
+    library.entries.push_back(testing::ScriptedEntry(robot, scene, 30.0, +1));
+    library.entries.push_back(testing::ScriptedEntry(robot, scene, 40.0, +1));
+    return SynthesisModel(robot, scene, library);
+  }();
+  return model;
+}
+
 TEST(SynthesisWeak, AWeakRepresentativeGivesWayToItsRobustNeighbour) {
-  // the shipped 20 deg representative scored 0.20 in the selection, the 30 deg one 0.75.
-  const SynthesisModel& model = ShippedModel();
-  ASSERT_LT(model.library().entries[0].score, 0.5);
-  ASSERT_GE(model.library().entries[1].score, 0.5);
+  const SynthesisModel& model = WeakModel();
   for (double theta : {20.0, 25.0}) {
-    const SynthesisResult r = WithReach(theta, ReachMethod::kAuto);
+    const SynthesisResult r = Synthesize(model, theta);
     ASSERT_TRUE(r.ok()) << r.message;
     EXPECT_TRUE(r.fallback) << theta;
     EXPECT_EQ(r.used, SynthesisMethod::kNearest) << theta;
@@ -262,15 +291,12 @@ TEST(SynthesisWeak, AWeakRepresentativeGivesWayToItsRobustNeighbour) {
     EXPECT_EQ(r.sources[0].theta_deg, 30.0) << theta;
     EXPECT_NE(r.fallback_reason.find("weak"), std::string::npos) << r.fallback_reason;
   }
-  // the 20 deg demonstration itself drops the pan; its neighbour turned by -10 deg lifts it.
-  const SynthesisResult r = WithReach(20.0, ReachMethod::kAuto);
-  const TrialResult t = RunTrial(ShippedSimulationModel(), r.trajectory);
+  // the 20 deg grasp itself drops the pan; its neighbour turned by -10 deg lifts it.
+  const TrialResult t = RunTrial(ShippedSimulationModel(), Synthesize(model, 20.0).trajectory);
   EXPECT_TRUE(t.success()) << t.BriefReport();
-  SynthesisOptions o;
-  o.method = SynthesisMethod::kNearest;
-  CollisionData data(model.collision());
-  const SynthesisResult own = SynthesizeGrasp(model, 20.0, o, &data);
-  ASSERT_TRUE(own.ok());
+  const SynthesisResult own = Synthesize(model, 20.0, SynthesisMethod::kNearest, false);
+  ASSERT_TRUE(own.ok()) << own.message;
+  EXPECT_EQ(own.sources[0].theta_deg, 20.0);
   EXPECT_FALSE(RunTrial(ShippedSimulationModel(), own.trajectory).success());
 }
 
