@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/demand.hpp"
 #include "motion/resample.hpp"
 #include "solver/bracket.hpp"
 
@@ -65,11 +66,6 @@ LinearFit FitLinear(const std::vector<double>& x, const std::vector<double>& y) 
 
 }  // namespace
 
-Eigen::Vector3d SideOrientationModel::Residual(double theta) const {
-  const double t = std::clamp(theta, theta_lo, theta_hi);
-  return Eigen::Vector3d(residual[0](t), residual[1](t), residual[2](t));
-}
-
 bool LinePrincipleOptions::IsValid(std::string* why) const {
   if (!(std::isfinite(min_score) && min_score >= 0.0 && min_score <= 1.0)) {
     if (why) *why = "min_score must be in [0, 1]";
@@ -85,6 +81,34 @@ bool LinePrincipleOptions::IsValid(std::string* why) const {
     return false;
   }
   return true;
+}
+
+SideKnot SideModel::At(double theta) const {
+  GS_DEMAND(!knots.empty(), "the line principle's side has no grasps");
+  if (theta <= knots.front().theta) return knots.front();
+  if (theta >= knots.back().theta) return knots.back();
+  size_t i = 1;
+  while (knots[i].theta < theta) ++i;
+  const SideKnot& a = knots[i - 1];
+  const SideKnot& b = knots[i];
+  const double u = (theta - a.theta) / (b.theta - a.theta);
+  auto mix = [u](const auto& x, const auto& y) { return (1.0 - u) * x + u * y; };
+  SideKnot k;
+  k.theta = theta;
+  k.height = mix(a.height, b.height);
+  k.yaw = mix(a.yaw, b.yaw);
+  k.residual = mix(a.residual, b.residual);
+  k.fingers = mix(a.fingers, b.fingers);
+  k.duration = mix(a.duration, b.duration);
+  k.approach.resize(a.approach.size());
+  for (size_t j = 0; j < a.approach.size(); ++j) {
+    RelativeWaypoint& w = k.approach[j];
+    w.u = a.approach[j].u;
+    w.p = mix(a.approach[j].p, b.approach[j].p);
+    w.r = mix(a.approach[j].r, b.approach[j].r);
+    w.df = mix(a.approach[j].df, b.approach[j].df);
+  }
+  return k;
 }
 
 LinePrincipleModel FitLinePrinciple(const GraspLibrary& library, const SceneModel& scene,
@@ -116,13 +140,11 @@ LinePrincipleModel FitLinePrinciple(const GraspLibrary& library, const SceneMode
   model.fitted_entries = static_cast<int>(used.size());
   std::vector<double> theta;
   std::vector<Eigen::Vector2d> points;
-  std::vector<int> sides;
   for (size_t k : used) {
     const LibraryEntry& e = entries[k];
     const Eigen::Isometry3d X_WO = scene.ObjectPose(e.theta_deg * kDeg);
     theta.push_back(e.theta_deg * kDeg);
     points.push_back((e.motion.grasp().p_WH - X_WO.translation()).head<2>());
-    sides.push_back(model.entry_sides[k]);
   }
   model.theta_min = entries.front().theta_deg * kDeg;
   model.theta_max = entries.back().theta_deg * kDeg;
@@ -132,31 +154,26 @@ LinePrincipleModel FitLinePrinciple(const GraspLibrary& library, const SceneMode
     return model;
   }
   const Line2d& line = model.wrist_line.line;
-  std::vector<double> s, height, yaw_side[2], theta_side[2];
-  std::vector<Eigen::Vector3d> residual_side[2];
-  std::vector<double> finger_values[kHandDof];
-  model.finger_min = HandVector::Constant(INFINITY);
-  model.finger_max = HandVector::Constant(-INFINITY);
+  std::vector<double> s;
   const int n = options.waypoints;
-  model.approach.assign(n, RelativeWaypoint{});
-  model.duration = 0.0;
   const double inv = 1.0 / static_cast<double>(used.size());
+  for (int si = 0; si < 2; ++si) model.sides[si].side = si == 1 ? 1 : -1;
   for (size_t k = 0; k < used.size(); ++k) {
     const LibraryEntry& e = entries[used[k]];
     const Eigen::Isometry3d X_WO = scene.ObjectPose(theta[k]);
     const MotionWaypoint& g = e.motion.grasp();
     s.push_back(line.direction.dot(points[k] - line.point));
-    height.push_back(g.p_WH.z() - X_WO.translation().z());
     const Eigen::Matrix3d R_G = g.q_WH.toRotationMatrix();
     const double yaw = HandYaw(R_G);
-    const double rel = Wrap(yaw - HandleAngle(scene, theta[k]));
-    const int side = sides[k];
-    const int si = side > 0 ? 1 : 0;
+    const int side = model.entry_sides[used[k]];
+    SideKnot knot;
+    knot.theta = theta[k];
+    knot.height = g.p_WH.z() - X_WO.translation().z();
     // unwrap about the side's nominal yaw (+-90 deg: z_H across the handle).
-    yaw_side[si].push_back(side * M_PI / 2 + Wrap(rel - side * M_PI / 2));
-    theta_side[si].push_back(theta[k]);
-    residual_side[si].push_back(RotationVector((Rz(yaw) * CanonicalHand()).transpose() * R_G));
-    for (int j = 0; j < kHandDof; ++j) finger_values[j].push_back(g.f[j]);
+    const double rel = Wrap(yaw - HandleAngle(scene, theta[k]));
+    knot.yaw = side * M_PI / 2 + Wrap(rel - side * M_PI / 2);
+    knot.residual = RotationVector((Rz(yaw) * CanonicalHand()).transpose() * R_G);
+    knot.fingers = g.f;
     // the handle axis point under the hand: where the hand's forward axis (z_H, seen from
     // above) crosses the handle's axis - the bar in the pinch of the scripted grasp and in the
     // hook of the synthetic operator alike, whatever the hand's yaw; the point nearest the
@@ -176,43 +193,30 @@ LinePrincipleModel FitLinePrinciple(const GraspLibrary& library, const SceneMode
     model.handle_in_hand += inv * (R_G.transpose() * (a0 + along * h - g.p_WH));
     // the approach relative to the grasp.
     const GraspingMotion r = Resample(e.motion, n);
-    model.duration += inv * r.duration();
+    knot.duration = r.duration();
     const Eigen::Matrix3d Ryaw = Rz(-yaw);
     for (int i = 0; i < n; ++i) {
       const MotionWaypoint& w = r.waypoints[i];
-      RelativeWaypoint& a = model.approach[i];
+      RelativeWaypoint a;
       a.u = static_cast<double>(i) / (n - 1);
-      a.p += inv * (Ryaw * (w.p_WH - g.p_WH));
-      a.r += inv * RotationVector(R_G.transpose() * w.q_WH.toRotationMatrix());
-      a.df += inv * (w.f - g.f);
-      model.finger_min = model.finger_min.cwiseMin(w.f);
-      model.finger_max = model.finger_max.cwiseMax(w.f);
+      a.p = Ryaw * (w.p_WH - g.p_WH);
+      a.r = RotationVector(R_G.transpose() * w.q_WH.toRotationMatrix());
+      a.df = w.f - g.f;
+      knot.approach.push_back(a);
     }
+    model.sides[side > 0 ? 1 : 0].knots.push_back(knot);  // used[] is theta-increasing
   }
   model.s = FitLinear(theta, s);
-  model.height = FitLinear(theta, height);
   for (int si = 0; si < 2; ++si) {
-    SideOrientationModel& m = model.sides[si];
-    m.side = si == 1 ? 1 : -1;
-    m.entries = static_cast<int>(yaw_side[si].size());
-    m.yaw = FitLinear(theta_side[si], yaw_side[si]);
-    for (int c = 0; c < 3; ++c) {
-      std::vector<double> component;
-      for (const Eigen::Vector3d& r : residual_side[si]) component.push_back(r[c]);
-      m.residual[c] = FitLinear(theta_side[si], component);
-    }
-    if (m.entries > 0) {
-      const auto [lo, hi] = std::minmax_element(theta_side[si].begin(), theta_side[si].end());
-      m.theta_lo = *lo;
-      m.theta_hi = *hi;
-    }
+    SideModel& m = model.sides[si];
+    m.entries = static_cast<int>(m.knots.size());
     // this side's own position model.
     std::vector<Eigen::Vector2d> side_points;
-    std::vector<double> side_height;
+    std::vector<double> side_theta;
     for (size_t k = 0; k < used.size(); ++k) {
-      if ((sides[k] > 0 ? 1 : 0) != si) continue;
+      if ((model.entry_sides[used[k]] > 0 ? 1 : 0) != si) continue;
       side_points.push_back(points[k]);
-      side_height.push_back(height[k]);
+      side_theta.push_back(theta[k]);
     }
     if (side_points.size() >= 2) {
       const WristLineResult fit = FitWristLine(side_points, options.line);
@@ -223,13 +227,10 @@ LinePrincipleModel FitLinePrinciple(const GraspLibrary& library, const SceneMode
         for (const Eigen::Vector2d& p : side_points) {
           side_s.push_back(m.line.direction.dot(p - m.line.point));
         }
-        m.s = FitLinear(theta_side[si], side_s);
-        m.height = FitLinear(theta_side[si], side_height);
+        m.s = FitLinear(side_theta, side_s);
       }
     }
   }
-  for (int j = 0; j < kHandDof; ++j) model.fingers[j] = FitLinear(theta, finger_values[j]);
-  if (!(model.duration > 0.0)) model.duration = 1.0;
   model.valid = true;
   return model;
 }
@@ -237,21 +238,21 @@ LinePrincipleModel FitLinePrinciple(const GraspLibrary& library, const SceneMode
 Eigen::Isometry3d LinePrincipleGraspPose(const LinePrincipleModel& model, const SceneModel& scene,
                                          double theta, int side) {
   const Eigen::Isometry3d X_WO = scene.ObjectPose(theta);
-  const SideOrientationModel& own = model.side_model(side);
+  const SideModel& own = model.side_model(side);
   const Line2d& line = own.has_line ? own.line : model.wrist_line.line;
   const double s = own.has_line ? own.s(theta) : model.s(theta);
-  const double z = own.has_line ? own.height(theta) : model.height(theta);
   const Eigen::Vector2d p_xy = line.point + s * line.direction;
-  const SideOrientationModel* m = &own;
+  const SideModel* m = &own;
   double turn = 0.0;
   if (m->entries == 0) {
     m = &model.side_model(-side);
     turn = M_PI;
   }
-  const double yaw = HandleAngle(scene, theta) + m->yaw(theta) + turn;
+  const SideKnot k = m->At(theta);
+  const double yaw = HandleAngle(scene, theta) + k.yaw + turn;
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.linear() = Rz(yaw) * CanonicalHand() * FromRotationVector(m->Residual(theta));
-  X.translation() = X_WO.translation() + Eigen::Vector3d(p_xy.x(), p_xy.y(), z);
+  X.linear() = Rz(yaw) * CanonicalHand() * FromRotationVector(k.residual);
+  X.translation() = X_WO.translation() + Eigen::Vector3d(p_xy.x(), p_xy.y(), k.height);
   return X;
 }
 
@@ -260,25 +261,24 @@ GraspingMotion LinePrincipleMotion(const LinePrincipleModel& model, const SceneM
   const Eigen::Isometry3d X_G = LinePrincipleGraspPose(model, scene, theta, side);
   const Eigen::Matrix3d R_G = X_G.linear();
   const Eigen::Matrix3d Ryaw = Rz(HandYaw(R_G));
-  HandVector f_G;
-  for (int j = 0; j < kHandDof; ++j) f_G[j] = model.fingers[j](theta);
-  f_G = f_G.cwiseMax(model.finger_min).cwiseMin(model.finger_max);
+  const SideModel& own = model.side_model(side);
+  const SideKnot k = (own.entries > 0 ? own : model.side_model(-side)).At(theta);
   GraspingMotion motion;
   motion.theta = theta;
   motion.p_WO = scene.ObjectPose(theta).translation();
   motion.source = "line principle";
-  for (const RelativeWaypoint& a : model.approach) {
+  for (const RelativeWaypoint& a : k.approach) {
     MotionWaypoint w;
-    w.t = a.u * model.duration;
+    w.t = a.u * k.duration;
     w.p_WH = X_G.translation() + Ryaw * a.p;
     w.q_WH = Eigen::Quaterniond(R_G * FromRotationVector(a.r)).normalized();
-    w.f = (f_G + a.df).cwiseMax(model.finger_min).cwiseMin(model.finger_max);
+    w.f = k.fingers + a.df;
     motion.waypoints.push_back(w);
   }
   // the last waypoint is the modelled grasp exactly.
   motion.waypoints.back().p_WH = X_G.translation();
   motion.waypoints.back().q_WH = Eigen::Quaterniond(R_G).normalized();
-  motion.waypoints.back().f = f_G;
+  motion.waypoints.back().f = k.fingers;
   return motion;
 }
 

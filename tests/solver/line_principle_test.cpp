@@ -25,9 +25,13 @@ TEST(LinePrinciple, ReproducesTheLibrarysGraspsInsideTheRange) {
     const Eigen::Isometry3d X = LinePrincipleGraspPose(m, Scene(), e.theta_deg * kDeg, +1);
     const Eigen::Isometry3d Y = Eigen::Translation3d(e.motion.grasp().p_WH) * e.motion.grasp().q_WH;
     const PoseDistance d = DistanceBetween(X, Y);
-    // three grasps on a circle about the object centre are not on a line: a few cm.
+    // three grasps on a circle about the object centre are not on a line: a few cm; the
+    // height, the hand's orientation and the fingers are the demonstration's.
     EXPECT_LT(d.translation, 0.03) << e.theta_deg;
-    EXPECT_LT(d.rotation, 2.0 * kDeg) << e.theta_deg;
+    EXPECT_NEAR(X.translation().z(), Y.translation().z(), 1e-12) << e.theta_deg;
+    EXPECT_LT(d.rotation, 1e-9) << e.theta_deg;
+    const GraspingMotion g = LinePrincipleMotion(m, Scene(), e.theta_deg * kDeg, +1);
+    EXPECT_LT((g.grasp().f - e.motion.grasp().f).cwiseAbs().maxCoeff(), 1e-12) << e.theta_deg;
   }
 }
 
@@ -62,9 +66,15 @@ TEST(LinePrinciple, OrientationIsFittedPerSideOfTheHandle) {
   EXPECT_EQ(m.sides[1].entries, 2);
   EXPECT_EQ(m.entry_sides, (std::vector<int>{-1, -1, 1, 1}));
   // across the handle on either side: yaw relative to the handle near -90 and +90 deg.
-  EXPECT_NEAR(m.sides[0].yaw(45.0 * kDeg), -90.0 * kDeg, 1e-6);
-  EXPECT_NEAR(m.sides[1].yaw(45.0 * kDeg), 90.0 * kDeg, 1e-6);
+  EXPECT_NEAR(m.sides[0].At(45.0 * kDeg).yaw, -90.0 * kDeg, 1e-6);
+  EXPECT_NEAR(m.sides[1].At(45.0 * kDeg).yaw, 90.0 * kDeg, 1e-6);
   EXPECT_TRUE(m.sides[0].has_line);
+  // each side's grip is its own demonstrations': at 45 deg, the nearest of that side's.
+  const GraspLibrary& library = SideSwitchLibrary();
+  EXPECT_EQ(LinePrincipleMotion(m, Scene(), 45.0 * kDeg, -1).grasp().f,
+            library.entries[1].motion.grasp().f);
+  EXPECT_EQ(LinePrincipleMotion(m, Scene(), 45.0 * kDeg, +1).grasp().f,
+            library.entries[2].motion.grasp().f);
   const Eigen::Isometry3d left = LinePrincipleGraspPose(m, Scene(), 45.0 * kDeg, -1);
   EXPECT_EQ(HandleSide(Scene(), 45.0 * kDeg, left.translation(), 0.01), -1);
   const Eigen::Isometry3d right = LinePrincipleGraspPose(m, Scene(), 45.0 * kDeg, +1);
