@@ -308,13 +308,14 @@ json HandToDeg(const HandVector& f) {
   return a;
 }
 
-// Scalar fields of OperatorOptions: name, member, and whether the file holds degrees.
+// A scalar field of an options struct T: name, member, and whether the file holds degrees.
+template <class T>
 struct ScalarField {
   const char* name;
-  double OperatorOptions::*member;
+  double T::*member;
   bool degrees;
 };
-constexpr ScalarField kScalars[] = {
+constexpr ScalarField<OperatorOptions> kScalars[] = {
     {"sample_rate_hz", &OperatorOptions::sample_rate_hz, false},
     {"rest_distance", &OperatorOptions::rest_distance, false},
     {"rest_turn_deg", &OperatorOptions::rest_turn, true},
@@ -343,13 +344,7 @@ constexpr ScalarField kScalars[] = {
     {"sloppy_scale", &OperatorOptions::sloppy_scale, false},
 };
 
-// Scalar fields of GraspStyle, as kScalars.
-struct StyleField {
-  const char* name;
-  double GraspStyle::*member;
-  bool degrees;
-};
-constexpr StyleField kStyleScalars[] = {
+constexpr ScalarField<GraspStyle> kStyleScalars[] = {
     {"hook_reach", &GraspStyle::hook_reach, false},
     {"wrist_above_handle", &GraspStyle::wrist_above_handle, false},
     {"max_pitch_deg", &GraspStyle::max_pitch, true},
@@ -360,7 +355,7 @@ constexpr StyleField kStyleScalars[] = {
 // Reads the GraspStyle fields present in `j` over `style`.
 void ReadStyle(const json& j, const std::string& source, const std::string& prefix,
                GraspStyle* style) {
-  for (const StyleField& f : kStyleScalars) {
+  for (const ScalarField<GraspStyle>& f : kStyleScalars) {
     if (!j.contains(f.name)) continue;
     style->*f.member = Number(j[f.name], source, prefix + f.name) * (f.degrees ? kDeg : 1.0);
   }
@@ -373,7 +368,7 @@ void ReadStyle(const json& j, const std::string& source, const std::string& pref
 }
 
 void WriteStyle(const GraspStyle& style, json* j) {
-  for (const StyleField& f : kStyleScalars) {
+  for (const ScalarField<GraspStyle>& f : kStyleScalars) {
     (*j)[f.name] = style.*f.member / (f.degrees ? kDeg : 1.0);
   }
   (*j)["open_hand_deg"] = HandToDeg(style.open_hand);
@@ -405,7 +400,7 @@ bool GraspStyle::IsValid(std::string* why) const {
     if (why) *why = what;
     return false;
   };
-  for (const StyleField& f : kStyleScalars) {
+  for (const ScalarField<GraspStyle>& f : kStyleScalars) {
     if (!std::isfinite(this->*f.member)) return fail(std::string(f.name) + " must be finite");
   }
   if (!(hook_reach > 0.0)) return fail("hook_reach must be > 0");
@@ -424,7 +419,7 @@ bool OperatorOptions::IsValid(std::string* why) const {
   };
   if (trials_per_orientation < 1) return fail("trials_per_orientation must be >= 1");
   if (plans.empty()) return fail("there must be at least one orientation plan");
-  for (const ScalarField& f : kScalars) {
+  for (const ScalarField<OperatorOptions>& f : kScalars) {
     const double v = this->*f.member;
     if (!std::isfinite(v) || (v < 0.0 && f.member != &OperatorOptions::rest_turn)) {
       return fail(std::string(f.name) + " must be finite and >= 0");
@@ -490,7 +485,7 @@ OperatorOptions ReadOperatorOptions(const std::filesystem::path& path) {
     }
     o.trials_per_orientation = root["trials_per_orientation"].get<int>();
   }
-  for (const ScalarField& f : kScalars) {
+  for (const ScalarField<OperatorOptions>& f : kScalars) {
     if (!root.contains(f.name)) continue;
     o.*f.member = Number(root[f.name], source, f.name) * (f.degrees ? kDeg : 1.0);
   }
@@ -548,7 +543,7 @@ void WriteOperatorOptions(const OperatorOptions& o, const std::filesystem::path&
       "'graspsynth demos calibrate' so that the successful trials reproduce the paper's Table I.";
   root["seed"] = o.seed;
   root["trials_per_orientation"] = o.trials_per_orientation;
-  for (const ScalarField& f : kScalars) {
+  for (const ScalarField<OperatorOptions>& f : kScalars) {
     root[f.name] = o.*f.member / (f.degrees ? kDeg : 1.0);
   }
   WriteStyle(o.grasp, &root);
