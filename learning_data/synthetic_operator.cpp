@@ -352,13 +352,27 @@ constexpr ScalarField<GraspStyle> kStyleScalars[] = {
     {"roll_deg", &GraspStyle::roll, true},
 };
 
+// Reads the fields of `fields` present in `j` over `out` (field names prefixed by `prefix` in
+// errors; degrees converted to rad).
+template <class T, size_t N>
+void ReadScalars(const json& j, const ScalarField<T> (&fields)[N], const std::string& source,
+                 const std::string& prefix, T* out) {
+  for (const ScalarField<T>& f : fields) {
+    if (!j.contains(f.name)) continue;
+    out->*f.member = Number(j[f.name], source, prefix + f.name) * (f.degrees ? kDeg : 1.0);
+  }
+}
+
+// Writes every field of `fields` of `in` into `j` (rad as degrees).
+template <class T, size_t N>
+void WriteScalars(const T& in, const ScalarField<T> (&fields)[N], json* j) {
+  for (const ScalarField<T>& f : fields) (*j)[f.name] = in.*f.member / (f.degrees ? kDeg : 1.0);
+}
+
 // Reads the GraspStyle fields present in `j` over `style`.
 void ReadStyle(const json& j, const std::string& source, const std::string& prefix,
                GraspStyle* style) {
-  for (const ScalarField<GraspStyle>& f : kStyleScalars) {
-    if (!j.contains(f.name)) continue;
-    style->*f.member = Number(j[f.name], source, prefix + f.name) * (f.degrees ? kDeg : 1.0);
-  }
+  ReadScalars(j, kStyleScalars, source, prefix, style);
   if (j.contains("open_hand_deg")) {
     style->open_hand = HandDeg(j["open_hand_deg"], source, prefix + "open_hand_deg");
   }
@@ -368,9 +382,7 @@ void ReadStyle(const json& j, const std::string& source, const std::string& pref
 }
 
 void WriteStyle(const GraspStyle& style, json* j) {
-  for (const ScalarField<GraspStyle>& f : kStyleScalars) {
-    (*j)[f.name] = style.*f.member / (f.degrees ? kDeg : 1.0);
-  }
+  WriteScalars(style, kStyleScalars, j);
   (*j)["open_hand_deg"] = HandToDeg(style.open_hand);
   (*j)["closed_hand_deg"] = HandToDeg(style.closed_hand);
 }
@@ -485,10 +497,7 @@ OperatorOptions ReadOperatorOptions(const std::filesystem::path& path) {
     }
     o.trials_per_orientation = root["trials_per_orientation"].get<int>();
   }
-  for (const ScalarField<OperatorOptions>& f : kScalars) {
-    if (!root.contains(f.name)) continue;
-    o.*f.member = Number(root[f.name], source, f.name) * (f.degrees ? kDeg : 1.0);
-  }
+  ReadScalars(root, kScalars, source, "", &o);
   ReadStyle(root, source, "", &o.grasp);
   if (!root.contains("plans") || !root["plans"].is_array()) {
     Bad(source, "plans", "required: an array of orientation plans");
@@ -543,9 +552,7 @@ void WriteOperatorOptions(const OperatorOptions& o, const std::filesystem::path&
       "'graspsynth demos calibrate' so that the successful trials reproduce the paper's Table I.";
   root["seed"] = o.seed;
   root["trials_per_orientation"] = o.trials_per_orientation;
-  for (const ScalarField<OperatorOptions>& f : kScalars) {
-    root[f.name] = o.*f.member / (f.degrees ? kDeg : 1.0);
-  }
+  WriteScalars(o, kScalars, &root);
   WriteStyle(o.grasp, &root);
   json plans = json::array();
   for (const OrientationPlan& p : o.plans) {
