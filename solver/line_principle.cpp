@@ -235,20 +235,25 @@ LinePrincipleModel FitLinePrinciple(const GraspLibrary& library, const SceneMode
   return model;
 }
 
-Eigen::Isometry3d LinePrincipleGraspPose(const LinePrincipleModel& model, const SceneModel& scene,
-                                         double theta, int side) {
+namespace {
+
+// The grasp of `side` at theta relative to the handle, from the side's own grasps, or, where
+// that side was not demonstrated, from the other side's, to be turned by *turn = 180 deg.
+SideKnot KnotAt(const LinePrincipleModel& model, double theta, int side, double* turn) {
+  const SideModel& own = model.side_model(side);
+  *turn = own.entries == 0 ? M_PI : 0.0;
+  return (own.entries == 0 ? model.side_model(-side) : own).At(theta);
+}
+
+// The grasp wrist pose of `side` at theta for its knot `k` (KnotAt): the wrist on the side's
+// line, the rest from the knot.
+Eigen::Isometry3d GraspPose(const LinePrincipleModel& model, const SceneModel& scene, double theta,
+                            int side, const SideKnot& k, double turn) {
   const Eigen::Isometry3d X_WO = scene.ObjectPose(theta);
   const SideModel& own = model.side_model(side);
   const Line2d& line = own.has_line ? own.line : model.wrist_line.line;
   const double s = own.has_line ? own.s(theta) : model.s(theta);
   const Eigen::Vector2d p_xy = line.point + s * line.direction;
-  const SideModel* m = &own;
-  double turn = 0.0;
-  if (m->entries == 0) {
-    m = &model.side_model(-side);
-    turn = M_PI;
-  }
-  const SideKnot k = m->At(theta);
   const double yaw = HandleAngle(scene, theta) + k.yaw + turn;
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
   X.linear() = Rz(yaw) * CanonicalHand() * FromRotationVector(k.residual);
@@ -256,13 +261,22 @@ Eigen::Isometry3d LinePrincipleGraspPose(const LinePrincipleModel& model, const 
   return X;
 }
 
+}  // namespace
+
+Eigen::Isometry3d LinePrincipleGraspPose(const LinePrincipleModel& model, const SceneModel& scene,
+                                         double theta, int side) {
+  double turn = 0.0;
+  const SideKnot k = KnotAt(model, theta, side, &turn);
+  return GraspPose(model, scene, theta, side, k, turn);
+}
+
 GraspingMotion LinePrincipleMotion(const LinePrincipleModel& model, const SceneModel& scene,
                                    double theta, int side) {
-  const Eigen::Isometry3d X_G = LinePrincipleGraspPose(model, scene, theta, side);
+  double turn = 0.0;
+  const SideKnot k = KnotAt(model, theta, side, &turn);
+  const Eigen::Isometry3d X_G = GraspPose(model, scene, theta, side, k, turn);
   const Eigen::Matrix3d R_G = X_G.linear();
   const Eigen::Matrix3d Ryaw = Rz(HandYaw(R_G));
-  const SideModel& own = model.side_model(side);
-  const SideKnot k = (own.entries > 0 ? own : model.side_model(-side)).At(theta);
   GraspingMotion motion;
   motion.theta = theta;
   motion.p_WO = scene.ObjectPose(theta).translation();
