@@ -8,7 +8,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(
-  build-essential cmake ninja-build pkg-config clang-format gnuplot-nox
+  build-essential cmake ninja-build ccache pkg-config clang-format gnuplot-nox
   libeigen3-dev libceres-dev libnlopt-cxx-dev libfcl-dev libode-dev libcgal-dev
   liburdfdom-dev libcli11-dev nlohmann-json3-dev libspdlog-dev
   libgtest-dev libgmock-dev libbenchmark-dev liborocos-kdl-dev
@@ -46,6 +46,9 @@ if [[ $pinned != "$vendored" ]]; then
 fi
 
 if [[ ${1:-} == --deps-only ]]; then exit 0; fi
+
+# ccache keys on paths below this folder relative to it, so clones elsewhere share the cache.
+export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$(cd .. && pwd)}
 
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
 cmake --build build
