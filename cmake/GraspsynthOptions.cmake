@@ -18,6 +18,4 @@ function(graspsynth_module name)
   target_include_directories(graspsynth_${name} PUBLIC ${PROJECT_SOURCE_DIR})
   target_link_libraries(graspsynth_${name} PUBLIC graspsynth_options ${ARG_PUBLIC_DEPS}
                                            PRIVATE ${ARG_PRIVATE_DEPS})
-  target_compile_definitions(graspsynth_${name} PRIVATE
-    GRASPSYNTH_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 endfunction()

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/utils/paths.hpp"
 #include "tests/utils/run_command.hpp"
 
 namespace graspsynth {
@@ -22,7 +23,7 @@ using ::testing::HasSubstr;
 using testing::ReadFileText;
 using testing::RunGraspsynth;
 
-const fs::path kShippedDemos = fs::path(GRASPSYNTH_SOURCE_DIR) / "learning_data" / "demos";
+const fs::path kShippedDemos = fs::path(testing::SourceDir()) / "learning_data" / "demos";
 
 class RunCommand : public ::testing::Test {
  protected:

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 
+#include "tests/utils/paths.hpp"
 #include "tests/utils/run_command.hpp"
 
 namespace graspsynth {
@@ -20,7 +21,7 @@ using ::testing::HasSubstr;
 using testing::ReadFileText;
 using testing::RunGraspsynth;
 
-std::string Example() { return std::string(GRASPSYNTH_SOURCE_DIR) + "/examples/grasp_60deg.json"; }
+std::string Example() { return std::string(testing::SourceDir()) + "/examples/grasp_60deg.json"; }
 
 // A scratch folder per test.
 class SimulateCommand : public ::testing::Test {

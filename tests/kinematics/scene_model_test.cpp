@@ -6,13 +6,14 @@
 
 #include "common/errors.hpp"
 #include "tests/utils/eigen_matchers.hpp"
+#include "tests/utils/paths.hpp"
 #include "tests/utils/run_command.hpp"
 
 namespace graspsynth {
 namespace {
 
 std::string ShippedSceneText() {
-  return testing::ReadFileText(std::string(GRASPSYNTH_SOURCE_DIR) + "/models/scene.json");
+  return testing::ReadFileText(std::string(testing::SourceDir()) + "/models/scene.json");
 }
 
 // The shipped scene with one field replaced (a JSON pointer such as "/object/body_radius").

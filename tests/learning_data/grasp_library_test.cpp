@@ -14,6 +14,7 @@
 #include "simulation/random.hpp"
 #include "tests/learning_data/demo_fixtures.hpp"
 #include "tests/utils/eigen_matchers.hpp"
+#include "tests/utils/paths.hpp"
 #include "tests/utils/run_command.hpp"
 
 namespace graspsynth {
@@ -313,7 +314,7 @@ TEST_F(MalformedLibrary, ThetaThatDoesNotIncrease) {
 TEST(GraspLibrary, DefaultPathIsUnderTheDataDirectory) {
   ::unsetenv("GRASPSYNTH_DATA_DIR");
   EXPECT_EQ(DefaultGraspLibraryPath(),
-            std::filesystem::path(GRASPSYNTH_SOURCE_DIR) / "learning_data" / "library.json");
+            std::filesystem::path(testing::SourceDir()) / "learning_data" / "library.json");
   ::setenv("GRASPSYNTH_DATA_DIR", "/opt/graspsynth", 1);
   EXPECT_EQ(DefaultGraspLibraryPath(),
             std::filesystem::path("/opt/graspsynth/learning_data/library.json"));

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "kinematics/arm_model.hpp"
+#include "tests/utils/paths.hpp"
 
 namespace graspsynth::testing {
 
@@ -31,7 +32,7 @@ inline ArmModel Pa10FromDh() {
 
 /// The shipped robot description.
 inline std::string ShippedUrdfPath() {
-  return std::string(GRASPSYNTH_SOURCE_DIR) + "/models/pa10_gifu3.urdf";
+  return std::string(testing::SourceDir()) + "/models/pa10_gifu3.urdf";
 }
 
 }  // namespace graspsynth::testing

@@ -13,6 +13,7 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include "tests/utils/paths.hpp"
 
 namespace graspsynth::testing {
 
@@ -38,7 +39,7 @@ inline CommandOutput RunGraspsynth(const std::string& args, const std::string& i
                                    info->name() + "_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   std::ofstream(dir / "in") << input;
-  const std::string command = std::string(GRASPSYNTH_BINARY) + " " + args + " < " +
+  const std::string command = std::string(testing::GraspsynthBinary()) + " " + args + " < " +
                               (dir / "in").string() + " > " + (dir / "out").string() + " 2> " +
                               (dir / "err").string();
   const int status = std::system(command.c_str());

@@ -10,6 +10,7 @@
 #include "motion/joint_trajectory.hpp"
 #include "simulation/scripted_grasp.hpp"
 #include "simulation/simulation_model.hpp"
+#include "tests/utils/paths.hpp"
 
 namespace graspsynth::testing {
 
@@ -20,7 +21,7 @@ inline const SimulationModel& ShippedSimulationModel() {
 }
 
 inline std::string ExamplePath() {
-  return std::string(GRASPSYNTH_SOURCE_DIR) + "/examples/grasp_60deg.json";
+  return std::string(testing::SourceDir()) + "/examples/grasp_60deg.json";
 }
 
 /// examples/grasp_60deg.json, loaded and limit-checked.
