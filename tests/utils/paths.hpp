@@ -12,3 +12,11 @@ const char* SourceDir();
 const char* GraspsynthBinary();
 
 }  // namespace testing
+
+namespace graspsynth::testing {
+
+// the test helpers live in graspsynth::testing, where `testing::` names this namespace.
+using ::testing::GraspsynthBinary;
+using ::testing::SourceDir;
+
+}  // namespace graspsynth::testing
