@@ -102,6 +102,37 @@ void PrintSummary(const DemonstrationAnalysis& a, const PaperComparisonOptions& 
       << " deg\n";
 }
 
+// Runs the analysis of `o.directory`; the exit status (1 when some files were rejected).
+int RunAnalyze(const AnalyzeOptions& o) {
+  const SceneModel scene =
+      LoadSceneModel(o.scene.empty() ? DefaultSceneModelPath() : fs::path(o.scene));
+  const AnalysisOptions options = MakeAnalysisOptions(o, scene);
+  const PaperComparisonOptions comparison;
+
+  const DemoDirectory demos = ReadDemoDirectory(o.directory);
+  for (const RejectedDemoFile& r : demos.rejected) {
+    std::cerr << "graspsynth: analyze: rejected " << r.file << ": " << r.reason << "\n";
+  }
+  if (demos.logs.empty() && demos.rejected.empty()) {
+    throw InputError("analyze: no demonstration logs (*.csv) in '" + o.directory + "'");
+  }
+  const DemonstrationAnalysis analysis = AnalyzeDemonstrations(demos, options);
+  WriteFileAtomically(o.out, AnalysisReportJson(analysis, comparison));
+  if (!o.table.empty()) {
+    WriteFileAtomically(o.table, PaperComparisonMarkdown(analysis.table, comparison));
+  }
+  PrintSummary(analysis, comparison, std::cout);
+  std::cout << "wrote " << o.out << "\n";
+  if (!o.table.empty()) std::cout << "wrote " << o.table << "\n";
+  std::cout.flush();
+  if (!o.plot.empty()) {
+    DrawFigure8(analysis, scene, o.gnuplot, o.plot);
+    std::cout << "wrote " << o.plot << "\n";
+  }
+  if (!demos.rejected.empty()) return 1;
+  return 0;
+}
+
 }  // namespace
 
 void AddAnalyzeCommand(CLI::App& app, int* exit_code) {
@@ -160,34 +191,7 @@ void AddAnalyzeCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--gnuplot", opts->gnuplot, "The gnuplot program used by --plot")
       ->capture_default_str();
 
-  cmd->callback([opts, exit_code] {
-    const SceneModel scene =
-        LoadSceneModel(opts->scene.empty() ? DefaultSceneModelPath() : fs::path(opts->scene));
-    const AnalysisOptions options = MakeAnalysisOptions(*opts, scene);
-    const PaperComparisonOptions comparison;
-
-    const DemoDirectory demos = ReadDemoDirectory(opts->directory);
-    for (const RejectedDemoFile& r : demos.rejected) {
-      std::cerr << "graspsynth: analyze: rejected " << r.file << ": " << r.reason << "\n";
-    }
-    if (demos.logs.empty() && demos.rejected.empty()) {
-      throw InputError("analyze: no demonstration logs (*.csv) in '" + opts->directory + "'");
-    }
-    const DemonstrationAnalysis analysis = AnalyzeDemonstrations(demos, options);
-    WriteFileAtomically(opts->out, AnalysisReportJson(analysis, comparison));
-    if (!opts->table.empty()) {
-      WriteFileAtomically(opts->table, PaperComparisonMarkdown(analysis.table, comparison));
-    }
-    PrintSummary(analysis, comparison, std::cout);
-    std::cout << "wrote " << opts->out << "\n";
-    if (!opts->table.empty()) std::cout << "wrote " << opts->table << "\n";
-    std::cout.flush();
-    if (!opts->plot.empty()) {
-      DrawFigure8(analysis, scene, opts->gnuplot, opts->plot);
-      std::cout << "wrote " << opts->plot << "\n";
-    }
-    if (!demos.rejected.empty()) *exit_code = 1;
-  });
+  cmd->callback([opts, exit_code] { *exit_code = RunAnalyze(*opts); });
 }
 
 }  // namespace graspsynth::apps

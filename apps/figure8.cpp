@@ -112,6 +112,100 @@ int PointType(size_t index) {
   return kTypes[index % (sizeof(kTypes) / sizeof(kTypes[0]))];
 }
 
+// The object's outline (object.dat): the body circle, and the handle at the first, middle and
+// last orientation of `rows`; `labels` gets the gnuplot labels of the handles.
+std::string ObjectData(const ObjectModel& pan, const std::vector<OrientationStats>& rows,
+                       std::string* labels) {
+  std::string object;
+  for (int i = 0; i <= 72; ++i) {
+    const double a = 2.0 * M_PI * i / 72.0;
+    object += Num(pan.body_radius * std::cos(a)) + " " + Num(pan.body_radius * std::sin(a)) + "\n";
+  }
+  std::vector<double> handle_thetas;
+  if (rows.empty()) {
+    handle_thetas = {20.0, 60.0, 100.0};
+  } else {
+    handle_thetas = {rows.front().theta_deg};
+    if (rows.size() > 2) handle_thetas.push_back(rows[rows.size() / 2].theta_deg);
+    if (rows.size() > 1) handle_thetas.push_back(rows.back().theta_deg);
+  }
+  for (double theta_deg : handle_thetas) {
+    const double phi = theta_deg * kDeg + pan.handle_offset;
+    const Eigen::Vector2d u(std::cos(phi), std::sin(phi));
+    const Eigen::Vector2d v(-u.y(), u.x());
+    const double h = 0.5 * pan.handle_width;
+    const Eigen::Vector2d corners[] = {
+        pan.handle_start_radius * u + h * v, pan.handle_end_radius * u + h * v,
+        pan.handle_end_radius * u - h * v, pan.handle_start_radius * u - h * v,
+        pan.handle_start_radius * u + h * v};
+    object += "\n";
+    for (const Eigen::Vector2d& c : corners) object += Num(c.x()) + " " + Num(c.y()) + "\n";
+    const Eigen::Vector2d tip = (pan.handle_end_radius + 0.12) * u;
+    *labels += "set label 'handle θ = " + Num(theta_deg) + "' at " + Num(tip.x()) + "," +
+               Num(tip.y()) + " font ',9' textcolor rgb '#606060' center\n";
+  }
+  return object;
+}
+
+// The wrist line over the span of the fitted points, 5 cm beyond each end (line.dat); "" when
+// the line is not usable.
+std::string WristLineData(const DemonstrationAnalysis& analysis) {
+  std::string line_data;
+  const WristLineResult& line = analysis.line;
+  if (!line.usable()) return line_data;
+  double lo = 0.0, hi = 0.0;
+  for (size_t i = 0; i < analysis.fit_points.size(); ++i) {
+    const double s = line.line.direction.dot(analysis.fit_points[i] - line.line.point);
+    lo = i == 0 ? s : std::min(lo, s);
+    hi = i == 0 ? s : std::max(hi, s);
+  }
+  for (double s : {lo - 0.05, hi + 0.05}) {
+    const Eigen::Vector2d p = line.line.point + s * line.line.direction;
+    line_data += Num(p.x()) + " " + Num(p.y()) + "\n";
+  }
+  return line_data;
+}
+
+// The gnuplot script drawing figure.svg from the data files in `dir`: the grasp region of
+// radius `r`, the object with its `labels`, the wrist line when `with_line`, the means of `rows`.
+std::string Figure8Script(const fs::path& dir, const std::string& labels, double r, bool with_line,
+                          const std::vector<OrientationStats>& rows) {
+  // the data files are named relative to the folder, which the script changes to first.
+  std::string script = "cd '" + dir.string() + "'\n";
+  script += "set encoding utf8\n";
+  script += "set terminal svg size 900,800 enhanced font 'Helvetica,12' background rgb 'white'\n";
+  script += "set output 'figure.svg'\n";
+  script +=
+      "set title 'Average pre-grasp and grasp wrist positions per object orientation "
+      "(top view, object-centred)'\n";
+  script += "set xlabel 'x (m)'\nset ylabel 'y (m)'\n";
+  script += "set size ratio -1\nset grid lc rgb '#dddddd'\n";
+  script += "set key outside right top box\n";
+  script += labels;
+  script +=
+      "plot 'region.dat'"
+      " using 1:2 with lines dt 2 lc rgb '#9090c0' title 'grasp region (" +
+      Num(r) + " m)', \\\n";
+  script += "     'object.dat' using 1:2 with lines lw 2 lc rgb '#606060' title 'object', \\\n";
+  if (with_line) {
+    script +=
+        "     'line.dat' using 1:2 with lines lw 2 lc rgb '#2ca02c' title 'wrist line (fit)', "
+        "\\\n";
+  }
+  script += "     keyentry with points pt 7 lc rgb '#1f77b4' title 'pre-grasp (mean)', \\\n";
+  script += "     keyentry with points pt 7 lc rgb '#d62728' title 'grasp (mean)'";
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const std::string pt = std::to_string(PointType(i));
+    const std::string block = "'means.dat' index " + std::to_string(i);
+    script += ", \\\n     " + block + " using 1:2 with points pt " + pt +
+              " ps 1.4 lc rgb '#1f77b4' notitle";
+    script += ", \\\n     " + block + " using 3:4 with points pt " + pt +
+              " ps 1.4 lc rgb '#d62728' title 'θ = " + Num(rows[i].theta_deg) + "'";
+  }
+  script += "\nunset output\n";
+  return script;
+}
+
 }  // namespace
 
 // The paper's Fig. 8 in the object-centred frame: mean pre-grasp and grasp positions per
@@ -126,38 +220,8 @@ void DrawFigure8(const DemonstrationAnalysis& analysis, const SceneModel& scene,
   }
   const std::vector<OrientationStats>& rows = analysis.table.orientations;
 
-  // the object: the body circle, and the handle at the first, middle and last orientation.
-  std::string object;
-  const ObjectModel& pan = scene.object;
-  for (int i = 0; i <= 72; ++i) {
-    const double a = 2.0 * M_PI * i / 72.0;
-    object += Num(pan.body_radius * std::cos(a)) + " " + Num(pan.body_radius * std::sin(a)) + "\n";
-  }
-  std::vector<double> handle_thetas;
-  if (rows.empty()) {
-    handle_thetas = {20.0, 60.0, 100.0};
-  } else {
-    handle_thetas = {rows.front().theta_deg};
-    if (rows.size() > 2) handle_thetas.push_back(rows[rows.size() / 2].theta_deg);
-    if (rows.size() > 1) handle_thetas.push_back(rows.back().theta_deg);
-  }
   std::string labels;
-  for (double theta_deg : handle_thetas) {
-    const double phi = theta_deg * kDeg + pan.handle_offset;
-    const Eigen::Vector2d u(std::cos(phi), std::sin(phi));
-    const Eigen::Vector2d v(-u.y(), u.x());
-    const double h = 0.5 * pan.handle_width;
-    const Eigen::Vector2d corners[] = {
-        pan.handle_start_radius * u + h * v, pan.handle_end_radius * u + h * v,
-        pan.handle_end_radius * u - h * v, pan.handle_start_radius * u - h * v,
-        pan.handle_start_radius * u + h * v};
-    object += "\n";
-    for (const Eigen::Vector2d& c : corners) object += Num(c.x()) + " " + Num(c.y()) + "\n";
-    const Eigen::Vector2d tip = (pan.handle_end_radius + 0.12) * u;
-    labels += "set label 'handle θ = " + Num(theta_deg) + "' at " + Num(tip.x()) + "," +
-              Num(tip.y()) + " font ',9' textcolor rgb '#606060' center\n";
-  }
-  WriteText(dir / "object.dat", object);
+  WriteText(dir / "object.dat", ObjectData(scene.object, rows, &labels));
 
   // the grasp region boundary (its horizontal section).
   std::string region;
@@ -176,58 +240,12 @@ void DrawFigure8(const DemonstrationAnalysis& analysis, const SceneModel& scene,
   }
   WriteText(dir / "means.dat", means.empty() ? std::string("\n") : means);
 
-  // the wrist line over the span of the fitted points, 5 cm beyond each end.
-  std::string line_data;
-  const WristLineResult& line = analysis.line;
-  if (line.usable()) {
-    double lo = 0.0, hi = 0.0;
-    for (size_t i = 0; i < analysis.fit_points.size(); ++i) {
-      const double s = line.line.direction.dot(analysis.fit_points[i] - line.line.point);
-      lo = i == 0 ? s : std::min(lo, s);
-      hi = i == 0 ? s : std::max(hi, s);
-    }
-    for (double s : {lo - 0.05, hi + 0.05}) {
-      const Eigen::Vector2d p = line.line.point + s * line.line.direction;
-      line_data += Num(p.x()) + " " + Num(p.y()) + "\n";
-    }
-    WriteText(dir / "line.dat", line_data);
-  }
+  const std::string line_data = WristLineData(analysis);
+  if (!line_data.empty()) WriteText(dir / "line.dat", line_data);
 
   const fs::path svg = dir / "figure.svg";
-  // the data files are named relative to the folder, which the script changes to first.
-  std::string script = "cd '" + dir.string() + "'\n";
-  script += "set encoding utf8\n";
-  script += "set terminal svg size 900,800 enhanced font 'Helvetica,12' background rgb 'white'\n";
-  script += "set output 'figure.svg'\n";
-  script +=
-      "set title 'Average pre-grasp and grasp wrist positions per object orientation "
-      "(top view, object-centred)'\n";
-  script += "set xlabel 'x (m)'\nset ylabel 'y (m)'\n";
-  script += "set size ratio -1\nset grid lc rgb '#dddddd'\n";
-  script += "set key outside right top box\n";
-  script += labels;
-  script +=
-      "plot 'region.dat'"
-      " using 1:2 with lines dt 2 lc rgb '#9090c0' title 'grasp region (" +
-      Num(r) + " m)', \\\n";
-  script += "     'object.dat' using 1:2 with lines lw 2 lc rgb '#606060' title 'object', \\\n";
-  if (!line_data.empty()) {
-    script +=
-        "     'line.dat' using 1:2 with lines lw 2 lc rgb '#2ca02c' title 'wrist line (fit)', \\\n";
-  }
-  script += "     keyentry with points pt 7 lc rgb '#1f77b4' title 'pre-grasp (mean)', \\\n";
-  script += "     keyentry with points pt 7 lc rgb '#d62728' title 'grasp (mean)'";
-  for (size_t i = 0; i < rows.size(); ++i) {
-    const std::string pt = std::to_string(PointType(i));
-    const std::string block = "'means.dat' index " + std::to_string(i);
-    script += ", \\\n     " + block + " using 1:2 with points pt " + pt +
-              " ps 1.4 lc rgb '#1f77b4' notitle";
-    script += ", \\\n     " + block + " using 3:4 with points pt " + pt +
-              " ps 1.4 lc rgb '#d62728' title 'θ = " + Num(rows[i].theta_deg) + "'";
-  }
-  script += "\nunset output\n";
   const fs::path script_path = dir / "figure8.gp";
-  WriteText(script_path, script);
+  WriteText(script_path, Figure8Script(dir, labels, r, !line_data.empty(), rows));
 
   RunGnuplot(gnuplot, script_path, dir / "gnuplot.log");
   const std::string contents = ReadText(svg);

@@ -20,6 +20,7 @@
 #include "learning_data/grasp_library.hpp"
 #include "simulation/simulation_model.hpp"
 #include "solver/study.hpp"
+#include "solver/study_report.hpp"
 
 namespace graspsynth::apps {
 namespace {
@@ -59,12 +60,6 @@ std::vector<StudyMethod> ParseMethods(const std::string& text) {
   }
   if (methods.empty()) throw InputError("--methods: no method in '" + text + "'");
   return methods;
-}
-
-std::string Num(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
 }
 
 int RunGeneralize(const GeneralizeOptions& o) {
@@ -107,16 +102,9 @@ int RunGeneralize(const GeneralizeOptions& o) {
     }
     what << "Leave-one-out on " << library_name
          << ": each inner demonstrated orientation synthesized from the library without it.";
-    for (size_t k = 1; k + 1 < library.entries.size(); ++k) {
-      GraspLibrary without = library;
-      without.entries.erase(without.entries.begin() + static_cast<long>(k));
-      table.orientations = {library.entries[k].theta_deg};
-      const std::string stage = "without " + Num(library.entries[k].theta_deg);
-      const std::vector<StudyRow> part = SynthesisTable(
-          model, without, table,
-          [&](int done, int total, const std::string& w) { bar.Update(stage, done, total, w); });
-      rows.insert(rows.end(), part.begin(), part.end());
-    }
+    rows = LeaveOneOutTable(model, library, table,
+                            [&](const std::string& stage, int done, int total,
+                                const std::string& w) { bar.Update(stage, done, total, w); });
   } else {
     table.orientations = ParseOrientationList(o.orientations, "--orientations");
     what << "Library: " << library_name << ", orientations " << o.orientations << " deg.";

@@ -1,7 +1,8 @@
 // graspsynth run: the main job. The end-to-end study on a folder of demonstrations (by default
 // the shipped ones): Table I against the paper, Fig. 8, the representative selection, the
 // synthesis of a grasp for every study orientation by each method and its physics validation,
-// written into one output folder (solver/study.hpp computes; this file shows and writes).
+// written into one output folder (solver/study.hpp computes, solver/study_report.hpp
+// renders; this file shows and writes).
 
 #include "apps/run_command.hpp"
 
@@ -24,6 +25,7 @@
 #include "learning_data/grasp_library.hpp"
 #include "simulation/simulation_model.hpp"
 #include "solver/study.hpp"
+#include "solver/study_report.hpp"
 
 namespace graspsynth::apps {
 namespace {
@@ -49,12 +51,8 @@ const std::vector<double> kQuickOrientations = {40, 45, 60, 85};
 constexpr int kQuickGatePerturbations = 3;
 constexpr int kQuickSelectionPerturbations = 2;
 
-int RunStudyCommand(const RunOptions& o) {
-  const SceneModel scene =
-      LoadSceneModel(o.scene.empty() ? DefaultSceneModelPath() : fs::path(o.scene));
-  const SimulationModel model(
-      LoadRobotModel(o.robot.empty() ? DefaultRobotDescriptionPath() : fs::path(o.robot)), scene);
-
+// The study's options from the command's flags; throws InputError for invalid ones.
+StudyOptions StudyOptionsOf(const RunOptions& o, const SceneModel& scene) {
   StudyOptions options;
   options.demos = o.demos.empty() ? DataDirectory() / "learning_data" / "demos" : fs::path(o.demos);
   options.seed = o.seed;
@@ -74,32 +72,32 @@ int RunStudyCommand(const RunOptions& o) {
   if (!fs::is_directory(options.demos)) {
     throw InputError("run: --demos '" + options.demos.string() + "' is not a folder");
   }
+  return options;
+}
 
-  ProgressBar bar;
-  StudyResult result =
-      RunStudy(model, options, [&](StudyStage stage, int done, int total, const std::string& w) {
-        bar.Update(ToString(stage), done, total, w);
-      });
-  bar.Finish();
-
-  // the files; every one is written atomically, the report last.
-  const fs::path out = o.out;
-  const PaperComparisonOptions& comparison = options.comparison;
-  WriteFileAtomically(out / "analysis.json", AnalysisReportJson(result.analysis, comparison));
-  WriteGraspLibrary(result.selection.library, out / "library.json");
-  WriteFileAtomically(out / "synthesis.json", StudySynthesisJson(result));
-  WriteFileAtomically(out / "synthesis.csv", StudySynthesisCsv(result.rows));
-  WriteFileAtomically(out / "timing.json", StudyTimingJson(result));
+// The files; every one is written atomically, the report last (with Fig. 8 when drawn).
+void WriteStudyFiles(const SceneModel& scene, const std::string& gnuplot, const fs::path& out,
+                     StudyResult* result) {
+  const PaperComparisonOptions& comparison = result->options.comparison;
+  WriteFileAtomically(out / "analysis.json", AnalysisReportJson(result->analysis, comparison));
+  WriteGraspLibrary(result->selection.library, out / "library.json");
+  WriteFileAtomically(out / "synthesis.json", StudySynthesisJson(*result));
+  WriteFileAtomically(out / "synthesis.csv", StudySynthesisCsv(result->rows));
+  WriteFileAtomically(out / "timing.json", StudyTimingJson(*result));
   try {
-    DrawFigure8(result.analysis, scene, o.gnuplot, out / "fig8.svg");
-    result.figure = "fig8.svg";
+    DrawFigure8(result->analysis, scene, gnuplot, out / "fig8.svg");
+    result->figure = "fig8.svg";
   } catch (const InputError& e) {
-    result.figure_note = e.what();
+    result->figure_note = e.what();
     std::cerr << "graspsynth run: Fig. 8 not drawn: " << e.what() << "\n";
   }
-  WriteFileAtomically(out / "report.md", StudyReportMarkdown(result));
+  WriteFileAtomically(out / "report.md", StudyReportMarkdown(*result));
+}
 
-  // the short summary.
+// The short summary on stdout.
+void PrintStudySummary(const StudyResult& result, const fs::path& out) {
+  const StudyOptions& options = result.options;
+  const PaperComparisonOptions& comparison = options.comparison;
   int within = 0, paper_rows = 0;
   for (const PaperComparisonRow& row : result.comparison) {
     paper_rows += row.paper ? 1 : 0;
@@ -130,6 +128,25 @@ int RunStudyCommand(const RunOptions& o) {
       "timing.json%s)\n",
       out.string().c_str(), result.figure.empty() ? "" : ", fig8.svg");
   std::fflush(stdout);
+}
+
+int RunStudyCommand(const RunOptions& o) {
+  const SceneModel scene =
+      LoadSceneModel(o.scene.empty() ? DefaultSceneModelPath() : fs::path(o.scene));
+  const SimulationModel model(
+      LoadRobotModel(o.robot.empty() ? DefaultRobotDescriptionPath() : fs::path(o.robot)), scene);
+  const StudyOptions options = StudyOptionsOf(o, scene);
+
+  ProgressBar bar;
+  StudyResult result =
+      RunStudy(model, options, [&](StudyStage stage, int done, int total, const std::string& w) {
+        bar.Update(ToString(stage), done, total, w);
+      });
+  bar.Finish();
+
+  const fs::path out = o.out;
+  WriteStudyFiles(scene, o.gnuplot, out, &result);
+  PrintStudySummary(result, out);
   if (result.selection.library.entries.empty()) {
     std::fprintf(stderr, "graspsynth run: no orientation could be selected; nothing synthesized\n");
     return 1;

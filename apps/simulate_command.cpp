@@ -103,26 +103,8 @@ std::string StatesCsv(const std::vector<TrialState>& states) {
   return s.str();
 }
 
-int RunSimulate(const SimulateOptions& o) {
-  if (o.fidelity != "fast" && o.fidelity != "full") {
-    throw InputError("--fidelity must be 'fast' or 'full', not '" + o.fidelity + "'");
-  }
-  const SimulationModel model = LoadModel(o.robot, o.scene);
-  // a graspsynth-trajectory/1 file, or the "trajectory" member of a graspsynth-grasp/1 file.
-  const JointTrajectory trajectory =
-      LoadTrajectoryOrGraspFile(o.trajectory, model.robot().arm, model.robot().hand);
-
-  TrialOptions trial;
-  trial.fidelity = o.fidelity == "full" ? Fidelity::kFull : Fidelity::kFast;
-  trial.time_step = o.time_step;
-  trial.hold = o.hold;
-  std::string why;
-  if (!trial.IsValid(&why)) throw InputError("bad simulation option: " + why);
-  TrialOptions nominal_options = trial;
-  if (!o.record.empty()) nominal_options.record_interval = o.record_interval;
-  const TrialResult nominal = RunTrial(model, trajectory, nominal_options);
-  std::cerr << "nominal trial: " << nominal.BriefReport() << "\n";
-
+// The perturbed replays' options from the flags; throws InputError for invalid ones.
+RobustnessOptions RobustnessOptionsOf(const SimulateOptions& o, const TrialOptions& trial) {
   RobustnessOptions ro;
   ro.trials = std::max(o.perturb, 1);
   ro.seed = o.seed;
@@ -133,24 +115,17 @@ int RunSimulate(const SimulateOptions& o) {
   ro.perturbation.position_sigma = o.position_noise;
   ro.perturbation.orientation_sigma = o.orientation_noise_deg * kDeg;
   ro.perturbation.finger_sigma = o.finger_noise_deg * kDeg;
+  std::string why;
   if (!ro.IsValid(&why)) throw InputError("bad perturbation option: " + why);
 
-  json report;
-  report["format"] = kReportFormat;
-  report["trajectory"] = o.trajectory;
-  report["theta_deg"] = trajectory.theta_deg;
-  report["settings"] = {{"fidelity", o.fidelity},
-                        {"time_step_s", trial.step()},
-                        {"hold_s", trial.hold},
-                        {"lift_threshold_m", trial.lift_threshold}};
-  report["nominal"] = {{"success", nominal.success()},
-                       {"outcome", ToString(nominal.outcome)},
-                       {"reason", nominal.reason},
-                       {"lift_m", Round(nominal.lift)},
-                       {"max_lift_m", Round(nominal.max_lift)},
-                       {"max_penetration_m", Round(nominal.max_penetration)},
-                       {"simulated_s", Round(nominal.simulated_time)},
-                       {"final_object_pose", PoseJson(nominal.final_object_pose)}};
+  return ro;
+}
+
+// Runs the perturbed replays (when --perturb > 0) and adds `robustness` and `trials` to the
+// report; prints their summary on stderr.
+void AddPerturbedTrials(const SimulationModel& model, const JointTrajectory& trajectory,
+                        const RobustnessOptions& ro, const SimulateOptions& o, json* report_out) {
+  json& report = *report_out;
   json trials = json::array();
   if (o.perturb > 0) {
     ProgressBar bar;
@@ -185,6 +160,47 @@ int RunSimulate(const SimulateOptions& o) {
         {"trials", 0}, {"successes", 0}, {"score", nullptr}, {"ci95", nullptr}, {"seed", o.seed}};
   }
   report["trials"] = trials;
+}
+
+int RunSimulate(const SimulateOptions& o) {
+  if (o.fidelity != "fast" && o.fidelity != "full") {
+    throw InputError("--fidelity must be 'fast' or 'full', not '" + o.fidelity + "'");
+  }
+  const SimulationModel model = LoadModel(o.robot, o.scene);
+  // a graspsynth-trajectory/1 file, or the "trajectory" member of a graspsynth-grasp/1 file.
+  const JointTrajectory trajectory =
+      LoadTrajectoryOrGraspFile(o.trajectory, model.robot().arm, model.robot().hand);
+
+  TrialOptions trial;
+  trial.fidelity = o.fidelity == "full" ? Fidelity::kFull : Fidelity::kFast;
+  trial.time_step = o.time_step;
+  trial.hold = o.hold;
+  std::string why;
+  if (!trial.IsValid(&why)) throw InputError("bad simulation option: " + why);
+  TrialOptions nominal_options = trial;
+  if (!o.record.empty()) nominal_options.record_interval = o.record_interval;
+  const TrialResult nominal = RunTrial(model, trajectory, nominal_options);
+  std::cerr << "nominal trial: " << nominal.BriefReport() << "\n";
+
+  const RobustnessOptions ro = RobustnessOptionsOf(o, trial);
+
+  json report;
+  report["format"] = kReportFormat;
+  report["trajectory"] = o.trajectory;
+  report["theta_deg"] = trajectory.theta_deg;
+  report["settings"] = {{"fidelity", o.fidelity},
+                        {"time_step_s", trial.step()},
+                        {"hold_s", trial.hold},
+                        {"lift_threshold_m", trial.lift_threshold}};
+  report["nominal"] = {{"success", nominal.success()},
+                       {"outcome", ToString(nominal.outcome)},
+                       {"reason", nominal.reason},
+                       {"lift_m", Round(nominal.lift)},
+                       {"max_lift_m", Round(nominal.max_lift)},
+                       {"max_penetration_m", Round(nominal.max_penetration)},
+                       {"simulated_s", Round(nominal.simulated_time)},
+                       {"final_object_pose", PoseJson(nominal.final_object_pose)}};
+  AddPerturbedTrials(model, trajectory, ro, o, &report);
   WriteFileAtomically(o.out, report.dump(2) + "\n");
   if (!o.record.empty()) WriteFileAtomically(o.record, StatesCsv(nominal.states));
   return nominal.success() ? 0 : 1;

@@ -79,6 +79,124 @@ bool PreferredRepresentative(const SelectionCandidate& a, const SelectionCandida
   return a.score.file < b.score.file;
 }
 
+namespace {
+
+// Segments every log; only successful, segmented trials are ranked (the others are counted
+// unsuccessful or listed as issues in `result`).
+std::vector<Scored> SegmentLogs(const std::vector<DemoLog>& logs, const SelectionOptions& options,
+                                SelectionResult* result) {
+  std::vector<Scored> scored;
+  for (const DemoLog& log : logs) {
+    SegmentedTrial segmented = Segment(log, options.segmentation);
+    if (!segmented.success) {
+      ++result->unsuccessful;
+      continue;
+    }
+    if (!segmented.ok()) {
+      result->issues.push_back(
+          {FileName(log.source), SelectionIssueKind::kNotSegmented, segmented.message});
+      continue;
+    }
+    Scored s;
+    s.log = &log;
+    s.segmented = std::move(segmented);
+    scored.push_back(std::move(s));
+  }
+  return scored;
+}
+
+// Scores one demonstration by its nominal replay and `robustness.trials` perturbed ones;
+// `done` counts the replays of the whole selection (of `total`) for `progress`.
+void ScoreDemonstration(const SimulationModel& model, const SelectionOptions& options,
+                        RobustnessOptions robustness, Scored* s, int* done, int total,
+                        const SelectionProgress& progress, SelectionResult* result) {
+  const DemoLog& log = *s->log;
+  DemoScore& score = s->candidate.score;
+  score.file = FileName(log.source);
+  score.trial = log.metadata.trial.value_or("");
+  score.theta_deg = log.metadata.theta_deg;
+  score.seed = DemoSeed(options.seed, score.file);
+  s->candidate.motion_duration = s->segmented.motion.duration();
+
+  const DemoReplay replay = ReplayDemoLog(model.robot(), log);
+  if (!replay.ok) {
+    // a demonstration the robot cannot play scores 0; nothing is known about it.
+    score.failures = "not replayable: " + replay.message;
+    score.ci_low = 0.0;
+    score.ci_high = 1.0;
+    result->issues.push_back({score.file, SelectionIssueKind::kNotReplayable, replay.message});
+    *done += options.perturbations + 1;
+    if (progress) progress(*done, total, score.file);
+    return;
+  }
+  const TrialResult nominal = RunTrial(model, replay.trajectory, options.trial);
+  score.nominal_success = nominal.success();
+  ++*done;
+  if (progress) progress(*done, total, score.file);
+
+  robustness.seed = score.seed;
+  const int before = *done;
+  const RobustnessResult r =
+      EvaluateRobustness(model, replay.trajectory, robustness, [&](int k, int) {
+        if (progress) progress(before + k, total, score.file);
+      });
+  *done = before + options.perturbations;
+  score.trials = options.perturbations;
+  score.successes = r.successes;
+  score.score = r.score;
+  score.ci_low = r.ci95.lo;
+  score.ci_high = r.ci95.hi;
+  score.failures = FailureSummary(r);
+}
+
+// The library entry of a selected demonstration.
+LibraryEntry EntryOf(const Scored& best) {
+  const DemoScore& b = best.candidate.score;
+  const DemoLog& log = *best.log;
+  const SegmentedTrial& seg = best.segmented;
+  LibraryEntry entry;
+  entry.theta_deg = b.theta_deg;
+  entry.file = b.file;
+  entry.trial = b.trial;
+  entry.score = b.score;
+  entry.motion = seg.motion;
+  entry.lift_height = log.samples[seg.end].p_WH.z() - log.samples[seg.grasp].p_WH.z();
+  entry.lift_duration = log.samples[seg.end].t - log.samples[seg.grasp].t;
+  return entry;
+}
+
+// Sorts the scores by theta, then file, and picks the representative of each theta by the tie
+// rule (an orientation whose best score is not above min_score is left unselected).
+void PickRepresentatives(const SelectionOptions& options, std::vector<Scored>* scored,
+                         SelectionResult* result) {
+  std::sort(scored->begin(), scored->end(), [](const Scored& a, const Scored& b) {
+    if (a.candidate.score.theta_deg != b.candidate.score.theta_deg) {
+      return a.candidate.score.theta_deg < b.candidate.score.theta_deg;
+    }
+    return a.candidate.score.file < b.candidate.score.file;
+  });
+  std::vector<Scored>& all = *scored;
+  for (size_t begin = 0; begin < all.size();) {
+    size_t end = begin;
+    Scored* best = &all[begin];
+    while (end < all.size() &&
+           all[end].candidate.score.theta_deg == all[begin].candidate.score.theta_deg) {
+      if (PreferredRepresentative(all[end].candidate, best->candidate)) best = &all[end];
+      ++end;
+    }
+    const DemoScore& b = best->candidate.score;
+    if (b.score > options.min_score) {
+      best->candidate.score.selected = true;
+      result->library.entries.push_back(EntryOf(*best));
+    } else {
+      result->unselected_thetas.push_back(b.theta_deg);
+    }
+    begin = end;
+  }
+}
+
+}  // namespace
+
 SelectionResult SelectRepresentatives(const SimulationModel& model,
                                       const std::vector<DemoLog>& logs,
                                       const std::string& directory, const SelectionOptions& options,
@@ -101,107 +219,19 @@ SelectionResult SelectRepresentatives(const SimulationModel& model,
   library.perturbations = options.perturbations;
   library.tie_rule = std::string(kTieRule);
 
-  // segment every log; only successful, segmented trials are ranked.
-  std::vector<Scored> scored;
-  for (const DemoLog& log : logs) {
-    SegmentedTrial segmented = Segment(log, options.segmentation);
-    if (!segmented.success) {
-      ++result.unsuccessful;
-      continue;
-    }
-    if (!segmented.ok()) {
-      result.issues.push_back(
-          {FileName(log.source), SelectionIssueKind::kNotSegmented, segmented.message});
-      continue;
-    }
-    Scored s;
-    s.log = &log;
-    s.segmented = std::move(segmented);
-    scored.push_back(std::move(s));
-  }
-
+  std::vector<Scored> scored = SegmentLogs(logs, options, &result);
   RobustnessOptions robustness;
   robustness.trials = options.perturbations;
   robustness.threads = options.threads;
   robustness.perturbation = options.perturbation;
   robustness.trial = options.trial;
-  const int per_demo = options.perturbations + 1;
-  const int total = static_cast<int>(scored.size()) * per_demo;
+  const int total = static_cast<int>(scored.size()) * (options.perturbations + 1);
   int done = 0;
   for (Scored& s : scored) {
-    const DemoLog& log = *s.log;
-    DemoScore& score = s.candidate.score;
-    score.file = FileName(log.source);
-    score.trial = log.metadata.trial.value_or("");
-    score.theta_deg = log.metadata.theta_deg;
-    score.seed = DemoSeed(options.seed, score.file);
-    s.candidate.motion_duration = s.segmented.motion.duration();
-
-    const DemoReplay replay = ReplayDemoLog(model.robot(), log);
-    if (!replay.ok) {
-      // a demonstration the robot cannot play scores 0; nothing is known about it.
-      score.failures = "not replayable: " + replay.message;
-      score.ci_low = 0.0;
-      score.ci_high = 1.0;
-      result.issues.push_back({score.file, SelectionIssueKind::kNotReplayable, replay.message});
-      done += per_demo;
-      if (progress) progress(done, total, score.file);
-      continue;
-    }
-    const TrialResult nominal = RunTrial(model, replay.trajectory, options.trial);
-    score.nominal_success = nominal.success();
-    ++done;
-    if (progress) progress(done, total, score.file);
-
-    robustness.seed = score.seed;
-    const int before = done;
-    const RobustnessResult r =
-        EvaluateRobustness(model, replay.trajectory, robustness, [&](int k, int) {
-          if (progress) progress(before + k, total, score.file);
-        });
-    done = before + options.perturbations;
-    score.trials = options.perturbations;
-    score.successes = r.successes;
-    score.score = r.score;
-    score.ci_low = r.ci95.lo;
-    score.ci_high = r.ci95.hi;
-    score.failures = FailureSummary(r);
+    ScoreDemonstration(model, options, robustness, &s, &done, total, progress, &result);
   }
 
-  // the scores by theta, then file; the representative of each theta by the tie rule.
-  std::sort(scored.begin(), scored.end(), [](const Scored& a, const Scored& b) {
-    if (a.candidate.score.theta_deg != b.candidate.score.theta_deg) {
-      return a.candidate.score.theta_deg < b.candidate.score.theta_deg;
-    }
-    return a.candidate.score.file < b.candidate.score.file;
-  });
-  for (size_t begin = 0; begin < scored.size();) {
-    size_t end = begin;
-    Scored* best = &scored[begin];
-    while (end < scored.size() &&
-           scored[end].candidate.score.theta_deg == scored[begin].candidate.score.theta_deg) {
-      if (PreferredRepresentative(scored[end].candidate, best->candidate)) best = &scored[end];
-      ++end;
-    }
-    const DemoScore& b = best->candidate.score;
-    if (b.score > options.min_score) {
-      best->candidate.score.selected = true;
-      const DemoLog& log = *best->log;
-      const SegmentedTrial& seg = best->segmented;
-      LibraryEntry entry;
-      entry.theta_deg = b.theta_deg;
-      entry.file = b.file;
-      entry.trial = b.trial;
-      entry.score = b.score;
-      entry.motion = seg.motion;
-      entry.lift_height = log.samples[seg.end].p_WH.z() - log.samples[seg.grasp].p_WH.z();
-      entry.lift_duration = log.samples[seg.end].t - log.samples[seg.grasp].t;
-      library.entries.push_back(std::move(entry));
-    } else {
-      result.unselected_thetas.push_back(b.theta_deg);
-    }
-    begin = end;
-  }
+  PickRepresentatives(options, &scored, &result);
   for (const Scored& s : scored) library.scores.push_back(s.candidate.score);
   std::stable_sort(
       result.issues.begin(), result.issues.end(),

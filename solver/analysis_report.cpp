@@ -226,6 +226,56 @@ std::string PaperComparisonMarkdown(const TableAnalysis& table,
   return md;
 }
 
+namespace {
+
+// The wrist-line fit: status, loss, and when usable the line, its residuals, the plain fit and
+// the CGAL cross-check.
+json WristLineJson(const DemonstrationAnalysis& analysis) {
+  const WristLineResult& line = analysis.line;
+  json wrist_line = {{"status", ToString(line.termination)},
+                     {"message", line.message},
+                     {"loss", ToString(line.loss)},
+                     {"loss_scale_m", line.loss_scale},
+                     {"n_points", analysis.fit_points.size()},
+                     {"iterations", line.iterations}};
+  if (line.usable()) {
+    wrist_line.update(LineJson(line.line, line.residuals));
+    wrist_line["residuals_m"] = line.residuals.per_point;
+    wrist_line["plain"] = LineJson(line.plain_line, line.plain_residuals);
+    json cgal = LineJson(line.cgal_line, line.cgal_residuals);
+    cgal["angle_difference_deg"] = line.cgal_difference.angle / kDeg;
+    cgal["offset_difference_m"] = line.cgal_difference.offset;
+    cgal["agrees"] = line.cgal_agrees;
+    wrist_line["cgal"] = cgal;
+  }
+  return wrist_line;
+}
+
+// Table I beside the paper's, row by row, with the tolerances.
+json PaperComparisonJson(const TableAnalysis& table, const PaperComparisonOptions& comparison) {
+  json rows = json::array();
+  for (const PaperComparisonRow& row : CompareWithPaper(table, comparison)) {
+    json r = {{"theta_deg", row.theta_deg},
+              {"n_paper", row.paper ? json(row.paper->n) : json()},
+              {"n_ours", row.ours ? json(row.ours->n) : json()},
+              {"within_tolerance", row.within_tolerance}};
+    if (row.paper) r["paper"] = RowJson(*row.paper);
+    if (row.ours) r["ours"] = RowJson(*row.ours);
+    if (row.paper && row.ours) {
+      r["difference"] = RowJson(row.difference);
+      r["note"] = "";
+    } else {
+      r["note"] = row.ours ? "not in the paper" : "not in our data";
+    }
+    rows.push_back(r);
+  }
+  return {{"distance_tolerance_m", comparison.distance_tolerance},
+          {"angle_tolerance_deg", comparison.angle_tolerance_deg},
+          {"rows", rows}};
+}
+
+}  // namespace
+
 std::string AnalysisReportJson(const DemonstrationAnalysis& analysis,
                                const PaperComparisonOptions& comparison) {
   const AnalysisOptions& o = analysis.options;
@@ -260,24 +310,7 @@ std::string AnalysisReportJson(const DemonstrationAnalysis& analysis,
   }
   report["orientations"] = orientations;
 
-  const WristLineResult& line = analysis.line;
-  json wrist_line = {{"status", ToString(line.termination)},
-                     {"message", line.message},
-                     {"loss", ToString(line.loss)},
-                     {"loss_scale_m", line.loss_scale},
-                     {"n_points", analysis.fit_points.size()},
-                     {"iterations", line.iterations}};
-  if (line.usable()) {
-    wrist_line.update(LineJson(line.line, line.residuals));
-    wrist_line["residuals_m"] = line.residuals.per_point;
-    wrist_line["plain"] = LineJson(line.plain_line, line.plain_residuals);
-    json cgal = LineJson(line.cgal_line, line.cgal_residuals);
-    cgal["angle_difference_deg"] = line.cgal_difference.angle / kDeg;
-    cgal["offset_difference_m"] = line.cgal_difference.offset;
-    cgal["agrees"] = line.cgal_agrees;
-    wrist_line["cgal"] = cgal;
-  }
-  report["wrist_line"] = wrist_line;
+  report["wrist_line"] = WristLineJson(analysis);
 
   const RadialModelResult& radial = analysis.radial;
   report["radial_model"] = {{"valid", radial.valid},
@@ -296,25 +329,7 @@ std::string AnalysisReportJson(const DemonstrationAnalysis& analysis,
       {"grasp_to_object_ratio",
        object_range > 0.0 ? json(analysis.grasp_ranges.position_eta / object_range) : json()}};
 
-  json rows = json::array();
-  for (const PaperComparisonRow& row : CompareWithPaper(table, comparison)) {
-    json r = {{"theta_deg", row.theta_deg},
-              {"n_paper", row.paper ? json(row.paper->n) : json()},
-              {"n_ours", row.ours ? json(row.ours->n) : json()},
-              {"within_tolerance", row.within_tolerance}};
-    if (row.paper) r["paper"] = RowJson(*row.paper);
-    if (row.ours) r["ours"] = RowJson(*row.ours);
-    if (row.paper && row.ours) {
-      r["difference"] = RowJson(row.difference);
-      r["note"] = "";
-    } else {
-      r["note"] = row.ours ? "not in the paper" : "not in our data";
-    }
-    rows.push_back(r);
-  }
-  report["paper_comparison"] = {{"distance_tolerance_m", comparison.distance_tolerance},
-                                {"angle_tolerance_deg", comparison.angle_tolerance_deg},
-                                {"rows", rows}};
+  report["paper_comparison"] = PaperComparisonJson(table, comparison);
 
   json rejected = json::array();
   for (const RejectedDemoFile& r : analysis.rejected) {

@@ -6,8 +6,8 @@
 /// library), the synthesis of a grasp for every study orientation by each study method, and
 /// the physics validation of every synthesized grasp (nominal and perturbed replays).
 ///
-/// RunStudy() computes; the report builders are pure functions of its result, so the command
-/// decides where they go (the library never prints or writes files).
+/// RunStudy() computes; the report builders (solver/study_report.hpp) are pure functions of its
+/// result, so the command decides where they go (the library never prints or writes files).
 ///
 /// Determinism: the selection seeds each demonstration from (seed, file name) and the physics
 /// gate of each synthesis row from StudyRowSeed(seed, theta, method); every replay is
@@ -27,6 +27,7 @@
 #include "learning_data/representative_selection.hpp"
 #include "simulation/perturbation.hpp"
 #include "simulation/simulation_model.hpp"
+#include "simulation/trial.hpp"
 #include "solver/analysis_report.hpp"
 #include "solver/synthesis.hpp"
 
@@ -124,15 +125,18 @@ struct ReachabilityRow {
 struct StudyRow {
   double theta_deg = 0.0;  ///< deg
   std::string method;      ///< StudyMethod::Label()
-  std::string status;      ///< ToString(SynthesisStatus): "ok", "out_of_range", ...
   std::string message;     ///< the synthesis' message when status is not "ok"
   std::string used;        ///< method used ("interp", "line", "nearest"); empty if none
   bool fallback = false;   ///< a method other than the requested one was used
   std::string fallback_reason;
   bool refined = false;   ///< the refinement ran
   bool gate_run = false;  ///< the physics gate ran (status "ok")
+  /// The synthesis' status ("ok" is SynthesisStatus::kOk); unset when the synthesis did not run
+  /// for want of a library (the files write "no_library").
+  std::optional<SynthesisStatus> status;
   bool nominal_success = false;
-  std::string nominal_outcome;         ///< ToString(TrialOutcome) of the nominal trial
+  /// The outcome of the nominal trial; unset when the gate did not run.
+  std::optional<TrialOutcome> nominal_outcome;
   std::string nominal_reason;          ///< its reason sentence
   int trials = 0;                      ///< perturbed replays
   int successes = 0;                   ///< of which succeeded
@@ -146,6 +150,9 @@ struct StudyRow {
   uint64_t seed = 0;         ///< seed of the gate's perturbations
   double synthesis_s = 0.0;  ///< wall time of the synthesis (not in the deterministic files)
   double gate_s = 0.0;       ///< wall time of the gate (not in the deterministic files)
+  /// Orientations of the demonstrations the grasp was made from, deg, in the synthesis' order
+  /// (SynthesisResult::sources; empty when not synthesized). Not in the files.
+  std::vector<double> source_thetas_deg;
 };
 
 /// Per-method totals of the synthesis table.
@@ -207,17 +214,15 @@ std::vector<StudyRow> SynthesisTable(const SimulationModel& model, const GraspLi
                                      const SynthesisTableOptions& options,
                                      const SynthesisTableProgress& progress = {});
 
-/// The synthesis table as markdown: one line per row (method used, nominal outcome,
-/// robustness with its interval, gate, epsilon, synthesis and gate times), then the fallbacks.
-std::string SynthesisTableMarkdown(const std::vector<StudyRow>& rows);
-
-/// Per-method summary as markdown: rows, synthesized, nominal successes (and %), mean
-/// robustness, gate passes, fallbacks.
-std::string SummaryMarkdown(const std::vector<StudyRow>& rows);
-
-/// "Where a method falls short": every row that did not pass the gate with its reason from the
-/// simulator.
-std::string ShortfallMarkdown(const std::vector<StudyRow>& rows);
+/// Leave-one-out (experiment 3): for each inner entry of `library` (every entry but the first
+/// and the last), the synthesis table at that entry's orientation from the library without
+/// it; `options.orientations` is ignored. Rows by held-out orientation, then method. `progress`
+/// gets the stage ("without 40"), then the synthesis table's progress. Throws InputError for a
+/// library with fewer than 3 entries or one the synthesis cannot use.
+std::vector<StudyRow> LeaveOneOutTable(
+    const SimulationModel& model, const GraspLibrary& library, const SynthesisTableOptions& options,
+    const std::function<void(const std::string& stage, int done, int total,
+                             const std::string& what)>& progress = {});
 
 /// Runs the study. Throws InputError for invalid options or a demonstration folder that cannot
 /// be read; everything that fails inside (files rejected, orientations not selected, grasps
@@ -227,22 +232,5 @@ StudyResult RunStudy(const SimulationModel& model, const StudyOptions& options,
 
 /// Per-method totals of `rows`, methods in the order they first appear.
 std::vector<StudyMethodSummary> SummarizeStudy(const std::vector<StudyRow>& rows);
-
-/// The synthesis table as CSV: kStudySynthesisCsvHeader, then one line per row (numbers with 17
-/// significant digits, text fields quoted when they hold a comma or a quote).
-std::string StudySynthesisCsv(const std::vector<StudyRow>& rows);
-
-/// The synthesis table as JSON (format kStudySynthesisFormat): `format`, `seed`, `orientations`
-/// [deg], `methods`, `gate` {perturbations, min_robustness}, `summary` [per method], `rows`
-/// [one per orientation and method, without wall times].
-std::string StudySynthesisJson(const StudyResult& result);
-
-/// The wall times (format kStudyTimingFormat): stages, total, per row synthesis and gate.
-std::string StudyTimingJson(const StudyResult& result);
-
-/// The report (markdown): options, Table I beside the paper with differences, Fig. 8, the wrist
-/// line and radial residuals, the kinematics check, the library, the synthesis table per
-/// orientation and method, per-method summary lines and the failure reasons.
-std::string StudyReportMarkdown(const StudyResult& result);
 
 }  // namespace graspsynth

@@ -11,6 +11,7 @@
 #include <limits>
 #include <memory>
 #include <sstream>
+#include <tuple>
 
 #include "common/demand.hpp"
 
@@ -243,18 +244,11 @@ std::string WristLineResult::BriefReport() const {
   return text.str();
 }
 
-WristLineResult FitWristLine(const std::vector<Eigen::Vector2d>& points,
-                             const WristLineOptions& options) {
-  std::string why;
-  GS_DEMAND(options.IsValid(&why), why);
-  for (const Eigen::Vector2d& p : points) {
-    GS_DEMAND(p.allFinite(), "FitWristLine: a point is not finite");
-  }
-  WristLineResult result;
-  result.loss = options.loss;
-  result.loss_scale = options.loss_scale;
+namespace {
 
-  // the two points farthest apart: the plain fit's start, and a check for coincident points.
+// The two points farthest apart (indices) and their squared distance (0 when fewer than two
+// distinct points).
+std::tuple<size_t, size_t, double> FarthestPair(const std::vector<Eigen::Vector2d>& points) {
   size_t far_i = 0, far_j = 0;
   double far_d = 0.0;
   for (size_t i = 0; i < points.size(); ++i) {
@@ -267,6 +261,47 @@ WristLineResult FitWristLine(const std::vector<Eigen::Vector2d>& points,
       }
     }
   }
+  return {far_i, far_j, far_d};
+}
+
+// The start of the robust fit: of the plain fit and the lines through pairs of (at most 300
+// evenly spaced) points, the one of least robust cost.
+NormalForm RobustStart(const std::vector<Eigen::Vector2d>& points, const NormalForm& plain,
+                       const WristLineOptions& options) {
+  const std::unique_ptr<ceres::LossFunction> rho = MakeLoss(options.loss, options.loss_scale);
+  const size_t paired = std::min<size_t>(points.size(), 300);
+  const size_t step = (points.size() + paired - 1) / paired;
+  NormalForm best = plain;
+  double best_cost = Cost(plain, points, rho.get());
+  for (size_t i = 0; i < points.size(); i += step) {
+    for (size_t j = i + step; j < points.size(); j += step) {
+      if ((points[j] - points[i]).squaredNorm() == 0.0) continue;
+      const NormalForm candidate = ThroughPoints(points[i], points[j]);
+      const double cost = Cost(candidate, points, rho.get());
+      if (cost < best_cost) {
+        best_cost = cost;
+        best = candidate;
+      }
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+WristLineResult FitWristLine(const std::vector<Eigen::Vector2d>& points,
+                             const WristLineOptions& options) {
+  std::string why;
+  GS_DEMAND(options.IsValid(&why), why);
+  for (const Eigen::Vector2d& p : points) {
+    GS_DEMAND(p.allFinite(), "FitWristLine: a point is not finite");
+  }
+  WristLineResult result;
+  result.loss = options.loss;
+  result.loss_scale = options.loss_scale;
+
+  // the two points farthest apart: the plain fit's start, and a check for coincident points.
+  const auto [far_i, far_j, far_d] = FarthestPair(points);
   if (points.size() < 2 || far_d == 0.0) {
     result.termination = WristLineTermination::kInsufficientData;
     result.message = "a line needs at least two distinct points, got " +
@@ -281,23 +316,7 @@ WristLineResult FitWristLine(const std::vector<Eigen::Vector2d>& points,
   SolveOutcome main = plain;
   if (options.loss != LineLoss::kNone) {
     // the robust cost has local minima; start from the best of many candidate lines.
-    const std::unique_ptr<ceres::LossFunction> rho = MakeLoss(options.loss, options.loss_scale);
-    const size_t paired = std::min<size_t>(points.size(), 300);
-    const size_t step = (points.size() + paired - 1) / paired;
-    NormalForm best = plain.line;
-    double best_cost = Cost(plain.line, points, rho.get());
-    for (size_t i = 0; i < points.size(); i += step) {
-      for (size_t j = i + step; j < points.size(); j += step) {
-        if ((points[j] - points[i]).squaredNorm() == 0.0) continue;
-        const NormalForm candidate = ThroughPoints(points[i], points[j]);
-        const double cost = Cost(candidate, points, rho.get());
-        if (cost < best_cost) {
-          best_cost = cost;
-          best = candidate;
-        }
-      }
-    }
-    main = SolveLine(points, best, options.loss, options);
+    main = SolveLine(points, RobustStart(points, plain.line, options), options.loss, options);
     const SolveOutcome from_plain = SolveLine(points, plain.line, options.loss, options);
     result.iterations += main.iterations + from_plain.iterations;
     const bool main_failed = main.termination == ceres::FAILURE;

@@ -112,17 +112,22 @@ TEST_F(RunCommand, QuickStudyWritesEveryFileWithPlausibleResults) {
   EXPECT_THAT(report, HasSubstr("interp+refine: "));
   EXPECT_THAT(report, HasSubstr("line+refine: "));
 
-  // plausible outcomes: every query synthesized (a one-orientation library has no line
-  // model), at least half of the grasps hold in the nominal trial, and the perturbed replays
-  // run after a nominal success (the gate skips them after a failure).
-  int nominal = 0;
+  // the outcomes: every query synthesized (a one-orientation library has no line model), every
+  // nominal trial holds (the nominal trial is not perturbed: the shipped demonstrations give a
+  // grasp that lifts the pan at 40, 45, 60 and 85 deg by both methods), the perturbed replays
+  // run after a nominal success (the gate skips them after a failure), and the gate passes
+  // exactly the rows with a nominal success and robustness >= 0.8.
+  int nominal = 0, checked = 0;
   for (const json& row : synthesis["rows"]) {
 #ifdef GRASPSYNTH_SANITIZED
     if (row["method"] == "line+refine") continue;
 #endif
+    ++checked;
     EXPECT_EQ(row["status"], "ok") << row.dump();
     const bool success = row["nominal"]["success"].get<bool>();
     nominal += success ? 1 : 0;
+    EXPECT_TRUE(success) << row.dump();
+    EXPECT_EQ(row["nominal"]["outcome"], "success") << row.dump();
     const int trials = row["robustness"]["trials"];
     if (success) {
       EXPECT_EQ(trials, synthesis["gate"]["perturbations"].get<int>()) << row.dump();
@@ -132,11 +137,18 @@ TEST_F(RunCommand, QuickStudyWritesEveryFileWithPlausibleResults) {
               success && row["robustness"]["score"].get<double>() >= 0.8 - 1e-12)
         << row.dump();
   }
-  EXPECT_GE(nominal, orientations) << "of " << 2 * orientations;
+  EXPECT_EQ(nominal, checked);
   for (const json& s : synthesis["summary"]) {
     EXPECT_EQ(s["rows"], orientations);
-    EXPECT_GE(s["mean_robustness"].get<double>(), 0.0);
-    EXPECT_LE(s["mean_robustness"].get<double>(), 1.0);
+#ifndef GRASPSYNTH_SANITIZED
+    // robust grasps: the full study's figures are 0.95 (interp+refine) and 0.90 (line+refine)
+    // over 10 replays per grasp; here 4 grasps x 3 replays = 12 per method, so a method at 0.9
+    // falls below 0.75 by chance with probability 0.03 (binomial), and the replays are seeded.
+    // At least half of each method's grasps pass the gate (a grasp at 0.9 fails it with 3
+    // replays as soon as one of them fails).
+    EXPECT_GE(s["mean_robustness"].get<double>(), 0.75) << s.dump();
+    EXPECT_GE(2 * s["passed"].get<int>(), orientations) << s.dump();
+#endif
   }
 #ifndef GRASPSYNTH_SANITIZED
   // Table I of the shipped demonstrations matches the paper's (within 5 mm / 2 deg).

@@ -6,6 +6,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -13,6 +14,8 @@
 #include "common/errors.hpp"
 #include "kinematics/robot_description.hpp"
 #include "kinematics/scene_model.hpp"
+#include "learning_data/grasp_library.hpp"
+#include "solver/study_report.hpp"
 
 namespace graspsynth {
 namespace {
@@ -98,6 +101,47 @@ TEST(TableIReachability, EveryPaperGraspIsReachableInTheShippedScene) {
   }
 }
 
+// Leave-one-out: each inner orientation of the shipped library (30, 40, ..., 90 deg) is
+// synthesized without its own demonstration: no source of the grasp is the held-out
+// orientation, and a blend (interp without fallback) comes from a neighbour on each side.
+TEST(LeaveOneOutTable, TheHeldOutDemonstrationIsNeverASource) {
+  const GraspLibrary library = ReadGraspLibrary(DefaultGraspLibraryPath());
+  ASSERT_EQ(library.entries.size(), 9u);
+  const SimulationModel model = LoadDefaultSimulationModel();
+  SynthesisTableOptions options;
+  options.methods = {{SynthesisMethod::kInterp, false}};
+  options.gate_perturbations = 0;
+  options.threads = 2;
+  std::vector<std::string> stages;
+  const std::vector<StudyRow> rows = LeaveOneOutTable(
+      model, library, options, [&](const std::string& stage, int, int, const std::string&) {
+        if (stages.empty() || stages.back() != stage) stages.push_back(stage);
+      });
+  ASSERT_EQ(rows.size(), 7u);
+  EXPECT_EQ(stages.front(), "without 30");
+  EXPECT_EQ(stages.back(), "without 90");
+  for (size_t k = 0; k < rows.size(); ++k) {
+    const StudyRow& r = rows[k];
+    const double held_out = library.entries[k + 1].theta_deg;
+    EXPECT_EQ(r.theta_deg, held_out);
+    ASSERT_EQ(r.status, SynthesisStatus::kOk) << r.message;
+    ASSERT_FALSE(r.source_thetas_deg.empty()) << held_out;
+    for (double source : r.source_thetas_deg) EXPECT_NE(source, held_out) << held_out;
+    if (!r.fallback) {  // the blend was used
+      double below = -1e9, above = 1e9;
+      for (double source : r.source_thetas_deg) {
+        if (source < held_out) below = std::max(below, source);
+        if (source > held_out) above = std::min(above, source);
+      }
+      EXPECT_EQ(below, library.entries[k].theta_deg) << held_out;
+      EXPECT_EQ(above, library.entries[k + 2].theta_deg) << held_out;
+    }
+  }
+  GraspLibrary two = library;
+  two.entries.resize(2);
+  EXPECT_THROW(LeaveOneOutTable(model, two, options), InputError);
+}
+
 // A hand-made result: two orientations, two methods; 45 deg line fails in the nominal trial,
 // 60 deg interp is out of range, and a failure reason has a comma and a pipe.
 StudyResult HandMadeResult() {
@@ -109,14 +153,14 @@ StudyResult HandMadeResult() {
   StudyRow ok;
   ok.theta_deg = 45;
   ok.method = "interp+refine";
-  ok.status = "ok";
+  ok.status = SynthesisStatus::kOk;
   ok.used = "nearest";
   ok.fallback = true;
   ok.fallback_reason = "sides differ, so the nearer demonstration was turned";
   ok.refined = true;
   ok.gate_run = true;
   ok.nominal_success = true;
-  ok.nominal_outcome = "success";
+  ok.nominal_outcome = TrialOutcome::kSuccess;
   ok.trials = 4;
   ok.successes = 4;
   ok.robustness = 1.0;
@@ -135,7 +179,7 @@ StudyResult HandMadeResult() {
   dropped.fallback = false;
   dropped.fallback_reason.clear();
   dropped.nominal_success = false;
-  dropped.nominal_outcome = "dropped";
+  dropped.nominal_outcome = TrialOutcome::kDropped;
   dropped.nominal_reason = "lifted 6 cm, then slipped | fell";
   dropped.successes = 1;
   dropped.robustness = 0.25;
@@ -145,7 +189,7 @@ StudyResult HandMadeResult() {
   StudyRow out_of_range;
   out_of_range.theta_deg = 60;
   out_of_range.method = "interp+refine";
-  out_of_range.status = "out_of_range";
+  out_of_range.status = SynthesisStatus::kOutOfRange;
   out_of_range.message = "60 deg is outside the library's range [20, 50]";
   StudyRow line60 = ok;
   line60.theta_deg = 60;
@@ -228,6 +272,41 @@ TEST(StudyReportMarkdown, StatesTheHeadlinesTablesAndFailureReasons) {
   EXPECT_THAT(md, HasSubstr("sides differ, so the nearer demonstration was turned"));
 }
 
+TEST(StudyReportMarkdown, SectionsComeInOrder) {
+  StudyResult result = HandMadeResult();
+  ReachabilityRow reach;
+  reach.theta_deg = 45;
+  reach.reachable = true;
+  result.reachability = {reach};
+  const std::string md = StudyReportMarkdown(result);
+  size_t at = 0;
+  for (const char* heading :
+       {"# graspsynth study", "## Summary", "## Demonstrations and Table I", "## Fig. 8",
+        "## Wrist line and radial strategy", "## Kinematics check of the paper's grasps",
+        "## Grasp library", "## Synthesis and physics validation",
+        "## Where a method falls short"}) {
+    const size_t found = md.find(heading, at);
+    ASSERT_NE(found, std::string::npos) << heading << " missing or out of order";
+    at = found;
+  }
+}
+
+TEST(StudyRowNames, UnsetStatusIsNoLibraryAndUnsetOutcomeIsEmpty) {
+  StudyRow row;
+  row.theta_deg = 50;
+  row.method = "interp+refine";
+  row.message = "the selection made an empty library";
+  EXPECT_EQ(StatusName(row), "no_library");
+  EXPECT_EQ(NominalOutcomeName(row), "");
+  EXPECT_THAT(StudySynthesisCsv({row}), HasSubstr("\n50,interp+refine,no_library,,0,0,0,,0,0,"));
+  EXPECT_THAT(ShortfallMarkdown({row}),
+              HasSubstr("50 deg: not synthesized (no_library): the selection made an empty"));
+  row.status = SynthesisStatus::kUnreachable;
+  row.nominal_outcome = TrialOutcome::kKnockedOver;
+  EXPECT_EQ(StatusName(row), "unreachable");
+  EXPECT_EQ(NominalOutcomeName(row), "knocked_over");
+}
+
 TEST(StudyReportMarkdown, SaysWhyFig8IsMissing) {
   StudyResult r = HandMadeResult();
   r.figure.clear();
@@ -283,8 +362,8 @@ TEST(StudyReport, SummaryCountsEveryRowAndShortfallsGiveTheReason) {
   }
   const std::string shortfall = ShortfallMarkdown(rows);
   for (const StudyRow& r : rows) {
-    if (!r.passed && r.status == "ok" && !r.nominal_success) {
-      EXPECT_NE(shortfall.find(r.nominal_outcome), std::string::npos) << shortfall;
+    if (!r.passed && r.status == SynthesisStatus::kOk && !r.nominal_success) {
+      EXPECT_NE(shortfall.find(NominalOutcomeName(r)), std::string::npos) << shortfall;
     }
   }
 }
