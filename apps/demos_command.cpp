@@ -78,7 +78,7 @@ void PrintSummary(const TableAnalysis& table, const std::vector<OperatorTrial>& 
     if (t.success) {
       ++counts[t.theta_deg].second;
     } else {
-      ++failures[t.theta_deg][t.outcome];
+      ++failures[t.theta_deg][std::string(OutcomeName(t))];
     }
   }
   std::map<double, PaperTableRow> paper;

@@ -247,6 +247,82 @@ std::optional<size_t> FindEvent(const DemoLog& log, DemoEvent event) {
   return std::nullopt;
 }
 
+namespace {
+
+// Where ParseDemoLog is in the file: 0 for a line not seen yet.
+struct LogLines {
+  std::vector<size_t> samples;  // file line of each sample
+  size_t header = 0;
+  size_t first_blank_after_data = 0;  // a blank line after the header (allowed only at the end)
+  size_t grasp = 0;
+  size_t end = 0;
+};
+
+// One line after the header (`body` trimmed): a sample row, or a blank at the end of the file.
+void AddRowAfterHeader(std::string_view body, const std::string& source, size_t line,
+                       LogLines* lines, DemoLog* log) {
+  if (body.empty()) {
+    if (lines->first_blank_after_data == 0) lines->first_blank_after_data = line;
+    return;
+  }
+  if (lines->first_blank_after_data != 0) {
+    throw InputError(At(source, lines->first_blank_after_data) +
+                     "blank line between sample rows (only the end of the file may be blank)");
+  }
+  if (body.front() == '#') {
+    throw InputError(At(source, line) + "comment or metadata line after the header (line " +
+                     std::to_string(lines->header) + "); metadata must come before the header");
+  }
+  if (lines->end != 0) {
+    throw InputError(At(source, line) + "sample after the end event on line " +
+                     std::to_string(lines->end) + " (the end event must be the last row)");
+  }
+  DemoSample sample = ParseSampleRow(body, source, line);
+  if (!log->samples.empty() && !(sample.t > log->samples.back().t)) {
+    throw InputError(AtColumn(source, line, kColT) + "time " + FormatNumber(sample.t) +
+                     " s does not increase (the sample on line " +
+                     std::to_string(lines->samples.back()) +
+                     " has t = " + FormatNumber(log->samples.back().t) + " s)");
+  }
+  if (sample.event == DemoEvent::kGrasp) {
+    if (lines->grasp != 0) {
+      throw InputError(AtColumn(source, line, kColEvent) +
+                       "a second grasp event (1); the first is on line " +
+                       std::to_string(lines->grasp) + " and there must be exactly one");
+    }
+    lines->grasp = line;
+  } else if (sample.event == DemoEvent::kEnd) {
+    lines->end = line;
+  }
+  log->samples.push_back(std::move(sample));
+  lines->samples.push_back(line);
+}
+
+// The checks on the whole log once every line is read (`line`: the last line number).
+void CheckComplete(const LogLines& lines, const DemoLog& log, const std::string& source,
+                   size_t line, const MetadataCollector& metadata) {
+  if (lines.header == 0) {
+    metadata.CheckRequired(line);
+    throw InputError(source + ": no header row (expected 't, wrist_x, ..., object_z' after the " +
+                     "metadata)");
+  }
+  if (log.samples.empty()) {
+    throw InputError(At(source, lines.header) + "no samples after the header");
+  }
+  const std::string last = At(source, lines.samples.back());
+  if (lines.grasp == 0) {
+    throw InputError(last + "column " + std::to_string(kColEvent + 1) +
+                     " 'event': the log has no grasp event (1); exactly one is required");
+  }
+  if (lines.end == 0) {
+    throw InputError(last + "column " + std::to_string(kColEvent + 1) +
+                     " 'event': the last row is not an end event (2); the recording is "
+                     "truncated");
+  }
+}
+
+}  // namespace
+
 DemoLog ParseDemoLog(std::string_view text, const std::string& source) {
   DemoLog log;
   log.source = source;
@@ -258,88 +334,27 @@ DemoLog ParseDemoLog(std::string_view text, const std::string& source) {
   if (TrimBlanks(text).empty()) throw InputError(source + ": empty file");
 
   MetadataCollector metadata(source, &log.metadata);
-  std::vector<size_t> sample_lines;   // file line of each sample
-  size_t header_line = 0;             // 0 until the header has been read
-  size_t first_blank_after_data = 0;  // a blank line after the header (allowed only at the end)
-  size_t grasp_line = 0;
-  size_t end_line = 0;
-
+  LogLines lines;
   size_t line = 0;
   size_t pos = 0;
   while (pos < text.size()) {
     const size_t eol = std::min(text.find('\n', pos), text.size());
-    const std::string_view raw = text.substr(pos, eol - pos);
+    const std::string_view body = TrimBlanks(text.substr(pos, eol - pos));
     pos = eol + 1;
     ++line;
-    const std::string_view body = TrimBlanks(raw);
-
-    if (header_line == 0) {
-      if (body.empty()) continue;
-      if (body.front() == '#') {
-        metadata.Add(ParseMetadataLine(body, source, line), line);
-        continue;
-      }
+    if (lines.header != 0) {
+      AddRowAfterHeader(body, source, line, &lines, &log);
+    } else if (body.empty()) {
+      continue;
+    } else if (body.front() == '#') {
+      metadata.Add(ParseMetadataLine(body, source, line), line);
+    } else {
       metadata.CheckRequired(line);
       CheckHeader(body, source, line);
-      header_line = line;
-      continue;
+      lines.header = line;
     }
-
-    if (body.empty()) {
-      if (first_blank_after_data == 0) first_blank_after_data = line;
-      continue;
-    }
-    if (first_blank_after_data != 0) {
-      throw InputError(At(source, first_blank_after_data) +
-                       "blank line between sample rows (only the end of the file may be blank)");
-    }
-    if (body.front() == '#') {
-      throw InputError(At(source, line) + "comment or metadata line after the header (line " +
-                       std::to_string(header_line) + "); metadata must come before the header");
-    }
-    if (end_line != 0) {
-      throw InputError(At(source, line) + "sample after the end event on line " +
-                       std::to_string(end_line) + " (the end event must be the last row)");
-    }
-    DemoSample sample = ParseSampleRow(body, source, line);
-    if (!log.samples.empty() && !(sample.t > log.samples.back().t)) {
-      throw InputError(AtColumn(source, line, kColT) + "time " + FormatNumber(sample.t) +
-                       " s does not increase (the sample on line " +
-                       std::to_string(sample_lines.back()) +
-                       " has t = " + FormatNumber(log.samples.back().t) + " s)");
-    }
-    if (sample.event == DemoEvent::kGrasp) {
-      if (grasp_line != 0) {
-        throw InputError(AtColumn(source, line, kColEvent) +
-                         "a second grasp event (1); the first is on line " +
-                         std::to_string(grasp_line) + " and there must be exactly one");
-      }
-      grasp_line = line;
-    } else if (sample.event == DemoEvent::kEnd) {
-      end_line = line;
-    }
-    log.samples.push_back(std::move(sample));
-    sample_lines.push_back(line);
   }
-
-  if (header_line == 0) {
-    metadata.CheckRequired(line);
-    throw InputError(source + ": no header row (expected 't, wrist_x, ..., object_z' after the " +
-                     "metadata)");
-  }
-  if (log.samples.empty()) {
-    throw InputError(At(source, header_line) + "no samples after the header");
-  }
-  const std::string last = At(source, sample_lines.back());
-  if (grasp_line == 0) {
-    throw InputError(last + "column " + std::to_string(kColEvent + 1) +
-                     " 'event': the log has no grasp event (1); exactly one is required");
-  }
-  if (end_line == 0) {
-    throw InputError(last + "column " + std::to_string(kColEvent + 1) +
-                     " 'event': the last row is not an end event (2); the recording is "
-                     "truncated");
-  }
+  CheckComplete(lines, log, source, line, metadata);
   return log;
 }
 

@@ -5,16 +5,12 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
-#include <fstream>
 #include <mutex>
-#include <nlohmann/json.hpp>
-#include <sstream>
 #include <thread>
 
-#include "common/atomic_file.hpp"
-#include "common/data_dir.hpp"
 #include "common/errors.hpp"
 #include "kinematics/hand_model.hpp"
+#include "kinematics/pose_math.hpp"
 #include "learning_data/demo_replay.hpp"
 #include "motion/reach.hpp"
 #include "simulation/random.hpp"
@@ -25,7 +21,6 @@ namespace {
 
 constexpr double kDeg = M_PI / 180.0;
 constexpr int kMaxAttempts = 5;
-using json = nlohmann::ordered_json;
 
 // One sub-movement of the wrist and fingers: minimum-jerk in position, slerp in orientation,
 // a linear finger blend on the same profile, and a bow (offset * sin(pi s)) off the straight
@@ -171,8 +166,7 @@ DemoSample SampleAt(const PlannedTrial& plan, double t) {
   DemoSample sample;
   sample.t = t;
   sample.p_WH = (1.0 - m) * s.p0 + m * s.p1 + std::sin(M_PI * m) * s.bow;
-  sample.q_WH = s.q0.slerp(m, s.q1).normalized();
-  if (sample.q_WH.w() < 0.0) sample.q_WH.coeffs() *= -1.0;
+  sample.q_WH = Canonical(s.q0.slerp(m, s.q1));
   sample.f = (1.0 - m) * s.f0 + m * s.f1;
   return sample;
 }
@@ -215,7 +209,7 @@ bool Simulate(const SimulationModel& model, OperatorTrial* trial) {
   DemoLog& log = trial->log;
   const DemoReplay replay = ReplayDemoLog(model.robot(), log);
   if (!replay.ok) {
-    trial->outcome = "not_executable";
+    trial->outcome.reset();
     trial->reason = replay.message;
     return false;
   }
@@ -223,7 +217,7 @@ bool Simulate(const SimulationModel& model, OperatorTrial* trial) {
   options.hold = 0.05;  // the log holds the lifted pan itself
   options.record_interval = 0.5 / log.metadata.sample_rate_hz.value_or(60.0);
   const TrialResult result = RunTrial(model, replay.trajectory, options);
-  trial->outcome = std::string(ToString(result.outcome));
+  trial->outcome = result.outcome;
   trial->reason = result.reason;
   // the object at each sample's (possibly re-timed) trajectory time; past the end of the
   // simulation (a trial stopped early) it stays where it was last.
@@ -274,306 +268,15 @@ OperatorTrial MakeTrial(const SimulationModel& model, const OperatorOptions& o,
   auto& extra = trial.log.metadata.extra;
   extra.emplace_back("generator", "graspsynth demos generate");
   extra.emplace_back("strategy", std::to_string(trial.strategy));
-  extra.emplace_back("simulated_outcome", trial.outcome);
+  extra.emplace_back("simulated_outcome", std::string(OutcomeName(trial)));
   extra.emplace_back("simulated_reason", trial.reason);
   return trial;
 }
 
-// JSON helpers for the options file.
-[[noreturn]] void Bad(const std::string& source, const std::string& field, const std::string& why) {
-  throw InputError(source + ": field '" + field + "': " + why);
-}
-
-double Number(const json& j, const std::string& source, const std::string& field) {
-  if (!j.is_number()) Bad(source, field, "expected a number, got " + j.dump());
-  const double v = j.get<double>();
-  if (!std::isfinite(v)) Bad(source, field, "not finite");
-  return v;
-}
-
-HandVector HandDeg(const json& j, const std::string& source, const std::string& field) {
-  if (!j.is_array() || j.size() != kHandDof) {
-    Bad(source, field, "expected 16 joint angles in degrees");
-  }
-  HandVector f;
-  for (int i = 0; i < kHandDof; ++i) {
-    f[i] = Number(j[i], source, field + "[" + std::to_string(i) + "]") * kDeg;
-  }
-  return f;
-}
-
-json HandToDeg(const HandVector& f) {
-  json a = json::array();
-  for (int i = 0; i < kHandDof; ++i) a.push_back(f[i] / kDeg);
-  return a;
-}
-
-// A scalar field of an options struct T: name, member, and whether the file holds degrees.
-template <class T>
-struct ScalarField {
-  const char* name;
-  double T::*member;
-  bool degrees;
-};
-constexpr ScalarField<OperatorOptions> kScalars[] = {
-    {"sample_rate_hz", &OperatorOptions::sample_rate_hz, false},
-    {"rest_distance", &OperatorOptions::rest_distance, false},
-    {"rest_turn_deg", &OperatorOptions::rest_turn, true},
-    {"rest_height", &OperatorOptions::rest_height, false},
-    {"entry_out", &OperatorOptions::entry_out, false},
-    {"entry_in", &OperatorOptions::entry_in, false},
-    {"travel_height", &OperatorOptions::travel_height, false},
-    {"above_height", &OperatorOptions::above_height, false},
-    {"lift_height", &OperatorOptions::lift_height, false},
-    {"rest_duration", &OperatorOptions::rest_duration, false},
-    {"reach_duration", &OperatorOptions::reach_duration, false},
-    {"entry_duration", &OperatorOptions::entry_duration, false},
-    {"approach_duration", &OperatorOptions::approach_duration, false},
-    {"descent_duration", &OperatorOptions::descent_duration, false},
-    {"close_duration", &OperatorOptions::close_duration, false},
-    {"settle_duration", &OperatorOptions::settle_duration, false},
-    {"lift_duration", &OperatorOptions::lift_duration, false},
-    {"hold_duration", &OperatorOptions::hold_duration, false},
-    {"timing_spread", &OperatorOptions::timing_spread, false},
-    {"position_noise", &OperatorOptions::position_noise, false},
-    {"height_noise", &OperatorOptions::height_noise, false},
-    {"yaw_noise_deg", &OperatorOptions::yaw_noise, true},
-    {"path_noise", &OperatorOptions::path_noise, false},
-    {"finger_noise_deg", &OperatorOptions::finger_noise, true},
-    {"sloppy_fraction", &OperatorOptions::sloppy_fraction, false},
-    {"sloppy_scale", &OperatorOptions::sloppy_scale, false},
-};
-
-constexpr ScalarField<GraspStyle> kStyleScalars[] = {
-    {"hook_reach", &GraspStyle::hook_reach, false},
-    {"wrist_above_handle", &GraspStyle::wrist_above_handle, false},
-    {"max_pitch_deg", &GraspStyle::max_pitch, true},
-    {"yaw_offset_deg", &GraspStyle::yaw_offset, true},
-    {"roll_deg", &GraspStyle::roll, true},
-};
-
-// Reads the fields of `fields` present in `j` over `out` (field names prefixed by `prefix` in
-// errors; degrees converted to rad).
-template <class T, size_t N>
-void ReadScalars(const json& j, const ScalarField<T> (&fields)[N], const std::string& source,
-                 const std::string& prefix, T* out) {
-  for (const ScalarField<T>& f : fields) {
-    if (!j.contains(f.name)) continue;
-    out->*f.member = Number(j[f.name], source, prefix + f.name) * (f.degrees ? kDeg : 1.0);
-  }
-}
-
-// Writes every field of `fields` of `in` into `j` (rad as degrees).
-template <class T, size_t N>
-void WriteScalars(const T& in, const ScalarField<T> (&fields)[N], json* j) {
-  for (const ScalarField<T>& f : fields) (*j)[f.name] = in.*f.member / (f.degrees ? kDeg : 1.0);
-}
-
-// Reads the GraspStyle fields present in `j` over `style`.
-void ReadStyle(const json& j, const std::string& source, const std::string& prefix,
-               GraspStyle* style) {
-  ReadScalars(j, kStyleScalars, source, prefix, style);
-  if (j.contains("open_hand_deg")) {
-    style->open_hand = HandDeg(j["open_hand_deg"], source, prefix + "open_hand_deg");
-  }
-  if (j.contains("closed_hand_deg")) {
-    style->closed_hand = HandDeg(j["closed_hand_deg"], source, prefix + "closed_hand_deg");
-  }
-}
-
-void WriteStyle(const GraspStyle& style, json* j) {
-  WriteScalars(style, kStyleScalars, j);
-  (*j)["open_hand_deg"] = HandToDeg(style.open_hand);
-  (*j)["closed_hand_deg"] = HandToDeg(style.closed_hand);
-}
-
 }  // namespace
 
-HandVector GraspStyle::DefaultOpenHook() {
-  HandVector f = HandVector::Zero();
-  f.head<4>() << 0.0, 40.0 * kDeg, -10.0 * kDeg, 0.0;
-  f[4] = -20.0 * kDeg;  // index spread toward the thumb
-  f[10] = 20.0 * kDeg;  // ring and little the other way
-  f[13] = 20.0 * kDeg;
-  return f;
-}
-
-HandVector GraspStyle::DefaultClosedHook() {
-  HandVector f = DefaultOpenHook();
-  for (int finger = 0; finger < 4; ++finger) {
-    f[5 + 3 * finger] = 15.0 * kDeg;  // MCP
-    f[6 + 3 * finger] = 85.0 * kDeg;  // PIP (the DIP follows)
-  }
-  return f;
-}
-
-bool GraspStyle::IsValid(std::string* why) const {
-  auto fail = [&](const std::string& what) {
-    if (why) *why = what;
-    return false;
-  };
-  for (const ScalarField<GraspStyle>& f : kStyleScalars) {
-    if (!std::isfinite(this->*f.member)) return fail(std::string(f.name) + " must be finite");
-  }
-  if (!(hook_reach > 0.0)) return fail("hook_reach must be > 0");
-  if (!(wrist_above_handle >= 0.0)) return fail("wrist_above_handle must be >= 0");
-  if (!(max_pitch >= 0.0 && max_pitch < 0.5 * M_PI)) {
-    return fail("max_pitch_deg must be in [0, 90)");
-  }
-  if (!open_hand.allFinite() || !closed_hand.allFinite()) return fail("hand shapes not finite");
-  return true;
-}
-
-bool OperatorOptions::IsValid(std::string* why) const {
-  auto fail = [&](const std::string& what) {
-    if (why) *why = what;
-    return false;
-  };
-  if (trials_per_orientation < 1) return fail("trials_per_orientation must be >= 1");
-  if (plans.empty()) return fail("there must be at least one orientation plan");
-  for (const ScalarField<OperatorOptions>& f : kScalars) {
-    const double v = this->*f.member;
-    if (!std::isfinite(v) || (v < 0.0 && f.member != &OperatorOptions::rest_turn)) {
-      return fail(std::string(f.name) + " must be finite and >= 0");
-    }
-  }
-  if (!(sample_rate_hz >= 10.0 && sample_rate_hz <= 1000.0)) {
-    return fail("sample_rate_hz must be in [10, 1000]");
-  }
-  std::string style_why;
-  if (!grasp.IsValid(&style_why)) return fail(style_why);
-  if (timing_spread >= 0.9) return fail("timing_spread must be < 0.9");
-  if (sloppy_fraction > 1.0) return fail("sloppy_fraction must be <= 1");
-  if (!(entry_out > entry_in)) return fail("entry_out must be larger than entry_in");
-  for (double d :
-       {rest_duration, reach_duration, entry_duration, approach_duration, descent_duration,
-        close_duration, settle_duration, lift_duration, hold_duration}) {
-    if (!(d > 0.0)) return fail("every duration must be > 0");
-  }
-  for (const OrientationPlan& p : plans) {
-    const std::string at = "plan theta " + std::to_string(p.theta_deg);
-    if (!std::isfinite(p.theta_deg) || !std::isfinite(p.pregrasp_eta_deg)) {
-      return fail(at + ": angles must be finite");
-    }
-    if (p.strategies.empty()) return fail(at + ": needs at least one strategy");
-    if (p.trials < 0) return fail(at + ": trials must be >= 0");
-    for (const GraspStrategy& s : p.strategies) {
-      if (!(s.weight > 0.0) || !std::isfinite(s.weight)) return fail(at + ": weight must be > 0");
-      if (!(s.d > 0.0) || !std::isfinite(s.d) || !std::isfinite(s.eta_deg)) {
-        return fail(at + ": strategy d must be > 0 and eta finite");
-      }
-      if (s.grasp && !s.grasp->IsValid(&style_why)) {
-        return fail(at + ": strategy grasp: " + style_why);
-      }
-    }
-  }
-  return true;
-}
-
-OperatorOptions ReadOperatorOptions(const std::filesystem::path& path) {
-  const std::string source = path.string();
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(source + ": cannot open the operator file");
-  json root;
-  try {
-    root = json::parse(in);
-  } catch (const json::parse_error& e) {
-    throw InputError(source + ": not valid JSON: " + e.what());
-  }
-  if (!root.is_object()) Bad(source, "(root)", "expected a JSON object");
-  if (root.value("format", std::string()) != "graspsynth-operator/1") {
-    Bad(source, "format",
-        "expected \"graspsynth-operator/1\", got " +
-            (root.contains("format") ? root["format"].dump() : "nothing"));
-  }
-  OperatorOptions o;
-  if (root.contains("seed")) {
-    if (!root["seed"].is_number_unsigned()) Bad(source, "seed", "expected an unsigned integer");
-    o.seed = root["seed"].get<uint64_t>();
-  }
-  if (root.contains("trials_per_orientation")) {
-    if (!root["trials_per_orientation"].is_number_integer()) {
-      Bad(source, "trials_per_orientation", "expected an integer");
-    }
-    o.trials_per_orientation = root["trials_per_orientation"].get<int>();
-  }
-  ReadScalars(root, kScalars, source, "", &o);
-  ReadStyle(root, source, "", &o.grasp);
-  if (!root.contains("plans") || !root["plans"].is_array()) {
-    Bad(source, "plans", "required: an array of orientation plans");
-  }
-  for (size_t i = 0; i < root["plans"].size(); ++i) {
-    const json& p = root["plans"][i];
-    const std::string at = "plans[" + std::to_string(i) + "]";
-    if (!p.is_object()) Bad(source, at, "expected an object");
-    OrientationPlan plan;
-    for (const char* key : {"theta_deg", "pregrasp_eta_deg", "strategies"}) {
-      if (!p.contains(key)) Bad(source, at + "." + key, "missing");
-    }
-    plan.theta_deg = Number(p["theta_deg"], source, at + ".theta_deg");
-    plan.pregrasp_eta_deg = Number(p["pregrasp_eta_deg"], source, at + ".pregrasp_eta_deg");
-    if (p.contains("trials")) {
-      if (!p["trials"].is_number_integer()) Bad(source, at + ".trials", "expected an integer");
-      plan.trials = p["trials"].get<int>();
-    }
-    if (!p["strategies"].is_array()) Bad(source, at + ".strategies", "expected an array");
-    for (size_t k = 0; k < p["strategies"].size(); ++k) {
-      const json& s = p["strategies"][k];
-      const std::string sat = at + ".strategies[" + std::to_string(k) + "]";
-      if (!s.is_object()) Bad(source, sat, "expected an object");
-      GraspStrategy g;
-      for (const char* key : {"weight", "d", "eta_deg"}) {
-        if (!s.contains(key)) Bad(source, sat + "." + key, "missing");
-      }
-      g.weight = Number(s["weight"], source, sat + ".weight");
-      g.d = Number(s["d"], source, sat + ".d");
-      g.eta_deg = Number(s["eta_deg"], source, sat + ".eta_deg");
-      if (s.contains("grasp")) {
-        if (!s["grasp"].is_object()) Bad(source, sat + ".grasp", "expected an object");
-        g.grasp = o.grasp;
-        ReadStyle(s["grasp"], source, sat + ".grasp.", &*g.grasp);
-      }
-      plan.strategies.push_back(g);
-    }
-    o.plans.push_back(plan);
-  }
-  std::string why;
-  if (!o.IsValid(&why)) throw InputError(source + ": invalid operator options: " + why);
-  return o;
-}
-
-void WriteOperatorOptions(const OperatorOptions& o, const std::filesystem::path& path) {
-  json root;
-  root["format"] = "graspsynth-operator/1";
-  root["comment"] =
-      "The synthetic operator of learning_data/synthetic_operator.hpp: lengths in m, times in s, "
-      "angles in deg. plans: per orientation, where the reach enters the grasp region and the "
-      "intended wrist grasp positions (polar, around the object centre), calibrated with "
-      "'graspsynth demos calibrate' so that the successful trials reproduce the paper's Table I.";
-  root["seed"] = o.seed;
-  root["trials_per_orientation"] = o.trials_per_orientation;
-  WriteScalars(o, kScalars, &root);
-  WriteStyle(o.grasp, &root);
-  json plans = json::array();
-  for (const OrientationPlan& p : o.plans) {
-    json jp;
-    jp["theta_deg"] = p.theta_deg;
-    jp["pregrasp_eta_deg"] = p.pregrasp_eta_deg;
-    jp["trials"] = p.trials;
-    jp["strategies"] = json::array();
-    for (const GraspStrategy& s : p.strategies) {
-      json js = {{"weight", s.weight}, {"d", s.d}, {"eta_deg", s.eta_deg}};
-      if (s.grasp) WriteStyle(*s.grasp, &js["grasp"]);
-      jp["strategies"].push_back(js);
-    }
-    plans.push_back(jp);
-  }
-  root["plans"] = plans;
-  WriteFileAtomically(path, root.dump(2) + "\n");
-}
-
-std::filesystem::path DefaultOperatorOptionsPath() {
-  return DataDirectory() / "learning_data" / "demos" / "operator.json";
+std::string_view OutcomeName(const OperatorTrial& trial) {
+  return trial.outcome ? ToString(*trial.outcome) : std::string_view("not_executable");
 }
 
 std::vector<OperatorTrial> GenerateDemonstrations(const SimulationModel& model,

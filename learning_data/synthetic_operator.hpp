@@ -30,114 +30,11 @@
 #include "kinematics/robot_description.hpp"
 #include "kinematics/scene_model.hpp"
 #include "learning_data/demo_log.hpp"
+#include "learning_data/operator_options.hpp"
 #include "simulation/simulation_model.hpp"
+#include "simulation/trial.hpp"
 
 namespace graspsynth {
-
-/// How the operator's hand takes the handle: a hook (learning_data/README.md). At the grasp
-/// the handle's axis passes through the point (wrist_above_handle, 0, hook_reach) of the hand
-/// frame H: `hook_reach` along the hand's long axis z_H and `wrist_above_handle` along the
-/// palm normal x_H, which points down; with the hand level, the handle is that far ahead of
-/// the wrist and that far below it. The hand pitches fingers-down by up to `max_pitch` so that it
-/// crosses the handle squarely where the wrist is closer to the handle's line than the reach
-/// (the rest of the difference is taken by turning the hand toward the handle's axis, as with
-/// max_pitch = 0); it is then turned about the vertical by `yaw_offset` (positive turns the
-/// fingertips toward the handle's free end, whichever side of the handle the wrist is on) and
-/// rolled about z_H by `roll`. Lengths in m, angles in rad.
-struct GraspStyle {
-  double hook_reach = 0.135;         ///< handle axis along z_H from the wrist, m
-  double wrist_above_handle = 0.04;  ///< handle axis along x_H from the wrist, m
-  double max_pitch = 0.0;            ///< largest fingers-down pitch, rad, in [0, pi/2)
-  double yaw_offset = 0.0;           ///< rad
-  double roll = 0.0;                 ///< rad, about z_H
-  HandVector open_hand = DefaultOpenHook();
-  HandVector closed_hand = DefaultClosedHook();
-
-  /// Open hook: fingers straight and spread (index -20, ring and little +20 deg), the thumb
-  /// laid along the index (thumb_j1 0, thumb_j2 40, thumb_j3 -10 deg), clear of the handle.
-  static HandVector DefaultOpenHook();
-  /// Closed hook: MCP 15 deg, PIP (= DIP) 85 deg for the four fingers (they stall on the
-  /// handle and squeeze it against the proximal phalanges), the thumb as when open.
-  static HandVector DefaultClosedHook();
-
-  bool IsValid(std::string* why) const;
-};
-
-/// One way the operator grasps at an orientation: where the wrist should end up at the grasp,
-/// and how the hand takes the handle there.
-struct GraspStrategy {
-  double weight = 1.0;     ///< relative frequency among the orientation's strategies, > 0
-  double d = 0.35;         ///< intended horizontal wrist distance from the object centre, m
-  double eta_deg = -60.0;  ///< intended polar angle of the wrist, deg from world +x
-  /// The hand's grip for this strategy; empty takes OperatorOptions::grasp.
-  std::optional<GraspStyle> grasp;
-};
-
-/// What the operator does at one object orientation.
-struct OrientationPlan {
-  double theta_deg = 60.0;          ///< object orientation, deg
-  double pregrasp_eta_deg = -55.0;  ///< polar angle at which the reach enters the region, deg
-  /// Trials at this orientation (a learning operator tries more where it fails more); 0 takes
-  /// OperatorOptions::trials_per_orientation.
-  int trials = 0;
-  std::vector<GraspStrategy> strategies;
-};
-
-/// The operator model: motion style, variability and hand shapes. Lengths in m, angles in
-/// rad, times in s.
-struct OperatorOptions {
-  uint64_t seed = 1;                ///< every trial is a function of (seed, theta, trial index)
-  int trials_per_orientation = 10;  ///< >= 1; a plan's own `trials` overrides it
-  double sample_rate_hz = 60.0;     ///< log rate (the paper's tracker: 30-60 Hz)
-  std::vector<OrientationPlan> plans;
-
-  /// The hook of the strategies that have no grip of their own.
-  GraspStyle grasp;
-
-  // The path: rest -> outside the region -> inside -> above the grasp -> grasp -> lift.
-  /// Rest wrist: rest_distance from the base in the direction of the object turned by
-  /// rest_turn about the vertical (outside the grasp region), rest_height above the table.
-  double rest_distance = 0.55;
-  double rest_turn = -30.0 * M_PI / 180.0;
-  double rest_height = 0.30;
-  double entry_out = 0.43;      ///< reach ends this far from the object centre (outside)
-  double entry_in = 0.38;       ///< entry goes radially to this distance (inside)
-  double travel_height = 0.16;  ///< entry height above the grasp wrist height
-  double above_height = 0.06;   ///< the approach descends from this far above the grasp
-  double lift_height = 0.12;    ///< wrist lift after the grasp button
-  double reach_duration = 1.4;  ///< nominal durations of the sub-movements
-  double entry_duration = 0.5;
-  double approach_duration = 0.6;
-  double descent_duration = 0.7;
-  double close_duration = 0.7;
-  double settle_duration = 0.25;
-  double lift_duration = 1.0;
-  double hold_duration = 1.2;
-  double rest_duration = 0.3;
-
-  // Variability, drawn per trial.
-  double timing_spread = 0.12;    ///< every duration scaled by U[1 - s, 1 + s] (own draw)
-  double position_noise = 0.005;  ///< std of the wrist's grasp position, per horizontal axis
-  double height_noise = 0.003;    ///< std of the wrist's grasp height
-  double yaw_noise = 3.0 * M_PI / 180.0;     ///< std of the hand's yaw at the grasp
-  double path_noise = 0.02;                  ///< std of the reach's mid-path bow, per axis
-  double finger_noise = 3.0 * M_PI / 180.0;  ///< std of each closed-hand joint
-  double sloppy_fraction = 0.15;             ///< share of trials made with sloppy_scale x the noise
-  double sloppy_scale = 3.0;
-
-  bool IsValid(std::string* why) const;
-};
-
-/// Reads operator options (format graspsynth-operator/1, JSON). Fields that are absent keep
-/// their defaults; `plans` is required. A strategy's optional `grasp` object holds the fields
-/// of its own grip (the GraspStyle fields of the top level: hook_reach, wrist_above_handle,
-/// max_pitch_deg, yaw_offset_deg, roll_deg, open_hand_deg, closed_hand_deg); the ones it leaves
-/// out come from the top level. Throws InputError naming the file and the field.
-OperatorOptions ReadOperatorOptions(const std::filesystem::path& path);
-/// Writes them (atomically), every field included.
-void WriteOperatorOptions(const OperatorOptions& options, const std::filesystem::path& path);
-/// Path of the shipped, calibrated operator (learning_data/demos/operator.json).
-std::filesystem::path DefaultOperatorOptionsPath();
 
 /// One generated trial and what the simulation made of it.
 struct OperatorTrial {
@@ -146,11 +43,16 @@ struct OperatorTrial {
   int strategy = 0;      ///< index into the plan's strategies
   bool sloppy = false;   ///< drawn with the enlarged noise
   bool success = false;  ///< the log's label: object centre >= 5 cm up at the end
-  std::string outcome;   ///< the simulation's outcome (simulation/trial.hpp names)
+  /// What the simulation made of it; empty when the arm could not execute the trial.
+  std::optional<TrialOutcome> outcome;
   std::string reason;
   int attempts = 1;  ///< draws needed for a trial the arm can execute
   DemoLog log;       ///< source = the file name it gets, e.g. theta020_trial03.csv
 };
+
+/// The trial's outcome as reports name it: ToString(*outcome), or "not_executable" when the
+/// arm could not execute the trial.
+std::string_view OutcomeName(const OperatorTrial& trial);
 
 /// Called after each trial with the number done and the total.
 using OperatorProgress = std::function<void(int done, int total)>;

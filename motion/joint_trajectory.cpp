@@ -8,88 +8,12 @@
 
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
+#include "kinematics/pose_math.hpp"
 
 namespace graspsynth {
 namespace {
 
 using nlohmann::json;
-
-// Marks bare non-finite tokens (NaN, Infinity, as Python's json module writes them) that JSON
-// does not allow, so that the field check below can name the sample and field holding them
-// instead of the parser reporting a byte offset.
-constexpr std::string_view kNonFiniteMark = "\x01non-finite:";
-
-std::string MarkNonFiniteTokens(std::string_view text) {
-  static constexpr std::string_view kTokens[] = {"-Infinity", "Infinity", "-NaN", "NaN",
-                                                 "-nan",      "nan",      "-inf", "inf"};
-  std::string out;
-  out.reserve(text.size());
-  bool in_string = false;
-  for (size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (in_string) {
-      out += c;
-      if (c == '\\' && i + 1 < text.size()) {
-        out += text[++i];
-      } else if (c == '"') {
-        in_string = false;
-      }
-      continue;
-    }
-    if (c == '"') {
-      in_string = true;
-      out += c;
-      continue;
-    }
-    bool replaced = false;
-    for (std::string_view token : kTokens) {
-      if (text.substr(i, token.size()) == token) {
-        out += "\"\\u0001non-finite:";  // parses to kNonFiniteMark
-        out += token;
-        out += '"';
-        i += token.size() - 1;
-        replaced = true;
-        break;
-      }
-    }
-    if (!replaced) out += c;
-  }
-  return out;
-}
-
-std::string Show(const json& v) {
-  if (v.is_string()) {
-    const std::string s = v.get<std::string>();
-    if (s.rfind(kNonFiniteMark, 0) == 0) return s.substr(kNonFiniteMark.size());
-  }
-  return v.dump();
-}
-
-double FiniteNumber(const json& v, const std::string& where) {
-  if (!v.is_number() || !std::isfinite(v.get<double>())) {
-    throw InputError(where + " = " + Show(v) + " is not a finite number");
-  }
-  return v.get<double>();
-}
-
-const json& Field(const json& object, const std::string& key, const std::string& where) {
-  if (!object.is_object()) throw InputError(where + " is not a JSON object");
-  const auto it = object.find(key);
-  if (it == object.end()) throw InputError(where + "." + key + " is missing");
-  return *it;
-}
-
-template <int N>
-Eigen::Matrix<double, N, 1> FiniteVector(const json& v, const std::string& where) {
-  if (!v.is_array()) throw InputError(where + " = " + Show(v) + " is not an array");
-  if (v.size() != static_cast<size_t>(N)) {
-    throw InputError(where + " has " + std::to_string(v.size()) + " values, expected " +
-                     std::to_string(N));
-  }
-  Eigen::Matrix<double, N, 1> out;
-  for (int i = 0; i < N; ++i) out[i] = FiniteNumber(v[i], where + "[" + std::to_string(i) + "]");
-  return out;
-}
 
 std::string Number(double x) {
   std::ostringstream s;
@@ -141,56 +65,49 @@ JointTrajectory TimeScaled(const JointTrajectory& trajectory, double factor) {
   return out;
 }
 
-JointTrajectory ParseJointTrajectory(std::string_view json_text, const std::string& source) {
-  json root;
-  try {
-    root = json::parse(MarkNonFiniteTokens(json_text));
-  } catch (const json::parse_error& e) {
-    throw InputError(source + ": not valid JSON: " + e.what());
-  }
-  if (!root.is_object()) throw InputError(source + ": the document is not a JSON object");
-  const json& format = Field(root, "format", source);
-  if (!format.is_string() || format.get<std::string>() != kJointTrajectoryFormat) {
-    throw InputError(source + ": format = " + Show(format) + " is not \"" +
-                     std::string(kJointTrajectoryFormat) + "\"");
-  }
-  JointTrajectory trajectory;
-  trajectory.theta_deg = FiniteNumber(Field(root, "theta_deg", source), source + ": theta_deg");
+namespace {
 
-  const json& samples = Field(root, "samples", source);
-  if (!samples.is_array() || samples.empty()) {
-    throw InputError(source + ": samples must be a non-empty array");
-  }
-  for (size_t i = 0; i < samples.size(); ++i) {
-    const std::string where = source + ": samples[" + std::to_string(i) + "]";
-    TrajectorySample s;
-    s.t = FiniteNumber(Field(samples[i], "t", where), where + ".t");
-    s.arm = FiniteVector<kArmDof>(Field(samples[i], "arm", where), where + ".arm");
-    s.hand = FiniteVector<kHandDof>(Field(samples[i], "hand", where), where + ".hand");
-    if (i > 0 && !(s.t > trajectory.samples.back().t)) {
-      throw InputError(where + ".t = " + Number(s.t) + " does not increase (previous sample " +
-                       Number(trajectory.samples.back().t) + ")");
+TrajectorySample ReadSample(const JsonReader& object) {
+  TrajectorySample s;
+  s.t = object.Number("t");
+  s.arm = object.Numbers("arm", kArmDof);
+  s.hand = object.Numbers("hand", kHandDof);
+  return s;
+}
+
+WristWaypoint ReadWaypoint(const JsonReader& object) {
+  WristWaypoint p;
+  p.t = object.Number("t");
+  p.p_WH = object.Vector3("position");
+  p.q_WH = object.UnitQuaternion("quaternion", 1e-6).normalized();
+  return p;
+}
+
+}  // namespace
+
+JointTrajectory ReadJointTrajectory(const JsonReader& object) {
+  object.AsObject().ExpectString("format", kJointTrajectoryFormat);
+  JointTrajectory trajectory;
+  trajectory.theta_deg = object.Number("theta_deg");
+
+  const JsonReader samples = object.Field("samples");
+  const std::vector<JsonReader> sample_objects = samples.AsArray();
+  if (sample_objects.empty()) samples.Fail("a non-empty array of samples");
+  for (const JsonReader& sample : sample_objects) {
+    const TrajectorySample s = ReadSample(sample.AsObject());
+    if (!trajectory.samples.empty() && !(s.t > trajectory.samples.back().t)) {
+      sample.Field("t").Fail("a time after the previous sample's " +
+                             Number(trajectory.samples.back().t));
     }
     trajectory.samples.push_back(s);
   }
 
-  if (const auto it = root.find("waypoints"); it != root.end()) {
-    if (!it->is_array()) throw InputError(source + ": waypoints must be an array");
-    for (size_t i = 0; i < it->size(); ++i) {
-      const json& w = (*it)[i];
-      const std::string where = source + ": waypoints[" + std::to_string(i) + "]";
-      WristWaypoint p;
-      p.t = FiniteNumber(Field(w, "t", where), where + ".t");
-      p.p_WH = FiniteVector<3>(Field(w, "position", where), where + ".position");
-      const Eigen::Vector4d q =
-          FiniteVector<4>(Field(w, "quaternion", where), where + ".quaternion");
-      if (std::abs(q.norm() - 1.0) > 1e-6) {
-        throw InputError(where + ".quaternion has norm " + Number(q.norm()) + ", not 1");
-      }
-      p.q_WH = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized();
+  if (const auto waypoints = object.OptionalField("waypoints")) {
+    for (const JsonReader& waypoint : waypoints->AsArray()) {
+      const WristWaypoint p = ReadWaypoint(waypoint.AsObject());
       if (!trajectory.waypoints.empty() && !(p.t > trajectory.waypoints.back().t)) {
-        throw InputError(where + ".t = " + Number(p.t) + " does not increase (previous waypoint " +
-                         Number(trajectory.waypoints.back().t) + ")");
+        waypoint.Field("t").Fail("a time after the previous waypoint's " +
+                                 Number(trajectory.waypoints.back().t));
       }
       trajectory.waypoints.push_back(p);
     }
@@ -198,23 +115,28 @@ JointTrajectory ParseJointTrajectory(std::string_view json_text, const std::stri
   return trajectory;
 }
 
+JointTrajectory ParseJointTrajectory(std::string_view json_text, const std::string& source) {
+  return ReadJointTrajectory(JsonReader::Parse(json_text, source));
+}
+
 void CheckJointLimits(const JointTrajectory& trajectory, const ArmModel& arm, const HandModel& hand,
-                      const std::string& source, double tol) {
+                      const std::string& source, double tol, const std::string& field_prefix) {
+  auto fail = [&](size_t i, const char* part, int j, double v, const std::string& name, double lo,
+                  double hi) {
+    throw InputError(source + ": field '" + field_prefix + "samples[" + std::to_string(i) + "]." +
+                     part + "[" + std::to_string(j) + "]': expected a value within " + name +
+                     "'s limits [" + Number(lo) + ", " + Number(hi) + "] rad, found " + Number(v));
+  };
   for (size_t i = 0; i < trajectory.samples.size(); ++i) {
     const TrajectorySample& s = trajectory.samples[i];
-    const std::string where = source + ": samples[" + std::to_string(i) + "]";
     for (int j = 0; j < kArmDof; ++j) {
       if (s.arm[j] < arm.lower()[j] - tol || s.arm[j] > arm.upper()[j] + tol) {
-        throw InputError(where + ".arm[" + std::to_string(j) + "] = " + Number(s.arm[j]) + " (" +
-                         arm.joint(j).name + ") is outside its limits [" + Number(arm.lower()[j]) +
-                         ", " + Number(arm.upper()[j]) + "] rad");
+        fail(i, "arm", j, s.arm[j], arm.joint(j).name, arm.lower()[j], arm.upper()[j]);
       }
     }
     for (int k = 0; k < kHandDof; ++k) {
       if (s.hand[k] < hand.lower()[k] - tol || s.hand[k] > hand.upper()[k] + tol) {
-        throw InputError(where + ".hand[" + std::to_string(k) + "] = " + Number(s.hand[k]) + " (" +
-                         hand.actuated_names()[k] + ") is outside its limits [" +
-                         Number(hand.lower()[k]) + ", " + Number(hand.upper()[k]) + "] rad");
+        fail(i, "hand", k, s.hand[k], hand.actuated_names()[k], hand.lower()[k], hand.upper()[k]);
       }
     }
   }
@@ -247,8 +169,7 @@ std::string JointTrajectoryToJson(const JointTrajectory& trajectory) {
     out += ",\n  \"waypoints\": [\n";
     for (size_t i = 0; i < trajectory.waypoints.size(); ++i) {
       const WristWaypoint& w = trajectory.waypoints[i];
-      Eigen::Quaterniond q = w.q_WH.normalized();
-      if (q.w() < 0.0) q.coeffs() = -q.coeffs();
+      const Eigen::Quaterniond q = Canonical(w.q_WH);
       const double qv[4] = {q.w(), q.x(), q.y(), q.z()};
       const nlohmann::ordered_json line = {{"t", Rounded(w.t)},
                                            {"position", RoundedArray(w.p_WH.data(), 3)},

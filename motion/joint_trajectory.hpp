@@ -21,6 +21,7 @@
 #include <string_view>
 #include <vector>
 
+#include "common/json_reader.hpp"
 #include "kinematics/arm_model.hpp"
 #include "kinematics/hand_model.hpp"
 #include "kinematics/types.hpp"
@@ -64,20 +65,26 @@ TrajectorySample SampleAt(const JointTrajectory& trajectory, double t);
 /// The same trajectory with every sample and waypoint time multiplied by `factor` (> 0).
 JointTrajectory TimeScaled(const JointTrajectory& trajectory, double factor);
 
-/// Parses a trajectory document. `source` (a file name) starts every message. Throws
-/// InputError naming the source, the sample (or waypoint) index and the field with its value
-/// when: the text is not JSON; `format` is not kJointTrajectoryFormat; `theta_deg` is missing
-/// or not finite; `samples` is missing or empty; a sample lacks `t`, `arm` or `hand`; `arm`
-/// does not hold 7 numbers or `hand` 16; a value is not a finite number (JSON has no NaN, so a
-/// NaN written as null, a string or a bare NaN token is caught here); time does not strictly
-/// increase; a waypoint's quaternion is not unit (|norm - 1| > 1e-6).
+/// Parses a trajectory document: ReadJointTrajectory of the parsed text. `source` (a file
+/// name) starts every message.
 JointTrajectory ParseJointTrajectory(std::string_view json_text, const std::string& source);
 
+/// Reads a trajectory object (a whole document, or a member of one such as a grasp file's
+/// `trajectory`). Throws InputError (JsonReader's wording: source, field path such as
+/// `samples[3].arm[2]`, expected and found value) when: `format` is not kJointTrajectoryFormat;
+/// `theta_deg` is missing or not finite; `samples` is missing or empty; a sample lacks `t`,
+/// `arm` or `hand`; `arm` does not hold 7 numbers or `hand` 16; a value is not a finite number
+/// (JSON has no NaN, so a NaN written as null, a string or a bare NaN token is caught here);
+/// time does not strictly increase; a waypoint's quaternion is not unit (|norm - 1| > 1e-6).
+JointTrajectory ReadJointTrajectory(const JsonReader& object);
+
 /// Checks every sample against the joint limits of the arm and the hand (closed ranges, with
-/// `tol` radians of slack). Throws InputError "source: samples[i].arm[j] = v (S3) is outside
-/// [lo, hi]" for the first offending value.
+/// `tol` radians of slack). Throws InputError "<source>: field '<prefix>samples[i].arm[j]':
+/// expected a value within S3's limits [lo, hi] rad, found v" for the first offending value;
+/// `field_prefix` is the trajectory's own path in its document (e.g. "trajectory.").
 void CheckJointLimits(const JointTrajectory& trajectory, const ArmModel& arm, const HandModel& hand,
-                      const std::string& source, double tol = 1e-9);
+                      const std::string& source, double tol = 1e-9,
+                      const std::string& field_prefix = "");
 
 /// Reads, parses and limit-checks a trajectory file. Throws InputError naming the file.
 JointTrajectory LoadJointTrajectory(const std::filesystem::path& path, const ArmModel& arm,

@@ -7,6 +7,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
+#include "common/json_reader.hpp"
 #include "kinematics/pose_math.hpp"
 
 namespace graspsynth {
@@ -165,23 +166,13 @@ void WriteGraspFile(const std::filesystem::path& path, const SynthesisResult& sy
 
 JointTrajectory LoadTrajectoryOrGraspFile(const std::filesystem::path& path, const ArmModel& arm,
                                           const HandModel& hand) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path.string() + ": cannot read the file");
-  std::stringstream text;
-  text << in.rdbuf();
-  const std::string source = path.string();
-  const json doc = json::parse(text.str(), nullptr, /*allow_exceptions=*/false);
-  if (doc.is_object() && doc.contains("format") && doc["format"] == kGraspFileFormat) {
-    if (!doc.contains("trajectory") || !doc["trajectory"].is_object()) {
-      throw InputError(source + ": a " + std::string(kGraspFileFormat) +
-                       " file without a \"trajectory\" object");
-    }
-    const std::string member = source + " (trajectory)";
-    JointTrajectory t = ParseJointTrajectory(doc["trajectory"].dump(), member);
-    CheckJointLimits(t, arm, hand, member);
-    return t;
-  }
-  return LoadJointTrajectory(path, arm, hand);
+  const JsonReader doc = JsonReader::Load(path);
+  const bool grasp_file =
+      doc.IsObject() && doc.Field("format").IsString() && doc.String("format") == kGraspFileFormat;
+  const JsonReader object = grasp_file ? doc.Object("trajectory") : doc;
+  const JointTrajectory t = ReadJointTrajectory(object);
+  CheckJointLimits(t, arm, hand, path.string(), 1e-9, grasp_file ? "trajectory." : "");
+  return t;
 }
 
 }  // namespace graspsynth

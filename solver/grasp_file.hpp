@@ -52,7 +52,7 @@ void WriteGraspFile(const std::filesystem::path& path, const SynthesisResult& sy
 
 /// Reads a joint trajectory from `path`: a `graspsynth-trajectory/1` file, or the
 /// "trajectory" member of a `graspsynth-grasp/1` file; then checks the joint limits. Throws
-/// InputError naming the file (and the member) as LoadJointTrajectory does.
+/// InputError naming the file and the field (`trajectory.samples[3].t` in a grasp file).
 JointTrajectory LoadTrajectoryOrGraspFile(const std::filesystem::path& path, const ArmModel& arm,
                                           const HandModel& hand);
 

@@ -119,16 +119,19 @@ TEST_F(SimulateCommand, RejectsMalformedTrajectoriesNamingFileSampleAndField) {
   const std::vector<Case> cases = {
       {"format.json",
        [](json& d) { d["format"] = "graspsynth-demo/1"; },
-       {"format.json", "format = \"graspsynth-demo/1\""}},
+       {"format.json",
+        "field 'format': expected \"graspsynth-trajectory/1\", found \"graspsynth-demo/1\""}},
       {"joints.json",
        [](json& d) { d["samples"][5]["arm"].erase(2); },
-       {"joints.json", "samples[5].arm has 6 values, expected 7"}},
+       {"joints.json", "field 'samples[5].arm': expected an array of 7 finite numbers"}},
       {"time.json",
        [](json& d) { d["samples"][7]["t"] = 0.1; },
-       {"time.json", "samples[7].t = 0.1 does not increase"}},
+       {"time.json", "field 'samples[7].t': expected a time after the previous sample's",
+        "found 0.1"}},
       {"limits.json",
        [](json& d) { d["samples"][3]["hand"][2] = 3.0; },
-       {"limits.json", "samples[3].hand[2] = 3 (thumb_j3) is outside its limits"}},
+       {"limits.json", "field 'samples[3].hand[2]': expected a value within thumb_j3's limits",
+        "found 3"}},
   };
   for (const Case& c : cases) {
     const auto r = RunGraspsynth("simulate " + EditedExample(c.name, c.edit) + " --out " +
@@ -147,7 +150,9 @@ TEST_F(SimulateCommand, RejectsMalformedTrajectoriesNamingFileSampleAndField) {
   std::ofstream(Path("nan.json")) << text;
   const auto r = RunGraspsynth("simulate " + Path("nan.json") + " --out " + Path("report.json"));
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_THAT(r.err, HasSubstr("nan.json: samples[10].arm[0] = NaN is not a finite number"));
+  EXPECT_THAT(
+      r.err,
+      HasSubstr("nan.json: field 'samples[10].arm[0]': expected a finite number, found NaN"));
 }
 
 TEST_F(SimulateCommand, HelpNamesEveryOption) {

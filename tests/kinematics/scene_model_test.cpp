@@ -58,19 +58,31 @@ TEST(SceneModel, ObjectShapesFollowTheDescription) {
 
 TEST(SceneModel, RejectsBadFieldsNamingThem) {
   GS_EXPECT_THROW_WITH(ParseSceneModel(SceneWith("/format", "graspsynth-scene/2"), "s.json"),
-                       InputError, "s.json.format", "graspsynth-scene/2");
+                       InputError,
+                       "s.json: field 'format': expected \"graspsynth-scene/1\", found "
+                       "\"graspsynth-scene/2\"");
   GS_EXPECT_THROW_WITH(ParseSceneModel(SceneWith("/object/body_radius", -1.0), "s.json"),
-                       InputError, "s.json.object.body_radius = -1.0", "outside");
+                       InputError,
+                       "s.json: field 'object.body_radius': expected a number in [0.001, 1], "
+                       "found -1.0");
   GS_EXPECT_THROW_WITH(ParseSceneModel(SceneWith("/table/size", {1, 2}), "s.json"), InputError,
-                       "s.json.table.size", "array of 3");
+                       "s.json: field 'table.size': expected an array of 3 numbers in "
+                       "[0.001, 10], found [1,2]");
+  GS_EXPECT_THROW_WITH(ParseSceneModel(SceneWith("/table/size", {1, 2, 20}), "s.json"), InputError,
+                       "s.json: field 'table.size[2]': expected a number in");
   GS_EXPECT_THROW_WITH(ParseSceneModel(SceneWith("/grasp_region/shape", "cone"), "s.json"),
-                       InputError, "grasp_region.shape = \"cone\"");
+                       InputError,
+                       "s.json: field 'grasp_region.shape': expected \"cylinder\" or "
+                       "\"sphere\", found \"cone\"");
   GS_EXPECT_THROW_WITH(ParseSceneModel(SceneWith("/object/handle_end_radius", 0.05), "s.json"),
-                       InputError, "handle_end_radius must exceed");
+                       InputError,
+                       "s.json: field 'object.handle_end_radius': expected a radius above "
+                       "handle_start_radius, found 0.05");
   nlohmann::json j = nlohmann::json::parse(ShippedSceneText());
   j["object"].erase("friction");
   GS_EXPECT_THROW_WITH(ParseSceneModel(j.dump(), "s.json"), InputError,
-                       "s.json.object.friction is missing");
+                       "s.json: field 'object.friction': expected a number in [0, 10], found "
+                       "nothing");
   GS_EXPECT_THROW_WITH(ParseSceneModel("{not json", "s.json"), InputError, "s.json: not valid");
   GS_EXPECT_THROW_WITH(LoadSceneModel("/nonexistent/scene.json"), InputError,
                        "/nonexistent/scene.json");

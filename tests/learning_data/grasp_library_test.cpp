@@ -178,7 +178,7 @@ TEST(GraspLibrary, WriterRefusesWhatTheReaderWouldReject) {
   library.entries[1].lift_height = std::numeric_limits<double>::quiet_NaN();
   const auto path = folder.path() / "library.json";
   GS_EXPECT_THROW_WITH(WriteGraspLibrary(library, path), InputError,
-                       "entries[1].lift_height: not a finite number");
+                       "field 'entries[1].lift_height': expected a finite number, found null");
   EXPECT_FALSE(std::filesystem::exists(path));
 }
 
@@ -216,47 +216,56 @@ TEST_F(MalformedLibrary, MissingFileAndBadJson) {
   std::ofstream(path_) << "{\"format\": \"graspsynth-library/1\", ";
   GS_EXPECT_THROW_WITH(ReadGraspLibrary(path_), InputError, path_.string(), "not valid JSON");
   std::ofstream(path_) << "[1, 2]";
-  GS_EXPECT_THROW_WITH(ReadGraspLibrary(path_), InputError, "expected a JSON object");
+  GS_EXPECT_THROW_WITH(ReadGraspLibrary(path_), InputError,
+                       path_.string() + ": the document: expected an object, found [1,2]");
 }
 
 TEST_F(MalformedLibrary, WrongFormatOrVersion) {
-  ExpectRejected([](json& j) { j["format"] = "graspsynth-library/2"; },
-                 {"format: expected \"graspsynth-library/1\", got \"graspsynth-library/2\""});
+  ExpectRejected(
+      [](json& j) { j["format"] = "graspsynth-library/2"; },
+      {"field 'format': expected \"graspsynth-library/1\", found \"graspsynth-library/2\""});
   ExpectRejected([](json& j) { j["format"] = "graspsynth-analysis/1"; },
-                 {"got \"graspsynth-analysis/1\""});
-  ExpectRejected([](json& j) { j.erase("format"); }, {"format: missing"});
+                 {"found \"graspsynth-analysis/1\""});
+  ExpectRejected([](json& j) { j.erase("format"); },
+                 {"field 'format': expected \"graspsynth-library/1\", found nothing"});
 }
 
 TEST_F(MalformedLibrary, MissingField) {
-  ExpectRejected([](json& j) { j.erase("scores"); }, {"scores: missing"});
-  ExpectRejected([](json& j) { j["scores"][1].erase("ci_low"); }, {"scores[1].ci_low: missing"});
+  ExpectRejected([](json& j) { j.erase("scores"); },
+                 {"field 'scores': expected an array, found nothing"});
+  ExpectRejected([](json& j) { j["scores"][1].erase("ci_low"); },
+                 {"field 'scores[1].ci_low': expected a number in [0, 1], found nothing"});
   ExpectRejected([](json& j) { j["entries"][1]["motion"]["waypoints"][3].erase("fingers"); },
-                 {"entries[1].motion.waypoints[3].fingers: missing"});
-  ExpectRejected([](json& j) { j["entries"][0].erase("motion"); }, {"entries[0].motion: missing"});
+                 {"field 'entries[1].motion.waypoints[3].fingers': expected an array of 16 finite "
+                  "numbers, found nothing"});
+  ExpectRejected([](json& j) { j["entries"][0].erase("motion"); },
+                 {"field 'entries[0].motion': expected an object, found nothing"});
 }
 
 TEST_F(MalformedLibrary, IllTypedField) {
   ExpectRejected([](json& j) { j["scores"][0]["score"] = "high"; },
-                 {"scores[0].score: expected a number, got \"high\""});
+                 {"field 'scores[0].score': expected a number in [0, 1], found \"high\""});
   ExpectRejected([](json& j) { j["scores"][2]["selected"] = 1; },
-                 {"scores[2].selected: expected true or false, got 1"});
+                 {"field 'scores[2].selected': expected true or false, found 1"});
   ExpectRejected([](json& j) { j["seed"] = -3; },
-                 {"seed: expected a non-negative integer, got -3"});
+                 {"field 'seed': expected a non-negative integer, found -3"});
   ExpectRejected([](json& j) { j["perturbations"] = 2.5; },
-                 {"perturbations: expected an integer, got 2.5"});
+                 {"field 'perturbations': expected an integer in [0, 2147483647], found 2.5"});
   ExpectRejected(
       [](json& j) {
         j["entries"][0]["motion"]["waypoints"][0]["position"] = {1, 2};
       },
-      {"entries[0].motion.waypoints[0].position: expected 3 numbers, got 2"});
+      {"field 'entries[0].motion.waypoints[0].position': expected an array of 3 finite numbers, "
+       "found [1,2]"});
   ExpectRejected(
       [](json& j) { j["entries"][1]["motion"]["waypoints"][4]["fingers"][15] = nullptr; },
-      {"entries[1].motion.waypoints[4].fingers[15]: expected a number, got null"});
-  ExpectRejected([](json& j) { j["entries"] = json::object(); }, {"entries: expected an array"});
+      {"field 'entries[1].motion.waypoints[4].fingers[15]': expected a finite number, found null"});
+  ExpectRejected([](json& j) { j["entries"] = json::object(); },
+                 {"field 'entries': expected an array, found {}"});
   ExpectRejected([](json& j) { j["scores"][3]["successes"] = 21; },
-                 {"scores[3].successes: value 21 is more than trials (20)"});
+                 {"field 'scores[3].successes': expected an integer in [0, 20], found 21"});
   ExpectRejected([](json& j) { j["scores"][0]["score"] = 1.5; },
-                 {"scores[0].score: out of range: 1.5"});
+                 {"field 'scores[0].score': expected a number in [0, 1], found 1.5"});
 }
 
 TEST_F(MalformedLibrary, NonFiniteNumber) {
@@ -276,7 +285,8 @@ TEST_F(MalformedLibrary, NonUnitQuaternion) {
       [](json& j) {
         j["entries"][1]["motion"]["waypoints"][2]["quaternion"] = {1.0, 0.01, 0.0, 0.0};
       },
-      {"entries[1].motion.waypoints[2].quaternion: not a unit quaternion (norm 1.0000499"});
+      {"field 'entries[1].motion.waypoints[2].quaternion': expected a unit quaternion",
+       "found [1.0,0.01,0.0,0.0]"});
   // within 1e-6 of unit is accepted, and normalized.
   json j = good_;
   json& q = j["entries"][0]["motion"]["waypoints"][1]["quaternion"];
@@ -288,27 +298,30 @@ TEST_F(MalformedLibrary, NonUnitQuaternion) {
 
 TEST_F(MalformedLibrary, MotionThatIsNotWellFormed) {
   ExpectRejected([](json& j) { j["entries"][0]["motion"]["waypoints"][0]["t"] = 0.001; },
-                 {"entries[0].motion: not a well-formed grasping motion",
+                 {"field 'entries[0].motion': expected a well-formed grasping motion (",
                   "the first waypoint is not at t = 0"});
   ExpectRejected(
       [](json& j) {
         json& w = j["entries"][0]["motion"]["waypoints"];
         w[4]["t"] = w[3]["t"];
       },
-      {"entries[0].motion.waypoints[4].t: time does not strictly increase"});
+      {"field 'entries[0].motion.waypoints[4].t': expected a time after the previous waypoint's"});
   ExpectRejected(
       [](json& j) {
         json& w = j["entries"][1]["motion"]["waypoints"];
         w.erase(w.begin() + 1, w.end());
       },
-      {"entries[1].motion: not a well-formed grasping motion", "at least 2 waypoints"});
-  ExpectRejected([](json& j) { j["entries"][1]["motion"]["theta_rad"] = 0.5; },
-                 {"entries[1].motion.theta_rad: value 0.5 does not match the entry's theta_deg"});
+      {"field 'entries[1].motion': expected a well-formed grasping motion",
+       "at least 2 waypoints"});
+  ExpectRejected(
+      [](json& j) { j["entries"][1]["motion"]["theta_rad"] = 0.5; },
+      {"field 'entries[1].motion.theta_rad': expected the entry's theta_deg", "in rad, found 0.5"});
 }
 
 TEST_F(MalformedLibrary, ThetaThatDoesNotIncrease) {
   ExpectRejected([](json& j) { j["entries"][1]["theta_deg"] = 40.0; },
-                 {"entries[1].theta_deg: theta does not strictly increase: 40.0 after 40.0"});
+                 {"field 'entries[1].theta_deg': expected a theta above the previous entry's 40.0, "
+                  "found 40.0"});
 }
 
 TEST(GraspLibrary, DefaultPathIsUnderTheDataDirectory) {

@@ -7,6 +7,7 @@ graspsynth_test(learning_data/representative_selection_test.cpp LIBS graspsynth:
 graspsynth_test(apps/select_command_test.cpp LIBS graspsynth::learning_data nlohmann_json::nlohmann_json)
 add_dependencies(apps_select_command_test graspsynth)
 graspsynth_test(learning_data/demo_replay_test.cpp LIBS graspsynth::learning_data)
+graspsynth_test(learning_data/operator_options_test.cpp LIBS graspsynth::learning_data)
 graspsynth_test(learning_data/synthetic_operator_test.cpp LIBS graspsynth::learning_data)
 graspsynth_test(apps/demos_command_test.cpp LIBS graspsynth::learning_data)
 add_dependencies(apps_demos_command_test graspsynth)

@@ -8,6 +8,7 @@
 
 #include "common/errors.hpp"
 #include "tests/solver/synthesis_fixtures.hpp"
+#include "tests/utils/eigen_matchers.hpp"
 
 namespace graspsynth {
 namespace {
@@ -74,8 +75,18 @@ TEST(GraspFile, SimulateReadsAGraspFileOrATrajectoryFile) {
     LoadTrajectoryOrGraspFile(dir / "empty.json", robot.arm, robot.hand);
     ADD_FAILURE() << "no exception";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("trajectory"), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()), (dir / "empty.json").string() +
+                                         ": field 'trajectory': expected an object, found nothing");
   }
+  // the trajectory member's fields are named by their path in the grasp file.
+  std::ofstream(dir / "bad.json")
+      << R"({"format": "graspsynth-grasp/1", "trajectory": {"format": "graspsynth-trajectory/1",
+            "theta_deg": 60, "samples": [{"t": 0, "arm": [0, 0, 0, 0, 0, 0, 0], "hand": []}]}})";
+  GS_EXPECT_THROW_WITH(LoadTrajectoryOrGraspFile(dir / "bad.json", robot.arm, robot.hand),
+                       InputError,
+                       (dir / "bad.json").string() +
+                           ": field 'trajectory.samples[0].hand': expected an array of 16 finite "
+                           "numbers, found []");
   fs::remove_all(dir);
 }
 
