@@ -7,6 +7,7 @@
 
 #include "kinematics/rest_pose.hpp"
 #include "simulation/scripted_grasp.hpp"
+#include "tests/utils/eigen_matchers.hpp"
 #include "tests/utils/simulation_fixtures.hpp"
 
 namespace graspsynth {
@@ -17,19 +18,29 @@ using testing::ShippedSimulationModel;
 
 constexpr double kTheta = 60.0;
 
+WorldOptions Options() {
+  WorldOptions options;
+  options.time_step = 0.004;
+  options.arm_mode = ArmMode::kKinematic;
+  options.theta = kTheta * M_PI / 180.0;
+  return options;
+}
+
 // The shipped world at 60 deg, the arm at its rest pose (far from the object), the hand open.
-SimulationData RestWorld(double proximity_margin = 0.02) {
+SimulationData RestWorld() {
   const SimulationModel& model = ShippedSimulationModel();
   ScriptedGraspOptions grasp;
   grasp.theta_deg = kTheta;
   const Vector7d rest = DefaultRestConfiguration(model.robot(), model.scene(),
                                                  GraspWristPose(model.scene(), grasp).linear());
-  WorldOptions options;
-  options.time_step = 0.004;
-  options.arm_mode = ArmMode::kKinematic;
-  options.theta = kTheta * M_PI / 180.0;
-  options.proximity_margin = proximity_margin;
-  return SimulationData(model, options, rest, ScriptedGraspOptions::DefaultOpenHand());
+  return SimulationData(model, Options(), rest, ScriptedGraspOptions::DefaultOpenHand());
+}
+
+// The same world with the hand pushed into the table beside the object (the last sample of
+// testing::HandThroughTable).
+SimulationData FingersInTheTable() {
+  const TrajectorySample& at = testing::HandThroughTable().samples.back();
+  return SimulationData(ShippedSimulationModel(), Options(), at.arm, at.hand);
 }
 
 Eigen::Isometry3d RestObjectPose() {
@@ -60,7 +71,7 @@ TEST(TrialJudgeOptions, DefaultsAreValidAndBadValuesAreNamed) {
   EXPECT_THAT(why, HasSubstr("max_kinetic_energy"));
 }
 
-TEST(StepTrialWorld, FreeSpaceIsKinematicUntilTheRobotIsNearTheObject) {
+TEST(StepTrialWorld, FreeSpaceIsKinematicUntilSomethingTouches) {
   SimulationData far = RestWorld();
   bool free_space = true;
   for (int k = 0; k < 10; ++k) StepTrialWorld(&far, &free_space);
@@ -68,14 +79,16 @@ TEST(StepTrialWorld, FreeSpaceIsKinematicUntilTheRobotIsNearTheObject) {
   EXPECT_EQ(far.statistics().kinematic_steps, 10);
   EXPECT_EQ(far.statistics().dynamic_steps, 0);
 
-  // a margin that reaches from the rest pose to the object: the first step is a full one.
-  SimulationData near = RestWorld(0.45);
-  ASSERT_TRUE(near.HandNearObject());
+  // a touch ends free space: the step that finds it is kinematic, the next ones are full.
+  SimulationData touching = FingersInTheTable();
   free_space = true;
-  StepTrialWorld(&near, &free_space);
+  StepTrialWorld(&touching, &free_space);
   EXPECT_FALSE(free_space);
-  EXPECT_EQ(near.statistics().kinematic_steps, 0);
-  EXPECT_EQ(near.statistics().dynamic_steps, 1);
+  const ContactReport& c = touching.contacts();
+  EXPECT_GT(c.object_hand + c.object_arm + c.finger_table, 0);
+  StepTrialWorld(&touching, &free_space);
+  EXPECT_EQ(touching.statistics().kinematic_steps, 1);
+  EXPECT_EQ(touching.statistics().dynamic_steps, 1);
 }
 
 TEST(EarlyVerdict, NothingAtRestAndInstabilityWhenTheObjectRunsAway) {
