@@ -2,18 +2,15 @@
 
 /// @file
 /// Pieces shared by the long-running commands (run, generalize): a list of orientations from the
-/// command line, and a progress bar on stderr.
+/// command line (ParseOrientationList, common/orientation_list.hpp), and a progress bar on stderr.
 
 #include <mutex>
 #include <string>
 #include <vector>
 
-namespace graspsynth::apps {
+#include "common/orientation_list.hpp"
 
-/// Parses a comma-separated list of orientations (deg); each item is a number or a range
-/// FROM:TO:STEP (inclusive, STEP > 0), e.g. "0:20:1,100:120:5" or "40,45". Throws InputError
-/// naming `option` and the item.
-std::vector<double> ParseOrientationList(const std::string& text, const std::string& option);
+namespace graspsynth::apps {
 
 /// A progress bar per named stage on stderr, redrawn in place on a terminal; elsewhere (logs,
 /// pipes) a line "NAME: DONE/TOTAL (WHAT)" at every tenth of the stage. Thread-safe.

@@ -21,7 +21,7 @@
 #include "apps/stop_signals.hpp"
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
-#include "common/text_input.hpp"
+#include "common/orientation_list.hpp"
 #include "learning_data/demo_log.hpp"
 #include "simulation/simulation_model.hpp"
 #include "teleop/calibration.hpp"
@@ -38,21 +38,6 @@ using Clock = std::chrono::steady_clock;
 
 double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// "20,30,40": orientations in degrees.
-std::vector<double> ParseOrientations(const std::string& text) {
-  std::vector<double> values;
-  for (std::string_view field : SplitFields(text, ',')) {
-    const std::optional<double> v = ParseFiniteDouble(TrimBlanks(field));
-    if (!v) {
-      throw InputError("--orientations: \"" + std::string(field) +
-                       "\" is not a number (expected degrees, e.g. 20,30,40)");
-    }
-    values.push_back(*v);
-  }
-  if (values.empty()) throw InputError("--orientations is empty");
-  return values;
 }
 
 struct ServerOptions {
@@ -72,22 +57,110 @@ struct ServerOptions {
   double exit_after_s = 0.0;
 };
 
-int RunServer(const ServerOptions& opts) {
+teleop::TeleopOptions SessionOptions(const ServerOptions& opts) {
   if (!(opts.timeout_ms > 0.0) || !std::isfinite(opts.timeout_ms)) {
     throw InputError("--timeout-ms " + std::to_string(opts.timeout_ms) + " is not positive");
   }
   if (!(opts.exit_after_s >= 0.0)) throw InputError("--exit-after takes seconds >= 0");
-  const SimulationModel model = LoadDefaultSimulationModel();
   teleop::TeleopOptions options;
   options.rate_hz = opts.rate_hz;
   options.timeout_s = opts.timeout_ms * 1e-3;
   options.end_hold_s = opts.end_hold_s;
-  options.orientations_deg = ParseOrientations(opts.orientations);
+  options.orientations_deg = ParseOrientationList(opts.orientations, "--orientations");
   options.record_dir = opts.record_dir;
   options.operator_name = opts.operator_name;
   options.calibration =
       teleop::LoadTeleopCalibration(opts.config.empty() ? teleop::DefaultTeleopCalibrationPath()
                                                         : std::filesystem::path(opts.config));
+  return options;
+}
+
+// The viewer's HTTP server when --viewer-port asks for one.
+std::unique_ptr<teleop::ViewerServer> StartViewer(const SimulationModel& model,
+                                                  const ServerOptions& opts) {
+  if (opts.viewer_port < 0) return nullptr;
+  const teleop::ViewerCamera camera =
+      opts.camera.empty()
+          ? teleop::DefaultViewerCamera(model.scene())
+          : teleop::ParseViewerCamera(opts.camera, teleop::DefaultViewerCamera(model.scene()));
+  teleop::ViewerServerOptions viewer_options;
+  viewer_options.port = opts.viewer_port;
+  auto viewer = std::make_unique<teleop::ViewerServer>(
+      teleop::ViewerSceneJson(model.robot(), model.scene(), camera), viewer_options);
+  for (const std::string& missing : viewer->missing_assets()) {
+    std::cerr << "graspsynth teleop: warning: " << missing
+              << " is missing; run scripts/setup.sh (npm ci --prefix viewer) and rebuild\n";
+  }
+  std::cerr << "graspsynth teleop: viewer at " << viewer->url() << std::endl;
+  return viewer;
+}
+
+void PrintTrial(const teleop::TrialRecord& t) {
+  std::cerr << "graspsynth teleop: trial " << t.index << " (theta " << t.theta_deg
+            << " deg): " << teleop::OutcomeName(t) << ": " << t.reason << "; "
+            << (t.file.empty() ? "not written: " + t.not_written : "written to " + t.file.string())
+            << std::endl;
+}
+
+// What the control loop measured.
+struct LoopFigures {
+  std::string end_reason = "end_of_session";
+  uint64_t ticks = 0, late_ticks = 0;
+  double busy_s = 0.0, busy_max_s = 0.0;
+  double wall_s = 0.0;
+};
+
+// The control loop at the session's rate until the session is over.
+LoopFigures RunControlLoop(const SimulationModel& model, const ServerOptions& opts,
+                           teleop::TeleopSession* session, teleop::UdpLink* link,
+                           teleop::ViewerServer* viewer) {
+  const StopSignals signals;
+  const Clock::time_point start = Clock::now();
+  const auto tick = std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(1.0 / session->options().rate_hz));
+  Clock::time_point next = start;
+  LoopFigures f;
+  bool end_asked = false;
+  std::vector<teleop::Datagram> incoming;
+  while (true) {
+    if (!end_asked && signals.stopped()) {
+      f.end_reason = "signal";
+      end_asked = true;
+      session->RequestEnd();
+    }
+    if (!end_asked && opts.exit_after_s > 0.0 && SecondsSince(start) >= opts.exit_after_s) {
+      f.end_reason = "exit_after";
+      end_asked = true;
+      session->RequestEnd();
+    }
+    const Clock::time_point tick_start = Clock::now();
+    incoming.clear();
+    link->Receive(&incoming);
+    const teleop::TickResult r =
+        session->Step(incoming, std::chrono::duration<double>(tick_start - start).count());
+    if (!r.state_packet.empty() && r.peer) link->Send(r.state_packet, *r.peer);
+    if (viewer) viewer->Publish(teleop::ViewerFrameJson(model.robot(), r.view));
+    const double busy = SecondsSince(tick_start);
+    f.busy_s += busy;
+    f.busy_max_s = std::max(f.busy_max_s, busy);
+    ++f.ticks;
+    if (r.trial) PrintTrial(*r.trial);
+    if (r.finished) break;
+    next += tick;
+    const Clock::time_point now = Clock::now();
+    if (next < now) {
+      ++f.late_ticks;
+      next = now;  // late (a slow machine): do not try to catch up
+    }
+    std::this_thread::sleep_until(next);
+  }
+  f.wall_s = SecondsSince(start);
+  return f;
+}
+
+int RunServer(const ServerOptions& opts) {
+  const teleop::TeleopOptions options = SessionOptions(opts);
+  const SimulationModel model = LoadDefaultSimulationModel();
   teleop::TeleopSession session(model, options);
 
   teleop::UdpLinkOptions link_options;
@@ -95,85 +168,20 @@ int RunServer(const ServerOptions& opts) {
   link_options.port = opts.port;
   teleop::UdpLink link(link_options);
   if (!opts.port_file.empty()) WriteFileAtomically(opts.port_file, std::to_string(link.port()));
-
-  std::unique_ptr<teleop::ViewerServer> viewer;
-  if (opts.viewer_port >= 0) {
-    const teleop::ViewerCamera camera =
-        opts.camera.empty()
-            ? teleop::DefaultViewerCamera(model.scene())
-            : teleop::ParseViewerCamera(opts.camera, teleop::DefaultViewerCamera(model.scene()));
-    teleop::ViewerServerOptions viewer_options;
-    viewer_options.port = opts.viewer_port;
-    viewer = std::make_unique<teleop::ViewerServer>(
-        teleop::ViewerSceneJson(model.robot(), model.scene(), camera), viewer_options);
-    for (const std::string& missing : viewer->missing_assets()) {
-      std::cerr << "graspsynth teleop: warning: " << missing
-                << " is missing; run scripts/setup.sh (npm ci --prefix viewer) and rebuild\n";
-    }
-    std::cerr << "graspsynth teleop: viewer at " << viewer->url() << std::endl;
-  }
+  std::unique_ptr<teleop::ViewerServer> viewer = StartViewer(model, opts);
   std::cerr << "graspsynth teleop: listening on udp " << opts.bind << ":" << link.port() << " at "
             << options.rate_hz << " Hz (" << session.steps_per_tick() << " physics steps of "
             << session.physics_step() * 1e3 << " ms per tick); theta " << session.theta_deg()
             << " deg; Ctrl-C ends the session" << std::endl;
 
-  const StopSignals signals;
-  const Clock::time_point start = Clock::now();
-  const auto tick = std::chrono::duration_cast<Clock::duration>(
-      std::chrono::duration<double>(1.0 / options.rate_hz));
-  Clock::time_point next = start;
-  std::string end_reason = "end_of_session";
-  bool end_asked = false;
-  uint64_t ticks = 0, late_ticks = 0;
-  double busy_s = 0.0, busy_max_s = 0.0;
-  std::vector<teleop::Datagram> incoming;
-  while (true) {
-    if (!end_asked && signals.stopped()) {
-      end_reason = "signal";
-      end_asked = true;
-      session.RequestEnd();
-    }
-    if (!end_asked && opts.exit_after_s > 0.0 && SecondsSince(start) >= opts.exit_after_s) {
-      end_reason = "exit_after";
-      end_asked = true;
-      session.RequestEnd();
-    }
-    const Clock::time_point tick_start = Clock::now();
-    incoming.clear();
-    link.Receive(&incoming);
-    const teleop::TickResult r =
-        session.Step(incoming, std::chrono::duration<double>(tick_start - start).count());
-    if (!r.state_packet.empty() && r.peer) link.Send(r.state_packet, *r.peer);
-    if (viewer) viewer->Publish(teleop::ViewerFrameJson(model.robot(), r.view));
-    const double busy = SecondsSince(tick_start);
-    busy_s += busy;
-    busy_max_s = std::max(busy_max_s, busy);
-    ++ticks;
-    if (r.trial) {
-      const teleop::TrialRecord& t = *r.trial;
-      std::cerr << "graspsynth teleop: trial " << t.index << " (theta " << t.theta_deg
-                << " deg): " << t.outcome << ": " << t.reason << "; "
-                << (t.file.empty() ? "not written: " + t.not_written
-                                   : "written to " + t.file.string())
-                << std::endl;
-    }
-    if (r.finished) break;
-    next += tick;
-    const Clock::time_point now = Clock::now();
-    if (next < now) {
-      ++late_ticks;
-      next = now;  // late (a slow machine): do not try to catch up
-    }
-    std::this_thread::sleep_until(next);
-  }
-  const double wall = SecondsSince(start);
+  const LoopFigures f = RunControlLoop(model, opts, &session, &link, viewer.get());
   if (viewer) viewer->Stop();
   if (!opts.summary.empty())
-    WriteFileAtomically(opts.summary, session.SummaryJson(end_reason, wall));
+    WriteFileAtomically(opts.summary, session.SummaryJson(f.end_reason, f.wall_s));
   const teleop::PacketCounters& c = session.counters();
-  std::cerr << "graspsynth teleop: session ended (" << end_reason << ") after " << wall
-            << " s: " << ticks << " ticks (" << late_ticks << " late; processing "
-            << (ticks ? busy_s / ticks * 1e3 : 0.0) << " ms mean, " << busy_max_s * 1e3
+  std::cerr << "graspsynth teleop: session ended (" << f.end_reason << ") after " << f.wall_s
+            << " s: " << f.ticks << " ticks (" << f.late_ticks << " late; processing "
+            << (f.ticks ? f.busy_s / f.ticks * 1e3 : 0.0) << " ms mean, " << f.busy_max_s * 1e3
             << " ms max), " << c.received << " packets received, " << c.accepted << " accepted, "
             << c.dropped_total() << " dropped, " << c.states_sent << " states sent, "
             << session.trials().size() << " trials" << std::endl;
@@ -188,6 +196,46 @@ struct ClientOptions {
   std::string config;
   double linger_s = 2.0;
 };
+
+// The operator command of a log sample: the wrist pose in the tracker's frame, the fingers as
+// joint values, the grasp and end events as button presses.
+teleop::OperatorCommand CommandOf(const DemoSample& s, const teleop::TeleopCalibration& calibration,
+                                  uint32_t sequence) {
+  Eigen::Isometry3d X_WH = Eigen::Isometry3d::Identity();
+  X_WH.linear() = s.q_WH.normalized().toRotationMatrix();
+  X_WH.translation() = s.p_WH;
+  const Eigen::Isometry3d X_TS = calibration.SensorInTracker(X_WH);
+  teleop::OperatorCommand c;
+  c.sequence = sequence;
+  c.sender_time = s.t;
+  c.p_TW = X_TS.translation();
+  c.q_TW = Eigen::Quaterniond(X_TS.linear()).normalized();
+  c.hand_mode = teleop::HandMode::kJoints;
+  c.buttons = s.event == DemoEvent::kGrasp ? teleop::kGraspButton
+              : s.event == DemoEvent::kEnd ? teleop::kEndTrialButton
+                                           : 0;
+  c.fingers = s.f;
+  return c;
+}
+
+// What the client prints on stdout: counts, and the last state received.
+nlohmann::json ClientReport(uint64_t commands, uint64_t states, uint64_t invalid,
+                            const std::optional<teleop::RobotStateMessage>& last,
+                            double duration_s) {
+  nlohmann::json out = {{"commands_sent", commands},
+                        {"end_of_session_sent", 3},
+                        {"states_received", states},
+                        {"invalid_received", invalid},
+                        {"duration_s", duration_s}};
+  if (last) {
+    out["last_state"] = {{"trial", last->trial},
+                         {"theta_deg", last->theta_deg},
+                         {"flags", last->flags},
+                         {"last_trial_succeeded", (last->flags & teleop::kLastTrialSucceeded) != 0},
+                         {"object_position", {last->p_WO.x(), last->p_WO.y(), last->p_WO.z()}}};
+  }
+  return out;
+}
 
 int RunClient(const ClientOptions& opts) {
   if (!(opts.speed > 0.0) || !std::isfinite(opts.speed)) {
@@ -204,7 +252,7 @@ int RunClient(const ClientOptions& opts) {
   teleop::UdpLink link(link_options);
 
   uint64_t states = 0, invalid = 0;
-  std::optional<teleop::RobotState> last;
+  std::optional<teleop::RobotStateMessage> last;
   std::vector<teleop::Datagram> incoming;
   Clock::time_point last_state_time = Clock::now();
   const auto drain = [&] {
@@ -232,21 +280,7 @@ int RunClient(const ClientOptions& opts) {
       drain();
       link.WaitReadable(std::chrono::duration<double>(due - Clock::now()).count());
     }
-    Eigen::Isometry3d X_WH = Eigen::Isometry3d::Identity();
-    X_WH.linear() = s.q_WH.normalized().toRotationMatrix();
-    X_WH.translation() = s.p_WH;
-    const Eigen::Isometry3d X_TS = calibration.SensorInTracker(X_WH);
-    teleop::OperatorCommand c;
-    c.sequence = sequence++;
-    c.sender_time = s.t;
-    c.p_TW = X_TS.translation();
-    c.q_TW = Eigen::Quaterniond(X_TS.linear()).normalized();
-    c.hand_mode = teleop::HandMode::kJoints;
-    c.buttons = s.event == DemoEvent::kGrasp ? teleop::kGraspButton
-                : s.event == DemoEvent::kEnd ? teleop::kEndTrialButton
-                                             : 0;
-    c.fingers = s.f;
-    link.Send(teleop::EncodeCommand(c), server);
+    link.Send(teleop::EncodeCommand(CommandOf(s, calibration, sequence++)), server);
   }
   const uint64_t commands = sequence;
   // end of session, three times (a lost datagram must not leave the server waiting).
@@ -261,28 +295,15 @@ int RunClient(const ClientOptions& opts) {
     link.WaitReadable(0.05);
     drain();
   }
-  nlohmann::json out = {{"commands_sent", commands},
-                        {"end_of_session_sent", 3},
-                        {"states_received", states},
-                        {"invalid_received", invalid},
-                        {"duration_s", SecondsSince(start)}};
-  if (last) {
-    out["last_state"] = {{"trial", last->trial},
-                         {"theta_deg", last->theta_deg},
-                         {"flags", last->flags},
-                         {"last_trial_succeeded", (last->flags & teleop::kLastTrialSucceeded) != 0},
-                         {"object_position", {last->p_WO.x(), last->p_WO.y(), last->p_WO.z()}}};
-  }
-  std::cout << out.dump() << std::endl;
+  std::cout << ClientReport(commands, states, invalid, last, SecondsSince(start)).dump()
+            << std::endl;
   std::cerr << "graspsynth teleop-client: sent " << commands << " commands from " << opts.replay
             << " to " << teleop::PeerToString(server) << "; received " << states
             << " state packets (" << invalid << " invalid)" << std::endl;
   return states > 0 ? 0 : 1;
 }
 
-}  // namespace
-
-void AddTeleopCommands(CLI::App& app, int* exit_code) {
+void AddServerCommand(CLI::App& app, int* exit_code) {
   auto opts = std::make_shared<ServerOptions>();
   CLI::App* teleop = app.add_subcommand(
       "teleop",
@@ -308,7 +329,8 @@ void AddTeleopCommands(CLI::App& app, int* exit_code) {
   teleop
       ->add_option("--orientations", opts->orientations,
                    "Object orientations theta (deg), in the order the session walks through "
-                   "them (the next-orientation button)")
+                   "them (the next-orientation button): numbers and ranges FROM:TO:STEP, "
+                   "e.g. 20,30 or 20:100:10")
       ->capture_default_str();
   teleop->add_option("--record", opts->record_dir,
                      "Folder to write every trial to, as trial_NNN_thetaT.csv (v1 logs)");
@@ -344,7 +366,9 @@ void AddTeleopCommands(CLI::App& app, int* exit_code) {
                    "End the session after this many seconds in any case (0: never; scripts)")
       ->capture_default_str();
   teleop->callback([opts, exit_code] { *exit_code = RunServer(*opts); });
+}
 
+void AddClientCommand(CLI::App& app, int* exit_code) {
   auto copts = std::make_shared<ClientOptions>();
   CLI::App* client = app.add_subcommand(
       "teleop-client",
@@ -372,6 +396,13 @@ void AddTeleopCommands(CLI::App& app, int* exit_code) {
                    "After the end of session, listen for states until none came for this long (s)")
       ->capture_default_str();
   client->callback([copts, exit_code] { *exit_code = RunClient(*copts); });
+}
+
+}  // namespace
+
+void AddTeleopCommands(CLI::App& app, int* exit_code) {
+  AddServerCommand(app, exit_code);
+  AddClientCommand(app, exit_code);
 }
 
 }  // namespace graspsynth::apps

@@ -44,6 +44,82 @@ struct ViewOptions {
   double exit_after_s = 0.0;
 };
 
+// The replay of --trajectory or --log, or the robot at rest with neither.
+teleop::ViewerReplay LoadReplay(const ViewOptions& opts, const RobotModel& robot) {
+  if (!opts.trajectory.empty()) {
+    return teleop::ReplayOfTrajectory(LoadJointTrajectory(opts.trajectory, robot.arm, robot.hand),
+                                      opts.trajectory);
+  }
+  if (!opts.log.empty()) {
+    teleop::ViewerReplay replay = teleop::ReplayOfLog(robot, ReadDemoLog(opts.log));
+    if (replay.unreached > 0) {
+      std::cerr << "graspsynth view: " << replay.unreached << " of "
+                << replay.trajectory.samples.size()
+                << " wrist poses of the log have no IK solution; the arm holds there\n";
+    }
+    return replay;
+  }
+  return teleop::RestReplay();
+}
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// How a replay went.
+struct PlayFigures {
+  bool ended = false;  // the replay reached its end (and the hold)
+  uint64_t published = 0;
+};
+
+// Publishes the replay's frames at --rate until its end (plus --hold), for ever with --loop,
+// or until `out_of_time`.
+template <typename OutOfTime>
+PlayFigures PlayReplay(const ViewOptions& opts, const RobotModel& robot, const SceneModel& scene,
+                       const teleop::ViewerReplay& replay, teleop::ViewerServer* server,
+                       const OutOfTime& out_of_time) {
+  const bool ends = !opts.trajectory.empty() || !opts.log.empty();
+  // replay time runs from the first sample's time to the last one's.
+  const double t_first = replay.start_time();
+  const double t_last = replay.end_time();
+  const auto tick = std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(1.0 / opts.rate_hz));
+
+  // the first frame; the replay's clock starts when a page first gets it (unless --no-wait).
+  server->Publish(teleop::ViewerFrameJson(robot, teleop::ReplayStateAt(replay, scene, t_first)));
+  if (!opts.no_wait) {
+    std::cerr << "graspsynth view: waiting for a browser to open the page" << std::endl;
+    while (server->counters().frame_requests == 0 && !out_of_time()) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+  }
+
+  const Clock::time_point replay_start = Clock::now();
+  Clock::time_point next = replay_start;
+  std::optional<Clock::time_point> ended;
+  PlayFigures figures;
+  figures.published = 1;
+  while (!out_of_time()) {
+    const double elapsed = SecondsSince(replay_start) * opts.speed;
+    double t = t_first + elapsed;
+    if (opts.loop && t_last > t_first) t = t_first + std::fmod(elapsed, t_last - t_first);
+    if (ends && !opts.loop && t >= t_last && !ended) ended = Clock::now();
+    teleop::ViewerState state = teleop::ReplayStateAt(replay, scene, t);
+    if (ended) state.text += " | replay done";
+    server->Publish(teleop::ViewerFrameJson(robot, state));
+    ++figures.published;
+    if (ended && SecondsSince(*ended) >= opts.hold_s) break;
+    next += tick;
+    const Clock::time_point now = Clock::now();
+    if (next < now) next = now;  // late (a slow machine): do not try to catch up
+    std::this_thread::sleep_until(next);
+  }
+  figures.ended = ended.has_value();
+  return figures;
+}
+
 int RunView(const ViewOptions& opts) {
   if (!(opts.speed > 0.0) || !std::isfinite(opts.speed)) {
     throw InputError("--speed " + std::to_string(opts.speed) + " is not a positive number");
@@ -62,23 +138,7 @@ int RunView(const ViewOptions& opts) {
       opts.camera.empty()
           ? teleop::DefaultViewerCamera(scene)
           : teleop::ParseViewerCamera(opts.camera, teleop::DefaultViewerCamera(scene));
-
-  teleop::ViewerReplay replay = teleop::RestReplay();
-  const bool ends = !opts.trajectory.empty() || !opts.log.empty();
-  if (!opts.trajectory.empty()) {
-    replay = teleop::ReplayOfTrajectory(LoadJointTrajectory(opts.trajectory, robot.arm, robot.hand),
-                                        opts.trajectory);
-  } else if (!opts.log.empty()) {
-    replay = teleop::ReplayOfLog(robot, ReadDemoLog(opts.log));
-    if (replay.unreached > 0) {
-      std::cerr << "graspsynth view: " << replay.unreached << " of "
-                << replay.trajectory.samples.size()
-                << " wrist poses of the log have no IK solution; the arm holds there\n";
-    }
-  }
-  // replay time runs from the first sample's time to the last one's.
-  const double t_first = replay.start_time();
-  const double t_last = replay.end_time();
+  const teleop::ViewerReplay replay = LoadReplay(opts, robot);
 
   teleop::ViewerServerOptions server_options;
   server_options.address = opts.address;
@@ -91,54 +151,19 @@ int RunView(const ViewOptions& opts) {
   const StopSignals signals;
   std::cerr << "graspsynth view: open " << server.url() << " in a browser (Ctrl-C to stop)"
             << std::endl;
-
-  using Clock = std::chrono::steady_clock;
   const Clock::time_point started = Clock::now();
-  const auto seconds_since = [](Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-  };
   const auto out_of_time = [&] {
     return signals.stopped() ||
-           (opts.exit_after_s > 0.0 && seconds_since(started) >= opts.exit_after_s);
+           (opts.exit_after_s > 0.0 && SecondsSince(started) >= opts.exit_after_s);
   };
-  const auto tick = std::chrono::duration_cast<Clock::duration>(
-      std::chrono::duration<double>(1.0 / opts.rate_hz));
-
-  // the first frame; the replay's clock starts when a page first gets it (unless --no-wait).
-  server.Publish(teleop::ViewerFrameJson(robot, teleop::ReplayStateAt(replay, scene, t_first)));
-  if (!opts.no_wait) {
-    std::cerr << "graspsynth view: waiting for a browser to open the page" << std::endl;
-    while (server.counters().frame_requests == 0 && !out_of_time()) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-  }
-
-  const Clock::time_point replay_start = Clock::now();
-  Clock::time_point next = replay_start;
-  std::optional<Clock::time_point> ended;
-  uint64_t published = 1;
-  while (!out_of_time()) {
-    const double elapsed = seconds_since(replay_start) * opts.speed;
-    double t = t_first + elapsed;
-    if (opts.loop && t_last > t_first) t = t_first + std::fmod(elapsed, t_last - t_first);
-    if (ends && !opts.loop && t >= t_last && !ended) ended = Clock::now();
-    teleop::ViewerState state = teleop::ReplayStateAt(replay, scene, t);
-    if (ended) state.text += " | replay done";
-    server.Publish(teleop::ViewerFrameJson(robot, state));
-    ++published;
-    if (ended && seconds_since(*ended) >= opts.hold_s) break;
-    next += tick;
-    const Clock::time_point now = Clock::now();
-    if (next < now) next = now;  // late (a slow machine): do not try to catch up
-    std::this_thread::sleep_until(next);
-  }
+  const PlayFigures figures = PlayReplay(opts, robot, scene, replay, &server, out_of_time);
   server.Stop();
   const teleop::ViewerServerCounters counters = server.counters();
   std::cerr << "graspsynth view: "
             << (signals.stopped() ? "stopped by a signal"
-                : ended           ? "replay done"
+                : figures.ended   ? "replay done"
                                   : "stopped (--exit-after)")
-            << "; " << published << " frames published, " << counters.frame_requests
+            << "; " << figures.published << " frames published, " << counters.frame_requests
             << " sent to the page, " << counters.requests << " requests (" << counters.bad_requests
             << " bad)" << std::endl;
   return 0;

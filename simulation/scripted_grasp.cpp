@@ -2,7 +2,6 @@
 
 #include <cmath>
 
-#include "common/demand.hpp"
 #include "common/errors.hpp"
 #include "kinematics/arm_ik.hpp"
 #include "motion/joint_space.hpp"
@@ -118,17 +117,6 @@ Eigen::Isometry3d GraspWristPose(const SceneModel& scene, const ScriptedGraspOpt
   const Eigen::Vector3d p_bar =
       X_WO.translation() + options.grasp_radius * h + (o.handle_axis_height - o.rest_height()) * up;
   return Pose(R, p_bar - R * options.bar_in_hand);
-}
-
-Vector7d DefaultRestConfiguration(const RobotModel& robot, const SceneModel& scene,
-                                  const Eigen::Matrix3d& R_WH) {
-  const Eigen::Vector2d toward = scene.object.centre_xy.normalized();
-  const Eigen::Matrix3d R = R_WH * Eigen::AngleAxisd(30.0 * kDeg, Eigen::Vector3d::UnitY());
-  const Eigen::Vector3d p(0.60 * toward.x(), 0.60 * toward.y(), scene.table.top_z + 0.30);
-  const Eigen::Isometry3d X_WF = Pose(R, p) * robot.X_FH.inverse();
-  const std::optional<MidArcSolution> s = SolveArmIkMidArc(robot.arm, X_WF, ArmBranch{});
-  GS_DEMAND(s.has_value(), "the default rest pose is not reachable on the elbow-up branch");
-  return s->q;
 }
 
 ScriptedGraspResult BuildScriptedGrasp(const RobotModel& robot, const SceneModel& scene,

@@ -14,6 +14,7 @@
 
 #include <string>
 
+#include "kinematics/rest_pose.hpp"
 #include "kinematics/robot_description.hpp"
 #include "kinematics/scene_model.hpp"
 #include "motion/joint_trajectory.hpp"
@@ -78,13 +79,6 @@ struct ScriptedGraspOptions {
 /// The wrist pose X_WH of the grasp (see the file comment).
 Eigen::Isometry3d GraspWristPose(const SceneModel& scene, const ScriptedGraspOptions& options);
 
-/// A rest configuration of the arm for a grasp with wrist orientation R_WH: the wrist 0.60 m
-/// from the base toward the object centre and 0.30 m above the table, turned like the grasp
-/// but pitched 30 deg fingertips-down (about y_H), so that the reach mostly translates; branch
-/// (+1, +1, +1), arm angle in the middle of its widest feasible arc.
-Vector7d DefaultRestConfiguration(const RobotModel& robot, const SceneModel& scene,
-                                  const Eigen::Matrix3d& R_WH);
-
 /// The built trajectory, or why it could not be built.
 struct ScriptedGraspResult {
   bool ok = false;
@@ -94,8 +88,9 @@ struct ScriptedGraspResult {
   Eigen::Isometry3d X_WH_pregrasp = Eigen::Isometry3d::Identity();
 };
 
-/// Builds the scripted trajectory. Throws InputError for invalid options; an unreachable pose
-/// or a joint jump is a result with ok = false.
+/// Builds the scripted trajectory. Throws InputError for invalid options and for a scene whose
+/// default rest pose is out of reach (DefaultRestConfiguration, kinematics/rest_pose.hpp); an
+/// unreachable pose or a joint jump is a result with ok = false.
 ScriptedGraspResult BuildScriptedGrasp(const RobotModel& robot, const SceneModel& scene,
                                        const ScriptedGraspOptions& options);
 

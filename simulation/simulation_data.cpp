@@ -328,9 +328,28 @@ struct SimulationData::Impl {
     return part;
   }
 
+  // the world, its parameters, spaces and contact group; then the geometry, the bodies and the
+  // joints, in an order that fixes the order of ODE's bodies (and so its results).
   void Build(const Vector7d& arm_q, const HandVector& hand_f) {
-    const SimulationOptions& so = model->options();
+    CreateWorld();
+    AddStaticGeometry();
+    AddRobotBodies();
+    AddObject();
+    AddArmJoints();
+    AddFingerJoints();
+
+    // the initial configuration, at rest, with commands that hold it.
     const RobotModel& r = robot();
+    q_arm = arm_q;
+    q_hand = HandJointPositions(r.hand, hand_f);
+    ComputeFrames(q_arm, q_hand, &arm_frames, &hand_frames);
+    PlaceAll(arm_frames, hand_frames);
+    arm_command = arm_q;
+    hand_command = hand_f;
+  }
+
+  void CreateWorld() {
+    const SimulationOptions& so = model->options();
     world = dWorldCreate();
     dWorldSetGravity(world, 0, 0, -so.gravity);
     dWorldSetERP(world, so.erp);
@@ -346,8 +365,11 @@ struct SimulationData::Impl {
     space = dSimpleSpaceCreate(nullptr);
     proxy_space = dSimpleSpaceCreate(nullptr);
     contact_group = dJointGroupCreate(0);
+  }
 
-    // static geometry: table and arm base.
+  // static geometry: table and arm base.
+  void AddStaticGeometry() {
+    const RobotModel& r = robot();
     const TableModel& t = model->scene().table;
     CollisionShape table_box;
     table_box.size = t.size;
@@ -361,8 +383,11 @@ struct SimulationData::Impl {
       ToOde(shape.X_LG.linear(), R);
       dGeomSetRotation(g, R);
     }
+  }
 
-    // arm links 1..6 and the wrist body in link-7 (flange) axes.
+  // arm links 1..6 and the wrist body in link-7 (flange) axes, then the finger links.
+  void AddRobotBodies() {
+    const RobotModel& r = robot();
     for (int i = 1; i <= kArmDof; ++i) {
       MassSum sum;
       sum.Add(r.arm.link(i).inertia, Eigen::Isometry3d::Identity());
@@ -385,8 +410,10 @@ struct SimulationData::Impl {
       fingers[j] = MakeBody(sum);
       AttachShapes(fingers[j], link, Eigen::Isometry3d::Identity(), Role::kFinger, j);
     }
+  }
 
-    // the object: pan body (cylinder) and handle (box), frame at its centre of mass.
+  // the object: pan body (cylinder) and handle (box), frame at its centre of mass.
+  void AddObject() {
     const ObjectModel& o = model->scene().object;
     const ObjectInertia& oi = model->object_inertia();
     object.body = dBodyCreate(world);
@@ -421,9 +448,13 @@ struct SimulationData::Impl {
       }
     }
     PlaceBody(object, model->scene().ObjectPose(options.theta));
+  }
 
-    // joints are made with every joint at zero: ODE measures hinge angles from the relative
-    // orientation at the time the axis is set.
+  // the arm's hinges (none when the arm is kinematic) and its limits. Joints are made with
+  // every joint at zero: ODE measures hinge angles from the relative orientation at the time
+  // the axis is set.
+  void AddArmJoints() {
+    const RobotModel& r = robot();
     q_arm.setZero();
     q_hand.setZero();
     ComputeFrames(q_arm, q_hand, &arm_frames, &hand_frames);
@@ -444,6 +475,12 @@ struct SimulationData::Impl {
         dJointSetHingeParam(arm_joints[i], dParamHiStop, am.upper()[i] + kStopMargin);
       }
     }
+  }
+
+  // the fingers' hinges and stops, with every joint at zero (AddArmJoints placed the bodies).
+  void AddFingerJoints() {
+    const SimulationOptions& so = model->options();
+    const RobotModel& r = robot();
     for (int j = 0; j < kHandJoints; ++j) {
       const int finger = j / kFingerJoints, k = j % kFingerJoints;
       const HandJoint& hj = r.hand.joint(j);
@@ -460,14 +497,6 @@ struct SimulationData::Impl {
       hand_vmax[j] = hj.joint.max_velocity;
       hand_fmax[j] = hj.joint.max_effort * so.hand_effort_scale;
     }
-
-    // the initial configuration, at rest, with commands that hold it.
-    q_arm = arm_q;
-    q_hand = HandJointPositions(r.hand, hand_f);
-    ComputeFrames(q_arm, q_hand, &arm_frames, &hand_frames);
-    PlaceAll(arm_frames, hand_frames);
-    arm_command = arm_q;
-    hand_command = hand_f;
   }
 
   // A hinge with the child first: dJointGetHingeAngle is then the child's rotation about the

@@ -18,53 +18,25 @@
 
 #include <functional>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include "motion/joint_trajectory.hpp"
 #include "simulation/simulation_data.hpp"
 #include "simulation/simulation_model.hpp"
+#include "simulation/trial_judge.hpp"
 
 namespace graspsynth {
-
-/// How a trial ended.
-enum class TrialOutcome {
-  kSuccess,       ///< lifted >= lift_threshold, held, touching only the hand
-  kNotLifted,     ///< the object never left the table (no grasp)
-  kDropped,       ///< the object had been lifted, then slipped or dropped
-  kKnockedOver,   ///< the object was knocked over or pushed away without being lifted
-  kTouchesOther,  ///< lifted, but resting on something other than the hand (the arm)
-  kCollision,     ///< the arm, the hand mount or the palm hit the table
-  kJointLimit,    ///< an arm command outside the joint limits (the controller stops there)
-  kUnstable,      ///< numerical instability: non-finite state or runaway energy
-};
-
-/// Lowercase name of an outcome, e.g. "not_lifted" (report files use it).
-std::string_view ToString(TrialOutcome outcome);
 
 /// Simulation detail of a trial (see the file comment).
 enum class Fidelity { kFast, kFull };
 
-/// Options of one trial.
-struct TrialOptions {
+/// Options of one trial; the judgement's thresholds are those of the base (TrialJudgeOptions).
+struct TrialOptions : TrialJudgeOptions {
   Fidelity fidelity = Fidelity::kFast;
   /// Physics step, s; 0 picks the fidelity's default (kFast 0.004, kFull 0.001).
   double time_step = 0.0;
   /// Time the last command is held after the trajectory ends, s (DESIGN.md: >= 1 s).
   double hold = 1.0;
-  /// Success needs the object centre this far above its resting height at the end, m.
-  double lift_threshold = 0.05;
-  /// Below this lift the object counts as not lifted (for the failure reason), m.
-  double lifted_min = 0.01;
-  /// Object tilt (rad) or horizontal shift (m) beyond which an object that was not lifted
-  /// counts as knocked over or pushed away.
-  double knocked_tilt = 20.0 * M_PI / 180.0;
-  double knocked_shift = 0.03;
-  /// Instability: a finger or the object faster than this (m/s, rad/s) or with more kinetic
-  /// energy (J; the hand moves at well under 1 m/s) is a numerical failure.
-  double max_speed = 5.0;
-  double max_angular_speed = 200.0;
-  double max_kinetic_energy = 2.0;
   /// kFast only: free-space test margin, m (WorldOptions::proximity_margin).
   double proximity_margin = 0.02;
   /// Record the state every this many seconds (0: no record).

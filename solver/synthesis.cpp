@@ -7,7 +7,7 @@
 
 #include "common/errors.hpp"
 #include "kinematics/arm_ik.hpp"
-#include "simulation/scripted_grasp.hpp"
+#include "kinematics/rest_pose.hpp"
 
 namespace graspsynth {
 

@@ -144,7 +144,7 @@ std::vector<uint8_t> EncodeCommand(const OperatorCommand& c) {
   return w.Finish();
 }
 
-std::vector<uint8_t> EncodeState(const RobotState& s) {
+std::vector<uint8_t> EncodeState(const RobotStateMessage& s) {
   Writer w(kHeaderBytes + kStatePayloadBytes + kCrcBytes);
   PutHeader(w, PacketKind::kState, s.sequence, kStatePayloadBytes, s.sender_time);
   w.PutVector(s.arm.data(), kArmDof);
@@ -209,7 +209,7 @@ DecodeResult Decode(std::span<const uint8_t> d) {
     case static_cast<uint16_t>(PacketKind::kState): {
       if (payload != kStatePayloadBytes) return Drop(DropReason::kBadLength);
       p.kind = PacketKind::kState;
-      RobotState& s = p.state;
+      RobotStateMessage& s = p.state;
       s.sequence = sequence;
       s.sender_time = time;
       r.GetVector(s.arm.data(), kArmDof);

@@ -73,7 +73,7 @@ struct OperatorCommand {
 };
 
 /// The robot and object state streamed back to the operator.
-struct RobotState {
+struct RobotStateMessage {
   uint32_t sequence = 0;
   double sender_time = 0.0;
   Vector7d arm = Vector7d::Zero();
@@ -107,7 +107,7 @@ uint32_t Crc32(std::span<const uint8_t> bytes);
 
 /// Encodes a command, a state or an end-of-session packet.
 std::vector<uint8_t> EncodeCommand(const OperatorCommand& command);
-std::vector<uint8_t> EncodeState(const RobotState& state);
+std::vector<uint8_t> EncodeState(const RobotStateMessage& state);
 std::vector<uint8_t> EncodeEndOfSession(uint32_t sequence, double sender_time);
 
 /// A decoded datagram: its kind and, for commands and states, the content.
@@ -116,7 +116,7 @@ struct DecodedPacket {
   uint32_t sequence = 0;
   double sender_time = 0.0;
   OperatorCommand command;  ///< valid when kind == kCommand
-  RobotState state;         ///< valid when kind == kState
+  RobotStateMessage state;  ///< valid when kind == kState
 };
 
 /// Result of decoding: the packet, or why it must be dropped.

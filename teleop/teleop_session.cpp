@@ -8,17 +8,14 @@
 
 #include "common/errors.hpp"
 #include "kinematics/arm_ik.hpp"
+#include "kinematics/rest_pose.hpp"
 #include "motion/joint_space.hpp"
 #include "simulation/scripted_grasp.hpp"
 #include "simulation/simulation_data.hpp"
+#include "simulation/trial_judge.hpp"
 
 namespace graspsynth::teleop {
 namespace {
-
-// instability thresholds of the hand and the object (simulation/trial.hpp's defaults).
-constexpr double kMaxSpeed = 5.0;           // m/s
-constexpr double kMaxAngularSpeed = 200.0;  // rad/s
-constexpr double kMaxKineticEnergy = 2.0;   // J
 
 std::string Format(const char* fmt, double a, double b = 0.0) {
   char buf[160];
@@ -33,6 +30,10 @@ enum class Phase {
 };
 
 }  // namespace
+
+std::string_view OutcomeName(const TrialRecord& trial) {
+  return trial.outcome ? ToString(*trial.outcome) : std::string_view("abandoned");
+}
 
 uint64_t PacketCounters::dropped_total() const {
   uint64_t total = 0;
@@ -57,9 +58,8 @@ bool TeleopOptions::IsValid(std::string* why) const {
   if (!(std::isfinite(end_hold_s) && end_hold_s >= 0.0 && end_hold_s <= 60.0)) {
     return fail("end_hold_s (s, in [0, 60]) = " + std::to_string(end_hold_s));
   }
-  if (!(std::isfinite(lift_threshold) && lift_threshold > 0.0)) {
-    return fail("lift_threshold (m, > 0) = " + std::to_string(lift_threshold));
-  }
+  std::string judge_why;
+  if (!judge.IsValid(&judge_why)) return fail("judge." + judge_why);
   if (orientations_deg.empty()) return fail("orientations_deg is empty");
   for (double theta : orientations_deg) {
     if (!(std::isfinite(theta) && std::abs(theta) <= 360.0)) {
@@ -96,10 +96,8 @@ struct TeleopSession::Impl {
   std::optional<size_t> grasp_sample;
   double trial_start = 0.0;
   double judge_at = 0.0;
-  Eigen::Vector3d p_WO_rest = Eigen::Vector3d::Zero();
-  double max_lift = 0.0;
-  bool arm_hit_table = false;
-  std::string collision_link;
+  TrialWatch watch;                     // the judgement's figures of the open trial
+  std::optional<TrialVerdict> decided;  // the first early verdict of the open trial
 
   bool end_requested = false;
   bool finished = false;
@@ -147,21 +145,20 @@ struct TeleopSession::Impl {
     phase = Phase::kWaiting;
     samples.clear();
     grasp_sample.reset();
-    max_lift = 0.0;
-    arm_hit_table = false;
-    collision_link.clear();
     out_of_reach = false;
-    p_WO_rest = world->object_pose().translation();
+    watch = StartTrialWatch(world->object_pose());
+    decided.reset();
   }
 
-  // a trial ends: judged (or not), written when it can be, listed.
-  TrialRecord EndTrial(const std::string& outcome, const std::string& reason) {
+  // a trial ends: judged (or abandoned: std::nullopt), written when it can be, listed.
+  TrialRecord EndTrial(std::optional<TrialOutcome> outcome, const std::string& reason) {
     TrialRecord r;
     r.index = static_cast<int>(trials.size()) + 1;
     r.theta_deg = theta_deg();
     r.outcome = outcome;
-    r.success = outcome == "success";
+    r.success = outcome == TrialOutcome::kSuccess;
     r.reason = reason;
+    const Eigen::Vector3d p_WO_rest = watch.X_WO_rest.translation();
     r.lift_m =
         world && world->IsFinite() ? world->object_pose().translation().z() - p_WO_rest.z() : 0.0;
     r.duration_s = samples.empty() ? 0.0 : samples.back().t;
@@ -169,58 +166,48 @@ struct TeleopSession::Impl {
     r.has_grasp = grasp_sample.has_value();
     if (options.record_dir.empty()) {
       r.not_written = "not recording";
-    } else if (outcome == "abandoned" || outcome == "unstable") {
-      r.not_written = "the trial was " + outcome;
+    } else if (!outcome || *outcome == TrialOutcome::kUnstable) {
+      r.not_written = "the trial was " + std::string(OutcomeName(r));
     } else if (!grasp_sample) {
       r.not_written = "the grasp button was never pressed (a v1 log needs one grasp event)";
     } else if (*grasp_sample + 1 == samples.size()) {
       r.not_written = "the grasp and the end fell on the same sample";
     } else {
-      DemoLog log;
-      char name[64];
-      std::snprintf(name, sizeof(name), "trial_%03d_theta%g.csv", r.index, r.theta_deg);
-      log.source = (options.record_dir / name).string();
-      log.metadata.theta_deg = r.theta_deg;
-      log.metadata.object_position = p_WO_rest;
-      log.metadata.trial = std::to_string(r.index);
-      if (!options.operator_name.empty()) log.metadata.operator_name = options.operator_name;
-      log.metadata.sample_rate_hz = options.rate_hz;
-      log.metadata.extra = {{"outcome", outcome}, {"recorded_by", "graspsynth teleop"}};
-      log.samples = samples;
-      log.samples.back().event = DemoEvent::kEnd;
-      try {
-        WriteDemoLog(log.source, log);
-        r.file = log.source;
-      } catch (const std::exception& e) {
-        r.not_written = e.what();
-      }
+      WriteTrialLog(p_WO_rest, &r);
     }
     last_success = r.success;
     trials.push_back(r);
     return r;
   }
 
+  // the v1 log of a judged trial with a grasp mark; r->file or r->not_written tells how it went.
+  void WriteTrialLog(const Eigen::Vector3d& p_WO_rest, TrialRecord* r) const {
+    DemoLog log;
+    char name[64];
+    std::snprintf(name, sizeof(name), "trial_%03d_theta%g.csv", r->index, r->theta_deg);
+    log.source = (options.record_dir / name).string();
+    log.metadata.theta_deg = r->theta_deg;
+    log.metadata.object_position = p_WO_rest;
+    log.metadata.trial = std::to_string(r->index);
+    if (!options.operator_name.empty()) log.metadata.operator_name = options.operator_name;
+    log.metadata.sample_rate_hz = options.rate_hz;
+    log.metadata.extra = {{"outcome", std::string(OutcomeName(*r))},
+                          {"recorded_by", "graspsynth teleop"}};
+    log.samples = samples;
+    log.samples.back().event = DemoEvent::kEnd;
+    try {
+      WriteDemoLog(log.source, log);
+      r->file = log.source;
+    } catch (const std::exception& e) {
+      r->not_written = e.what();
+    }
+  }
+
+  // the judgement after the hold: the first early verdict of the trial, else the end state.
   TrialRecord Judge() {
-    const ContactReport& c = world->contacts();
-    const double lift = world->object_pose().translation().z() - p_WO_rest.z();
-    if (arm_hit_table) {
-      return EndTrial("collision", collision_link + " hit the table during the trial");
-    }
-    if (lift >= options.lift_threshold && c.object_hand > 0 && c.object_table == 0 &&
-        c.object_arm == 0) {
-      return EndTrial("success", Format("lifted %.1f mm and held %.2f s, touching only the hand",
-                                        lift * 1e3, options.end_hold_s));
-    }
-    if (lift >= options.lift_threshold && c.object_arm > 0 && c.object_table == 0) {
-      return EndTrial("touches_other",
-                      Format("the object is %.1f mm up but rests on the arm", lift * 1e3));
-    }
-    if (max_lift >= options.lift_threshold) {
-      return EndTrial("dropped", Format("lifted up to %.1f mm, %.1f mm at the end", max_lift * 1e3,
-                                        lift * 1e3));
-    }
-    return EndTrial("not_lifted", Format("the object rose at most %.1f mm (needs %.0f mm)",
-                                         max_lift * 1e3, options.lift_threshold * 1e3));
+    const TrialVerdict verdict =
+        decided ? *decided : JudgeTrial(*world, watch, options.end_hold_s, options.judge);
+    return EndTrial(verdict.outcome, verdict.reason);
   }
 
   // the newest valid command of the tick sets the targets.
@@ -244,48 +231,33 @@ struct TeleopSession::Impl {
     }
   }
 
-  // one tick of physics from the previous commands to the new ones; false when unstable.
-  bool Simulate(const Vector7d& q_from, const HandVector& f_from, std::string* why) {
+  // one tick of physics from the previous commands to the new ones. An instability ends it
+  // with its verdict; a joint limit or a collision during a trial is kept for the judgement.
+  std::optional<TrialVerdict> Simulate(const Vector7d& q_from, const HandVector& f_from) {
     const Vector7d dq = q_cmd - q_from;
     const HandVector df = f_cmd - f_from;
-    try {
-      for (int k = 0; k < steps; ++k) {
-        const double a = static_cast<double>(k + 1) / steps;
-        world->SetArmCommand(ServoMode::kPosition, q_from + a * dq, dq / tick);
-        world->SetHandCommand(ServoMode::kPosition, f_from + a * df);
-        if (kinematic && world->HandNearObject()) kinematic = false;
-        if (kinematic) {
-          world->StepKinematically();
-          const ContactReport& c = world->contacts();
-          // anything touching ends free space; the contact is resolved from the next step on.
-          if (c.object_hand + c.object_arm + c.finger_table > 0) kinematic = false;
-        } else {
-          world->Step();
-        }
-        const ContactReport& c = world->contacts();
-        if (c.arm_table > 0 && !arm_hit_table && phase != Phase::kWaiting) {
-          arm_hit_table = true;
-          collision_link = c.arm_table_link;
-        }
+    for (int k = 0; k < steps; ++k) {
+      const double a = static_cast<double>(k + 1) / steps;
+      world->SetArmCommand(ServoMode::kPosition, q_from + a * dq, dq / tick);
+      world->SetHandCommand(ServoMode::kPosition, f_from + a * df);
+      try {
+        StepTrialWorld(world.get(), &kinematic);
+      } catch (const std::exception& e) {
+        return OdeFailureVerdict(world->time(), e.what());
       }
-    } catch (const std::exception& e) {
-      *why = Format("numerical instability at t = %.3f s: ", world->time()) + e.what();
-      return false;
+      std::optional<TrialVerdict> verdict = EarlyVerdict(*world, model.robot().arm, options.judge);
+      if (verdict && verdict->outcome == TrialOutcome::kUnstable) return verdict;
+      if (phase == Phase::kWaiting) continue;
+      if (verdict && !decided) decided = std::move(verdict);
+      WatchStep(*world, options.judge, &watch);
     }
-    if (!world->IsFinite() || world->MaxDynamicSpeed() > kMaxSpeed ||
-        world->MaxDynamicAngularSpeed() > kMaxAngularSpeed ||
-        world->HandObjectKineticEnergy() > kMaxKineticEnergy) {
-      *why = Format("numerical instability at t = %.3f s: speed %.3g m/s", world->time(),
-                    world->IsFinite() ? world->MaxDynamicSpeed() : NAN);
-      return false;
-    }
-    return true;
+    return std::nullopt;
   }
 
   TickResult MakeResult(double now, uint32_t flags) {
     TickResult result;
     result.flags = flags;
-    RobotState state;
+    RobotStateMessage state;
     state.sender_time = now;
     state.arm = world->arm_positions();
     state.hand = world->hand_positions();
@@ -313,17 +285,22 @@ struct TeleopSession::Impl {
     if (flags & kHoldingStill) text += " | no operator packets: holding still";
     if (flags & kOutOfReach) text += " | wrist target out of reach: holding";
     if (!trials.empty()) {
-      text += " | last trial: " + trials.back().outcome;
+      text += " | last trial: " + std::string(OutcomeName(trials.back()));
     }
     result.view.text = text;
     result.finished = finished;
     return result;
   }
 
-  TickResult Step(std::span<const Datagram> datagrams, double now) {
-    // 1. decode and check every datagram; the newest valid command drives the robot.
+  // the valid commands of a tick: the newest, and the buttons pressed by any of them.
+  struct Received {
     std::optional<OperatorCommand> newest;
     uint8_t pressed = 0;
+  };
+
+  // 1. decodes and checks every datagram; counts the drops.
+  Received Receive(std::span<const Datagram> datagrams, double now) {
+    Received in;
     for (const Datagram& d : datagrams) {
       ++counters.received;
       const DecodeResult decoded = Decode(d.bytes);
@@ -345,40 +322,45 @@ struct TeleopSession::Impl {
         continue;
       }
       const OperatorCommand& c = decoded.packet->command;
-      pressed |= static_cast<uint8_t>(c.buttons & ~previous_buttons);
+      in.pressed |= static_cast<uint8_t>(c.buttons & ~previous_buttons);
       previous_buttons = c.buttons;
-      newest = c;
+      in.newest = c;
       peer = d.peer;
       last_command_time = now;
       if (phase == Phase::kJudging || finished) ++counters.ignored_while_judging;
     }
-    if (finished) return MakeResult(now, kHoldingStill);
-    ++ticks;
+    return in;
+  }
 
-    // 2. buttons: next orientation first (it resets the world), then the trial's own.
-    std::optional<TrialRecord> ended;
-    if (phase != Phase::kJudging && (pressed & kNextOrientationButton)) {
-      if (phase == Phase::kActive) ended = EndTrial("abandoned", "the next orientation was chosen");
+  // 2. buttons: next orientation first (it resets the world), then the trial's own. True when
+  // the grasp button marks this tick's sample.
+  bool Buttons(Received* in, std::optional<TrialRecord>* ended) {
+    if (phase != Phase::kJudging && (in->pressed & kNextOrientationButton)) {
+      if (phase == Phase::kActive)
+        *ended = EndTrial(std::nullopt, "the next orientation was chosen");
       orientation = (orientation + 1) % options.orientations_deg.size();
       Reset();
-      newest.reset();  // the command that pressed it must not start the new trial
-      pressed = 0;
+      in->newest.reset();  // the command that pressed it must not start the new trial
+      in->pressed = 0;
     }
-    if (newest && phase != Phase::kJudging) {
+    if (in->newest && phase != Phase::kJudging) {
       if (phase == Phase::kWaiting) {
         phase = Phase::kActive;
         trial_start = world->time();
       }
-      Apply(*newest);
+      Apply(*in->newest);
       ++counters.commands_applied;
     }
-    const bool grasp_now = phase == Phase::kActive && (pressed & kGraspButton);
-    if (phase == Phase::kActive && (pressed & kEndTrialButton)) {
+    const bool grasp_now = phase == Phase::kActive && (in->pressed & kGraspButton);
+    if (phase == Phase::kActive && (in->pressed & kEndTrialButton)) {
       phase = Phase::kJudging;
       judge_at = world->time() + options.end_hold_s;
     }
+    return grasp_now;
+  }
 
-    // 3. silence or judging freezes the commands; else they move toward the targets, capped.
+  // 3. silence or judging freezes the commands; else they move toward the targets, capped.
+  uint32_t MoveCommands(double now) {
     const bool silent = !last_command_time || now - *last_command_time > options.timeout_s;
     uint32_t flags = 0;
     if (silent) {
@@ -393,36 +375,48 @@ struct TeleopSession::Impl {
       flags |= kOutOfReach;
       ++ticks_out_of_reach;
     }
-    const Vector7d q_from = q_cmd;
-    const HandVector f_from = f_cmd;
     const Vector7d dq_max = model.robot().arm.max_velocity() * tick;
     const HandVector df_max = model.robot().hand.max_velocity() * tick;
     q_cmd += (q_goal - q_cmd).cwiseMax(-dq_max).cwiseMin(dq_max);
     f_cmd += (f_goal - f_cmd).cwiseMax(-df_max).cwiseMin(df_max);
+    return flags;
+  }
 
-    // 4. physics.
-    std::string why;
-    const bool stable = Simulate(q_from, f_from, &why);
+  // 5. the sample of this tick, marked as the grasp when `grasp_now`.
+  void RecordSample(bool grasp_now) {
+    DemoSample s;
+    s.t = world->time() - trial_start;
+    const Eigen::Isometry3d X_WH = world->wrist_pose();
+    s.p_WH = X_WH.translation();
+    s.q_WH = Eigen::Quaterniond(X_WH.linear());
+    s.f = f_cmd;
+    s.p_WO = world->object_pose().translation();
+    if (grasp_now) {
+      if (grasp_sample) samples[*grasp_sample].event = DemoEvent::kNone;
+      grasp_sample = samples.size();
+      s.event = DemoEvent::kGrasp;
+    }
+    samples.push_back(s);
+  }
+
+  TickResult Step(std::span<const Datagram> datagrams, double now) {
+    Received in = Receive(datagrams, now);
+    if (finished) return MakeResult(now, kHoldingStill);
+    ++ticks;
+    std::optional<TrialRecord> ended;
+    const bool grasp_now = Buttons(&in, &ended);
+    const Vector7d q_from = q_cmd;
+    const HandVector f_from = f_cmd;
+    uint32_t flags = MoveCommands(now);
+
+    // 4. physics; an instability ends the trial and resets the world.
+    const std::optional<TrialVerdict> unstable = Simulate(q_from, f_from);
     simulated += tick;
-    if (!stable) {
-      if (phase != Phase::kWaiting) ended = EndTrial("unstable", why);
+    if (unstable) {
+      if (phase != Phase::kWaiting) ended = EndTrial(unstable->outcome, unstable->reason);
       Reset();
     } else if (phase != Phase::kWaiting) {
-      // 5. the sample of this tick.
-      DemoSample s;
-      s.t = world->time() - trial_start;
-      const Eigen::Isometry3d X_WH = world->wrist_pose();
-      s.p_WH = X_WH.translation();
-      s.q_WH = Eigen::Quaterniond(X_WH.linear());
-      s.f = f_cmd;
-      s.p_WO = world->object_pose().translation();
-      max_lift = std::max(max_lift, s.p_WO.z() - p_WO_rest.z());
-      if (grasp_now) {
-        if (grasp_sample) samples[*grasp_sample].event = DemoEvent::kNone;
-        grasp_sample = samples.size();
-        s.event = DemoEvent::kGrasp;
-      }
-      samples.push_back(s);
+      RecordSample(grasp_now);
       // 6. the judgement after the hold.
       if (phase == Phase::kJudging && world->time() >= judge_at - 1e-9) {
         ended = Judge();
@@ -434,7 +428,7 @@ struct TeleopSession::Impl {
     if (last_success) flags |= kLastTrialSucceeded;
 
     if (end_requested && phase != Phase::kJudging) {
-      if (phase == Phase::kActive) ended = EndTrial("abandoned", "the session ended first");
+      if (phase == Phase::kActive) ended = EndTrial(std::nullopt, "the session ended first");
       phase = Phase::kWaiting;
       finished = true;
     }
@@ -489,7 +483,7 @@ std::string TeleopSession::SummaryJson(const std::string& end, double wall_s) co
     successes += t.success ? 1 : 0;
     trials.push_back({{"index", t.index},
                       {"theta_deg", t.theta_deg},
-                      {"outcome", t.outcome},
+                      {"outcome", OutcomeName(t)},
                       {"success", t.success},
                       {"reason", t.reason},
                       {"lift_m", t.lift_m},

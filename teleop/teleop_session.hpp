@@ -25,19 +25,22 @@
 /// 4. the physics: the tick is split into equal steps of at most max_physics_step, each with
 ///    targets interpolated along the tick; the arm follows its controller kinematically (as in
 ///    the simulation's fast path, simulation/trial.hpp), the hand and the object are dynamic;
-///    free space runs without contact detail until the robot comes near the object.
+///    free space runs without contact detail until the robot comes near the object (the
+///    stepping of the offline trials, StepTrialWorld in simulation/trial_judge.hpp).
 ///
 /// Trials. A trial starts with the first command after a reset of the world and is recorded
 /// tick by tick: the wrist pose reached, the commanded fingers, the button event, the object
 /// centre. The grasp button marks the current sample as the grasp (a later press moves the
 /// mark). The end-of-trial button starts a hold of end_hold_s (commands are ignored, the robot
-/// keeps its last command), then the trial is judged as DESIGN.md defines success (object centre
-/// >= lift_threshold above its rest height, touching only the hand), written as a v1
-/// demonstration log when record_dir is set and it has a grasp mark, and the world is reset at
-/// the same orientation with the robot at its rest configuration. The next-orientation button
-/// abandons an open trial (not written) and resets the world at the next orientation of the
-/// list (after the last, the first again). An ODE failure ends the trial as "unstable" and
-/// resets the world: nothing an operator sends can crash the session.
+/// keeps its last command), then the trial is judged by the judgement of the offline trials
+/// (simulation/trial_judge.hpp: JudgeTrial, every TrialOutcome; an arm joint commanded beyond
+/// its limit or the arm on the table during the trial decides it when it happens first),
+/// written as a v1 demonstration log when record_dir is set and it has a grasp mark, and the
+/// world is reset at the same orientation with the robot at its rest configuration. The
+/// next-orientation button abandons an open trial (not written) and resets the world at the
+/// next orientation of the list (after the last, the first again). An ODE failure or a
+/// numerical instability ends the trial as "unstable" at once and resets the world: nothing an
+/// operator sends can crash the session.
 
 #include <array>
 #include <cstdint>
@@ -46,10 +49,12 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "learning_data/demo_log.hpp"
 #include "simulation/simulation_model.hpp"
+#include "simulation/trial_judge.hpp"
 #include "teleop/calibration.hpp"
 #include "teleop/glove_map.hpp"
 #include "teleop/protocol.hpp"
@@ -70,8 +75,9 @@ struct TeleopOptions {
   /// After the end-of-trial button the robot holds its last command this long (s) before the
   /// trial is judged (DESIGN.md: a hold of at least 1 s).
   double end_hold_s = 1.0;
-  /// Success: the object centre this far above its rest height at the judgement, m.
-  double lift_threshold = 0.05;
+  /// The judgement of a trial (simulation/trial_judge.hpp), as in the offline trials; success
+  /// needs the object centre judge.lift_threshold above its rest height at the judgement.
+  TrialJudgeOptions judge;
   /// Object orientations theta (deg) the session walks through, in order; at least one.
   std::vector<double> orientations_deg = {20, 30, 40, 50, 60, 70, 80, 90, 100};
   /// Folder the trials are written to (one v1 log each); empty: nothing is written.
@@ -108,11 +114,12 @@ struct PacketCounters {
 
 /// One trial of the session, as the summary lists it.
 struct TrialRecord {
-  int index = 0;               ///< 1-based, in the order the trials ended
-  double theta_deg = 0.0;      ///< object orientation, deg
-  std::string outcome;         ///< success, not_lifted, dropped, touches_other, collision,
-                               ///< unstable or abandoned (see TeleopSession)
-  bool success = false;        ///< outcome == "success"
+  int index = 0;           ///< 1-based, in the order the trials ended
+  double theta_deg = 0.0;  ///< object orientation, deg
+  /// How the trial was judged; std::nullopt: abandoned (the next orientation was chosen or
+  /// the session ended first), not judged.
+  std::optional<TrialOutcome> outcome;
+  bool success = false;        ///< outcome == TrialOutcome::kSuccess
   std::string reason;          ///< one sentence with the deciding figures
   double lift_m = 0.0;         ///< object centre above its rest height at the end, m
   double duration_s = 0.0;     ///< simulated time of the trial, s
@@ -121,6 +128,10 @@ struct TrialRecord {
   std::filesystem::path file;  ///< the written log; empty when not written
   std::string not_written;     ///< why no log was written (empty when written)
 };
+
+/// The name of a trial's outcome in the summary, the logs and on the console: ToString of the
+/// outcome (e.g. "success", "knocked_over"), or "abandoned".
+std::string_view OutcomeName(const TrialRecord& trial);
 
 /// What one tick produced.
 struct TickResult {
@@ -172,7 +183,9 @@ class TeleopSession {
   const Vector7d& arm_command() const;
   const HandVector& hand_command() const;
   /// The rest configuration of the arm for orientation theta (deg): where every trial starts
-  /// (the scripted grasp's rest configuration, simulation/scripted_grasp.hpp), and the open hand.
+  /// (DefaultRestConfiguration, kinematics/rest_pose.hpp, for the wrist orientation of the
+  /// scripted grasp, simulation/scripted_grasp.hpp), and the open hand. Throws InputError when
+  /// the rest pose of the scene is out of reach.
   static Vector7d RestArm(const RobotModel& robot, const SceneModel& scene, double theta_deg);
   static HandVector RestHand();
 

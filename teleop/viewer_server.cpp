@@ -117,6 +117,57 @@ std::shared_ptr<const std::string> Text(std::string text) {
   return std::make_shared<const std::string>(std::move(text) + "\n");
 }
 
+// The request line and the headers of a request head, as far as the server needs them.
+struct RequestHead {
+  bool valid = false;  // a request line METHOD SP TARGET SP HTTP/1.x and well-formed headers
+  std::string method;
+  std::string target;
+  bool keep_alive = false;  // HTTP/1.1 without "Connection: close", or "keep-alive"
+  bool has_body = false;    // a non-zero Content-Length or a Transfer-Encoding
+};
+
+RequestHead ParseRequestHead(const std::string& head) {
+  RequestHead request;
+  const std::vector<std::string_view> lines = HeadLines(head);
+  std::string_view version;
+  bool valid = !lines.empty();
+  if (valid) {
+    const std::string_view line = lines[0];
+    const size_t a = line.find(' ');
+    const size_t b = a == std::string_view::npos ? a : line.find(' ', a + 1);
+    valid = b != std::string_view::npos && line.find(' ', b + 1) == std::string_view::npos;
+    if (valid) {
+      const std::string_view method = line.substr(0, a);
+      const std::string_view target = line.substr(a + 1, b - a - 1);
+      version = line.substr(b + 1);
+      valid = IsToken(method) && (version == "HTTP/1.1" || version == "HTTP/1.0") &&
+              !target.empty() && target.front() == '/' &&
+              std::none_of(target.begin(), target.end(),
+                           [](unsigned char ch) { return ch <= 0x20 || ch >= 0x7f; });
+      request.method = method;
+      request.target = target;
+    }
+  }
+  request.keep_alive = version == "HTTP/1.1";
+  for (size_t i = 1; valid && i < lines.size(); ++i) {
+    const size_t colon = lines[i].find(':');
+    if (colon == std::string_view::npos || !IsToken(lines[i].substr(0, colon))) {
+      valid = false;
+      break;
+    }
+    const std::string name = Lowercase(lines[i].substr(0, colon));
+    const std::string value = Lowercase(TrimSpaces(lines[i].substr(colon + 1)));
+    if (name == "connection") {
+      if (value.find("close") != std::string::npos) request.keep_alive = false;
+      if (value.find("keep-alive") != std::string::npos) request.keep_alive = true;
+    } else if ((name == "content-length" && value != "0") || name == "transfer-encoding") {
+      request.has_body = true;
+    }
+  }
+  request.valid = valid;
+  return request;
+}
+
 }  // namespace
 
 std::filesystem::path DefaultViewerAssetDirectory() { return GRASPSYNTH_VIEWER_DIR; }
@@ -347,43 +398,9 @@ void ViewerServer::HandleInput(Connection* c) {
   } else {
     const std::string head = c->in.substr(0, end);
     c->in.erase(0, end);
-    const std::vector<std::string_view> lines = HeadLines(head);
-    // request line: METHOD SP TARGET SP HTTP/1.x
-    std::string_view target;
-    std::string_view version;
-    bool valid = !lines.empty();
-    if (valid) {
-      const std::string_view line = lines[0];
-      const size_t a = line.find(' ');
-      const size_t b = a == std::string_view::npos ? a : line.find(' ', a + 1);
-      valid = b != std::string_view::npos && line.find(' ', b + 1) == std::string_view::npos;
-      if (valid) {
-        method = line.substr(0, a);
-        target = line.substr(a + 1, b - a - 1);
-        version = line.substr(b + 1);
-        valid = IsToken(method) && (version == "HTTP/1.1" || version == "HTTP/1.0") &&
-                !target.empty() && target.front() == '/' &&
-                std::none_of(target.begin(), target.end(),
-                             [](unsigned char ch) { return ch <= 0x20 || ch >= 0x7f; });
-      }
-    }
-    bool keep_alive = version == "HTTP/1.1";
-    bool has_body = false;
-    for (size_t i = 1; valid && i < lines.size(); ++i) {
-      const size_t colon = lines[i].find(':');
-      if (colon == std::string_view::npos || !IsToken(lines[i].substr(0, colon))) {
-        valid = false;
-        break;
-      }
-      const std::string name = Lowercase(lines[i].substr(0, colon));
-      const std::string value = Lowercase(TrimSpaces(lines[i].substr(colon + 1)));
-      if (name == "connection") {
-        if (value.find("close") != std::string::npos) keep_alive = false;
-        if (value.find("keep-alive") != std::string::npos) keep_alive = true;
-      } else if ((name == "content-length" && value != "0") || name == "transfer-encoding") {
-        has_body = true;
-      }
-    }
+    const RequestHead request = ParseRequestHead(head);
+    method = request.method;
+    const bool valid = request.valid, keep_alive = request.keep_alive, has_body = request.has_body;
     if (!valid) {
       response = {400, "text/plain; charset=utf-8", Text("malformed request"), true};
     } else if (has_body) {
@@ -391,7 +408,7 @@ void ViewerServer::HandleInput(Connection* c) {
     } else if (method != "GET" && method != "HEAD") {
       response = {405, "text/plain; charset=utf-8", Text("only GET and HEAD"), !keep_alive};
     } else {
-      response = Answer(std::string(target));
+      response = Answer(request.target);
       response.close = !keep_alive;
     }
   }

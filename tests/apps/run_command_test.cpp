@@ -23,7 +23,7 @@ using ::testing::HasSubstr;
 using testing::ReadFileText;
 using testing::RunGraspsynth;
 
-const fs::path kShippedDemos = fs::path(testing::SourceDir()) / "learning_data" / "demos";
+const fs::path kShippedDemos = fs::path(::testing::SourceDir()) / "learning_data" / "demos";
 
 class RunCommand : public ::testing::Test {
  protected:

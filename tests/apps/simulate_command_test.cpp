@@ -21,7 +21,7 @@ using ::testing::HasSubstr;
 using testing::ReadFileText;
 using testing::RunGraspsynth;
 
-std::string Example() { return std::string(testing::SourceDir()) + "/examples/grasp_60deg.json"; }
+std::string Example() { return std::string(::testing::SourceDir()) + "/examples/grasp_60deg.json"; }
 
 // A scratch folder per test.
 class SimulateCommand : public ::testing::Test {

@@ -36,14 +36,14 @@ fs::path TempDir(const std::string& name) {
 
 // `graspsynth args...` in the background.
 pid_t Spawn(const std::vector<std::string>& args) {
-  std::vector<std::string> all = {testing::GraspsynthBinary()};
+  std::vector<std::string> all = {::testing::GraspsynthBinary()};
   all.insert(all.end(), args.begin(), args.end());
   std::vector<char*> argv;
   for (std::string& a : all) argv.push_back(a.data());
   argv.push_back(nullptr);
   pid_t pid = -1;
-  EXPECT_EQ(posix_spawn(&pid, testing::GraspsynthBinary(), nullptr, nullptr, argv.data(), environ),
-            0);
+  EXPECT_EQ(
+      posix_spawn(&pid, ::testing::GraspsynthBinary(), nullptr, nullptr, argv.data(), environ), 0);
   return pid;
 }
 
@@ -174,8 +174,8 @@ TEST(TeleopCommand, AReplayedTrialIsRecordedAgainWithTheSameOutcome) {
 TEST(TeleopCommand, AShippedSyntheticTrialIsRecordedAgainWithTheSameOutcome) {
   // a trial of the synthetic operator (learning_data/demos), made by a different path than the
   // scripted grasp: its own rest pose, reach and hook grip.
-  const DemoLog original = ReadDemoLog(fs::path(testing::SourceDir()) / "learning_data" / "demos" /
-                                       "theta100_trial01.csv");
+  const DemoLog original = ReadDemoLog(fs::path(::testing::SourceDir()) / "learning_data" /
+                                       "demos" / "theta100_trial01.csv");
   ExpectRecordedAgain(original, "100", "synthetic");
 }
 

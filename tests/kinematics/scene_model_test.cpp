@@ -13,7 +13,7 @@ namespace graspsynth {
 namespace {
 
 std::string ShippedSceneText() {
-  return testing::ReadFileText(std::string(testing::SourceDir()) + "/models/scene.json");
+  return testing::ReadFileText(std::string(::testing::SourceDir()) + "/models/scene.json");
 }
 
 // The shipped scene with one field replaced (a JSON pointer such as "/object/body_radius").

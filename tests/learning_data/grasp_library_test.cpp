@@ -327,7 +327,7 @@ TEST_F(MalformedLibrary, ThetaThatDoesNotIncrease) {
 TEST(GraspLibrary, DefaultPathIsUnderTheDataDirectory) {
   ::unsetenv("GRASPSYNTH_DATA_DIR");
   EXPECT_EQ(DefaultGraspLibraryPath(),
-            std::filesystem::path(testing::SourceDir()) / "learning_data" / "library.json");
+            std::filesystem::path(::testing::SourceDir()) / "learning_data" / "library.json");
   ::setenv("GRASPSYNTH_DATA_DIR", "/opt/graspsynth", 1);
   EXPECT_EQ(DefaultGraspLibraryPath(),
             std::filesystem::path("/opt/graspsynth/learning_data/library.json"));

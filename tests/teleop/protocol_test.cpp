@@ -44,7 +44,7 @@ TEST(Protocol, CommandRoundTrip) {
 }
 
 TEST(Protocol, StateAndEndOfSessionRoundTrip) {
-  RobotState s;
+  RobotStateMessage s;
   s.sequence = 7;
   s.arm = Vector7d::LinSpaced(-1.0, 1.0);
   s.hand = HandVector::Constant(0.25);
@@ -76,7 +76,7 @@ std::vector<uint8_t> Reseal(std::vector<uint8_t> bytes) {
 TEST(Protocol, StateFlagsAreDistinctBitsAndRoundTrip) {
   const uint32_t all = kHoldingStill | kRecording | kLastTrialSucceeded | kOutOfReach | kJudging;
   EXPECT_EQ(all, 31u);
-  RobotState s;
+  RobotStateMessage s;
   s.flags = kHoldingStill | kOutOfReach | kJudging;
   const DecodeResult r = Decode(EncodeState(s));
   ASSERT_TRUE(r.packet);

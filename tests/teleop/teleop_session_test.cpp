@@ -68,6 +68,10 @@ TEST(TeleopOptions, RejectsBadValues) {
   EXPECT_FALSE(o.IsValid(&why));
   EXPECT_NE(why.find("timeout_s"), std::string::npos);
   EXPECT_THROW(TeleopSession session(ShippedSimulationModel(), o), InputError);
+  o = {};
+  o.judge.lift_threshold = -0.05;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_NE(why.find("judge.lift_threshold"), std::string::npos) << why;
 }
 
 TEST(TeleopSession, SplitsTheTickIntoEqualPhysicsSteps) {
@@ -125,7 +129,7 @@ TEST(TeleopSession, DropsBadPacketsByReasonWhileTheRobotStaysControllable) {
     std::vector<uint8_t> garbage(200);
     for (uint8_t& b : garbage) b = static_cast<uint8_t>(rng());
     in.push_back(Wrap(garbage));
-    RobotState state;  // a state sent to the server: not a kind it takes
+    RobotStateMessage state;  // a state sent to the server: not a kind it takes
     in.push_back(Wrap(EncodeState(state)));
     in.push_back(Wrap(good));
     in.push_back(Wrap(good));                             // duplicate
@@ -310,7 +314,11 @@ TEST(TeleopSession, RecordsATrialThatPassesTheLogReader) {
   }
   for (; k < 200 && !ended; ++k) ended = session.Step({}, k * kTick).trial;
   ASSERT_TRUE(ended);
-  EXPECT_EQ(ended->outcome, "not_lifted");
+  EXPECT_EQ(ended->outcome, TrialOutcome::kNotLifted);
+  EXPECT_EQ(OutcomeName(*ended), "not_lifted");
+  // the judgement of the offline trials, with its wording.
+  EXPECT_NE(ended->reason.find("object not lifted: its centre rose at most"), std::string::npos)
+      << ended->reason;
   EXPECT_FALSE(ended->success);
   EXPECT_TRUE(ended->has_grasp);
   ASSERT_FALSE(ended->file.empty()) << ended->not_written;
@@ -337,6 +345,31 @@ TEST(TeleopSession, RecordsATrialThatPassesTheLogReader) {
   EXPECT_EQ(summary["packets"]["ignored_while_judging"], 60 - 46);
   EXPECT_EQ(summary["packets"]["dropped"]["bad_checksum"], 0);
   std::filesystem::remove_all(options.record_dir);
+}
+
+// the operator drives the hand down into the table beside the object: the arm-table contact
+// decides the trial when it is judged, with the offline trials' outcome and wording.
+TEST(TeleopSession, DrivingTheHandIntoTheTableIsACollision) {
+  TeleopOptions options = SixtyDegrees();
+  options.end_hold_s = 0.1;
+  TeleopSession session(ShippedSimulationModel(), options);
+  const Eigen::Isometry3d start = RestWrist();
+  const Eigen::Isometry3d below = RestWrist(Eigen::Vector3d(-0.10, -0.10, -0.40));
+  std::optional<TrialRecord> ended;
+  int k = 0;
+  for (; k < 200 && !ended; ++k) {
+    const double a = std::min(1.0, k / 120.0);
+    Eigen::Isometry3d X = start;
+    X.translation() = (1 - a) * start.translation() + a * below.translation();
+    const uint8_t buttons = k == 150 ? kEndTrialButton : 0;
+    const Datagram d = Wrap(EncodeCommand(JointCommand(k, X, TeleopSession::RestHand(), buttons)));
+    ended = session.Step({&d, 1}, k * kTick).trial;
+  }
+  for (; k < 300 && !ended; ++k) ended = session.Step({}, k * kTick).trial;
+  ASSERT_TRUE(ended);
+  EXPECT_EQ(ended->outcome, TrialOutcome::kCollision) << ended->reason;
+  EXPECT_EQ(OutcomeName(*ended), "collision");
+  EXPECT_NE(ended->reason.find(" hit the table at t = "), std::string::npos) << ended->reason;
 }
 
 TEST(TeleopSession, ATrialWithoutAGraspIsJudgedButNotWritten) {
@@ -372,7 +405,8 @@ TEST(TeleopSession, NextOrientationAbandonsTheTrialAndResetsTheWorld) {
   const TickResult r = session.Step({&next, 1}, 10 * kTick);
   EXPECT_EQ(session.theta_deg(), 80.0);
   ASSERT_TRUE(r.trial);
-  EXPECT_EQ(r.trial->outcome, "abandoned");
+  EXPECT_FALSE(r.trial->outcome.has_value());
+  EXPECT_EQ(OutcomeName(*r.trial), "abandoned");
   const Vector7d rest80 = TeleopSession::RestArm(Robot(), ShippedSimulationModel().scene(), 80.0);
   EXPECT_LT((session.arm() - rest80).cwiseAbs().maxCoeff(), 1e-6);
   const double theta = 80.0 * M_PI / 180.0;
@@ -391,7 +425,10 @@ TEST(TeleopSession, AnEndOfSessionPacketFinishesTheSession) {
   EXPECT_TRUE(r.finished);
   EXPECT_TRUE(session.finished());
   ASSERT_TRUE(r.trial);  // the open trial had no end: abandoned
-  EXPECT_EQ(r.trial->outcome, "abandoned");
+  EXPECT_FALSE(r.trial->outcome.has_value());
+  EXPECT_EQ(OutcomeName(*r.trial), "abandoned");
+  const nlohmann::json summary = nlohmann::json::parse(session.SummaryJson("test", 1.0));
+  EXPECT_EQ(summary["trials"][0]["outcome"], "abandoned");
 }
 
 }  // namespace

@@ -1,0 +1,107 @@
+#pragma once
+
+/// @file
+/// The judgement of a grasp-and-lift trial, shared by the offline trials (simulation/trial.hpp)
+/// and the live teleoperation session (teleop/teleop_session.hpp), and the physics step both
+/// take. DESIGN.md defines success: after the lift and a hold, the object's centre is at least
+/// lift_threshold above its resting height and the object touches only the hand.
+///
+/// A trial is watched step by step:
+/// 1. after each step, EarlyVerdict decides what ends a trial at once: an arm command outside
+///    the joint limits, the arm or the palm on the table, a numerical instability;
+/// 2. otherwise WatchStep updates the figures the judgement needs (TrialWatch: lift, highest
+///    lift, time off the table, tilt, shift on the table, deepest penetration);
+/// 3. at the end, JudgeTrial turns the world's last contacts and the watch into the outcome.
+
+#include <cmath>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "kinematics/arm_model.hpp"
+#include "simulation/simulation_data.hpp"
+
+namespace graspsynth {
+
+/// How a trial ended.
+enum class TrialOutcome {
+  kSuccess,       ///< lifted >= lift_threshold, held, touching only the hand
+  kNotLifted,     ///< the object never left the table (no grasp)
+  kDropped,       ///< the object had been lifted, then slipped or dropped
+  kKnockedOver,   ///< the object was knocked over or pushed away without being lifted
+  kTouchesOther,  ///< lifted, but resting on something other than the hand (the arm)
+  kCollision,     ///< the arm, the hand mount or the palm hit the table
+  kJointLimit,    ///< an arm command outside the joint limits (the controller stops there)
+  kUnstable,      ///< numerical instability: non-finite state or runaway energy
+};
+
+/// Lowercase name of an outcome, e.g. "not_lifted" (report files use it).
+std::string_view ToString(TrialOutcome outcome);
+
+/// The thresholds of the judgement.
+struct TrialJudgeOptions {
+  /// Success needs the object centre this far above its resting height at the end, m.
+  double lift_threshold = 0.05;
+  /// Below this lift the object counts as not lifted (for the failure reason), m.
+  double lifted_min = 0.01;
+  /// Object tilt (rad) or horizontal shift (m) beyond which an object that was not lifted
+  /// counts as knocked over or pushed away.
+  double knocked_tilt = 20.0 * M_PI / 180.0;
+  double knocked_shift = 0.03;
+  /// Instability: a finger or the object faster than this (m/s, rad/s) or with more kinetic
+  /// energy (J; the hand moves at well under 1 m/s) is a numerical failure.
+  double max_speed = 5.0;
+  double max_angular_speed = 200.0;
+  double max_kinetic_energy = 2.0;
+
+  /// True when every value is finite and in range; otherwise false with the reason.
+  bool IsValid(std::string* why) const;
+};
+
+/// An outcome and the sentence, with the figures, that decided it.
+struct TrialVerdict {
+  TrialOutcome outcome = TrialOutcome::kUnstable;
+  std::string reason;
+};
+
+/// The figures of a trial that its judgement needs, updated after every step by WatchStep.
+struct TrialWatch {
+  Eigen::Isometry3d X_WO_rest = Eigen::Isometry3d::Identity();  ///< object pose at rest
+  double max_lift = 0.0;         ///< highest the object centre got above its rest height, m
+  double max_penetration = 0.0;  ///< deepest contact involving the object, m
+  double max_tilt = 0.0;         ///< largest angle of the object's up axis from vertical, rad
+  double max_shift = 0.0;        ///< largest horizontal distance from its rest position, m
+  double airborne_since = -1.0;  ///< time (s) the object last left the table, or -1
+  bool was_lifted = false;       ///< off the table, >= lifted_min up, for 0.1 s or more
+};
+
+/// A watch of a trial whose object rests at X_WO_rest.
+TrialWatch StartTrialWatch(const Eigen::Isometry3d& X_WO_rest);
+
+/// Updates `watch` from the world after a step.
+void WatchStep(const SimulationData& data, const TrialJudgeOptions& options, TrialWatch* watch);
+
+/// What ends a trial at once after a step, checked in this order: an arm joint commanded
+/// beyond its limit (`arm` names it), an arm link or the palm on the table, a non-finite state
+/// or a finger or the object faster or more energetic than the options allow. std::nullopt when
+/// the trial goes on.
+std::optional<TrialVerdict> EarlyVerdict(const SimulationData& data, const ArmModel& arm,
+                                         const TrialJudgeOptions& options);
+
+/// The verdict of an ODE failure (`what`) at simulated time `t` (s).
+TrialVerdict OdeFailureVerdict(double t, const char* what);
+
+/// Judges a trial at its end from the world's last contacts and object pose and the watch;
+/// `held` (s) is how long the last command was held (for the reason). In this order: success,
+/// resting on the arm (touches_other), dropped, knocked over, not lifted.
+TrialVerdict JudgeTrial(const SimulationData& data, const TrialWatch& watch, double held,
+                        const TrialJudgeOptions& options);
+
+/// One physics step of a trial whose arm follows its controller kinematically: while
+/// `*free_space`, a kinematic step without contact detail (SimulationData::StepKinematically),
+/// until some robot geometry comes near the object (SimulationData::HandNearObject) or anything
+/// touches; from then on (`*free_space` turns false) full steps. Throws what the steps throw
+/// (OdeError).
+void StepTrialWorld(SimulationData* data, bool* free_space);
+
+}  // namespace graspsynth
