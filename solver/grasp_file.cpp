@@ -50,7 +50,7 @@ std::string GraspFileToJson(const SynthesisResult& s, const PhysicsGateResult* g
   j["method"] = {{"requested", ToString(s.requested)},
                  {"used", ToString(s.used)},
                  {"fallback", s.fallback},
-                 {"reason", s.fallback_reason}};
+                 {"reason", s.fallback_reason.Text()}};
   if (s.side != 0) j["method"]["side"] = s.side;
   j["reach"] = {{"used", ToString(s.reach_used)}, {"reason", s.reach_reason}};
   const Bracket& b = s.bracket;
@@ -82,7 +82,7 @@ std::string GraspFileToJson(const SynthesisResult& s, const PhysicsGateResult* g
   const RefinementReport& r = s.refinement;
   json ref = {{"refined", s.refined}};
   if (s.refined) {
-    ref["kept"] = r.kept;
+    ref["kept"] = ToString(r.kept);
     ref["time_s"] = r.time_s;
     ref["before"] = Constraints(r.before);
     ref["after_ceres"] = Constraints(r.after_ceres);

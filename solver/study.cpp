@@ -321,7 +321,7 @@ std::vector<StudyRow> SynthesisTable(const SimulationModel& model, const GraspLi
       if (s.ok()) {
         row.used = ToString(s.used);
         row.fallback = s.fallback;
-        row.fallback_reason = s.fallback_reason;
+        row.fallback_reason = s.fallback_reason.Text();
         row.refined = s.refined;
         PhysicsGateOptions go;
         go.perturbations = options.gate_perturbations;
