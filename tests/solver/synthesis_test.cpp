@@ -93,7 +93,8 @@ TEST(Synthesis, HardCaseFallsBackAndSaysWhy) {
   EXPECT_FALSE(r.bracket.blendable);
   EXPECT_TRUE(r.fallback);
   EXPECT_NE(r.used, SynthesisMethod::kInterp);
-  EXPECT_NE(r.fallback_reason.Text().find("sides of the handle"), std::string::npos) << r.fallback_reason.Text();
+  EXPECT_NE(r.fallback_reason.Text().find("sides of the handle"), std::string::npos)
+      << r.fallback_reason.Text();
   // the hand lies across the handle: its long axis z_H at least 60 deg from the handle.
   const Eigen::Vector3d h =
       ShippedSimulationModel().scene().ObjectPose(45.0 * kDeg).linear().col(0);
