@@ -114,11 +114,11 @@ SideKnot SideModel::At(double theta) const {
 namespace {
 
 // The knot of a library grasping motion at object orientation theta (rad, object pose X_WO)
-// on `side`, its approach resampled to n waypoints; the handle axis point under the hand in H
-// in *handle_H.
+// on `side`, its approach resampled to n waypoints; the handle axis point under the hand in H,
+// weighted by `weight`, added to *handle_in_hand.
 SideKnot KnotOf(const SceneModel& scene, const GraspingMotion& motion,
-                const Eigen::Isometry3d& X_WO, double theta, int side, int n,
-                Eigen::Vector3d* handle_H) {
+                const Eigen::Isometry3d& X_WO, double theta, int side, int n, double weight,
+                Eigen::Vector3d* handle_in_hand) {
   const MotionWaypoint& g = motion.grasp();
   const Eigen::Matrix3d R_G = g.q_WH.toRotationMatrix();
   const double yaw = HandYaw(R_G);
@@ -146,7 +146,7 @@ SideKnot KnotOf(const SceneModel& scene, const GraspingMotion& motion,
   const double sine = cross(u, h.head<2>());
   const double crossing = std::abs(sine) > 0.1 ? -cross(u, d) / sine : (g.p_WH - a0).dot(h);
   const double along = std::clamp(crossing, o.handle_start_radius, o.handle_end_radius);
-  *handle_H = R_G.transpose() * (a0 + along * h - g.p_WH);
+  *handle_in_hand += weight * (R_G.transpose() * (a0 + along * h - g.p_WH));
   // the approach relative to the grasp.
   const GraspingMotion r = Resample(motion, n);
   knot.duration = r.duration();
@@ -217,9 +217,8 @@ LinePrincipleModel FitLinePrinciple(const GraspLibrary& library, const SceneMode
     const Eigen::Isometry3d X_WO = scene.ObjectPose(theta[k]);
     s.push_back(line.direction.dot(points[k] - line.point));
     const int side = model.entry_sides[used[k]];
-    Eigen::Vector3d handle_H;
-    const SideKnot knot = KnotOf(scene, e.motion, X_WO, theta[k], side, n, &handle_H);
-    model.handle_in_hand += inv * handle_H;
+    const SideKnot knot =
+        KnotOf(scene, e.motion, X_WO, theta[k], side, n, inv, &model.handle_in_hand);
     model.sides[side > 0 ? 1 : 0].knots.push_back(knot);  // used[] is theta-increasing
   }
   model.s = FitLinear(theta, s);
