@@ -32,7 +32,7 @@ inline ArmModel Pa10FromDh() {
 
 /// The shipped robot description.
 inline std::string ShippedUrdfPath() {
-  return std::string(::testing::SourceDir()) + "/models/pa10_gifu3.urdf";
+  return std::string(testing::SourceDir()) + "/models/pa10_gifu3.urdf";
 }
 
 }  // namespace graspsynth::testing

@@ -39,7 +39,7 @@ inline CommandOutput RunGraspsynth(const std::string& args, const std::string& i
                                    info->name() + "_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   std::ofstream(dir / "in") << input;
-  const std::string command = std::string(::testing::GraspsynthBinary()) + " " + args + " < " +
+  const std::string command = std::string(testing::GraspsynthBinary()) + " " + args + " < " +
                               (dir / "in").string() + " > " + (dir / "out").string() + " 2> " +
                               (dir / "err").string();
   const int status = std::system(command.c_str());

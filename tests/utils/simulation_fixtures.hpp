@@ -21,7 +21,7 @@ inline const SimulationModel& ShippedSimulationModel() {
 }
 
 inline std::string ExamplePath() {
-  return std::string(::testing::SourceDir()) + "/examples/grasp_60deg.json";
+  return std::string(testing::SourceDir()) + "/examples/grasp_60deg.json";
 }
 
 /// examples/grasp_60deg.json, loaded and limit-checked.
