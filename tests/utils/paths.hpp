@@ -12,3 +12,9 @@ const char* SourceDir();
 const char* GraspsynthBinary();
 
 }  // namespace testing
+
+// the same names inside graspsynth, where graspsynth::testing (eigen_matchers.hpp) hides ::testing.
+namespace graspsynth::testing {
+using ::testing::GraspsynthBinary;
+using ::testing::SourceDir;
+}  // namespace graspsynth::testing
