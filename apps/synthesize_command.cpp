@@ -94,9 +94,9 @@ int RunSynthesize(const SynthesizeOptions& o) {
       return 1;
   }
   std::cerr << "synthesized theta " << o.theta << " deg by " << ToString(s.used)
-            << (s.fallback ? " (fallback: " + s.fallback_reason + ")" : std::string()) << ": "
-            << s.trajectory.samples.size() << " samples, " << s.trajectory.duration() << " s; "
-            << ToString(s.reach_used) << " reach (" << s.reach_reason << "); "
+            << (s.fallback ? " (fallback: " + s.fallback_reason.Text() + ")" : std::string())
+            << ": " << s.trajectory.samples.size() << " samples, " << s.trajectory.duration()
+            << " s; " << ToString(s.reach_used) << " reach (" << s.reach_reason << "); "
             << "generate " << s.generate_s * 1e3 << " ms, refine " << s.refine_s * 1e3
             << " ms, joints " << s.joints_s * 1e3 << " ms\n";
   if (s.refined) std::cerr << "refinement: " << s.refinement.BriefReport() << "\n";

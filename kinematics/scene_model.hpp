@@ -62,6 +62,13 @@ struct GraspRegionModel {
   double height = 1.0;   ///< cylinder: full height, centred on the object centre, m
 };
 
+/// Where the object stands on the table: its orientation theta about the vertical (rad), at
+/// the scene's object centre. The one value a task carries down to every stage; a position on
+/// the table would be a further field here, read by SceneModel::ObjectPose alone.
+struct Placement {
+  double theta = 0.0;  ///< rad
+};
+
 /// Table, object and grasp region.
 struct SceneModel {
   std::string source;
@@ -71,6 +78,10 @@ struct SceneModel {
 
   /// Pose X_WO of the object frame at rest on the table at orientation theta (radians).
   Eigen::Isometry3d ObjectPose(double theta) const;
+  /// Pose X_WO of the object frame at rest on the table at `placement`.
+  Eigen::Isometry3d ObjectPose(const Placement& placement) const {
+    return ObjectPose(placement.theta);
+  }
 };
 
 /// Parses a scene description (format graspsynth-scene/1). `source` names it in messages.

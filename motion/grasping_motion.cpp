@@ -4,6 +4,13 @@
 
 namespace graspsynth {
 
+Eigen::Isometry3d WaypointPose(const MotionWaypoint& w) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = w.q_WH.toRotationMatrix();
+  X.translation() = w.p_WH;
+  return X;
+}
+
 bool IsWellFormed(const GraspingMotion& motion, std::string* why) {
   const auto fail = [why](const std::string& text) {
     if (why) *why = text;

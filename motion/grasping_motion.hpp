@@ -33,6 +33,9 @@ struct GraspingMotion {
   const MotionWaypoint& grasp() const { return waypoints.back(); }
 };
 
+/// The wrist pose X_WH of waypoint `w` (rotation from its quaternion, translation p_WH).
+Eigen::Isometry3d WaypointPose(const MotionWaypoint& w);
+
 /// Checks what every producer of a GraspingMotion must guarantee: at least two waypoints,
 /// the first at t = 0, times strictly increasing, finite values and unit quaternions (1e-9).
 /// Returns false and says why in `why` otherwise.

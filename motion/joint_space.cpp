@@ -36,6 +36,16 @@ std::optional<double> ChoosePsi(const std::vector<Interval>& feasible, double ps
 
 }  // namespace
 
+double WidestArmAngleWidth(const RobotModel& robot, const Eigen::Isometry3d& X_WH,
+                           ArmBranch branch) {
+  const Eigen::Isometry3d X_WF = X_WH * robot.X_FH.inverse();
+  const ArmTargetForm form = PrepareArmTarget(robot.arm, X_WF, branch.gc4);
+  if (form.status != IkStatus::kOk) return 0.0;
+  const std::optional<Interval> widest =
+      WidestInterval(FeasibleArmAngles(robot.arm, form, branch.gc2, branch.gc6));
+  return widest ? widest->width() : 0.0;
+}
+
 bool JointSpaceOptions::IsValid(std::string* why) const {
   const auto fail = [why](const char* text) {
     if (why) *why = text;

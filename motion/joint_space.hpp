@@ -86,4 +86,10 @@ std::optional<Vector7d> SolveWristPose(const RobotModel& robot, const Eigen::Iso
                                        ArmBranch branch, double psi, const Vector7d& q_near,
                                        double margin = 5.0 * M_PI / 180.0);
 
+/// The width of the widest feasible arm-angle arc of wrist pose X_WH (hand mount H in world)
+/// on `branch`, rad; 0 when the pose has none (outside the workspace or every arm angle beyond
+/// a joint limit).
+double WidestArmAngleWidth(const RobotModel& robot, const Eigen::Isometry3d& X_WH,
+                           ArmBranch branch);
+
 }  // namespace graspsynth

@@ -44,26 +44,112 @@ json Constraints(const RefinementConstraints& c) {
 
 }  // namespace
 
+namespace {
+
+json MethodJson(const SynthesisResult& s) {
+  json m = {{"requested", ToString(s.requested)},
+            {"used", ToString(s.used)},
+            {"fallback", s.fallback},
+            {"reason", s.fallback_reason.Text()}};
+  if (s.side != 0) m["side"] = s.side;
+  return m;
+}
+
+json BracketJson(const Bracket& b) {
+  return {{"kind", ToString(b.kind)},
+          {"lower", b.lower},
+          {"upper", b.upper},
+          {"nearest", b.nearest},
+          {"t", b.t},
+          {"blendable", b.blendable},
+          {"reason", b.reason},
+          {"orientation_change_deg", b.orientation_change / kDeg},
+          {"sides", json::array({b.side_lower, b.side_upper})}};
+}
+
+json RefinementJson(const SynthesisResult& s) {
+  const RefinementReport& r = s.refinement;
+  json ref = {{"refined", s.refined}};
+  if (!s.refined) return ref;
+  ref["kept"] = ToString(r.kept);
+  ref["time_s"] = r.time_s;
+  ref["before"] = Constraints(r.before);
+  ref["after_ceres"] = Constraints(r.after_ceres);
+  ref["after"] = Constraints(r.after);
+  ref["ceres"] = {{"run", r.ceres.run},
+                  {"initial_cost", r.ceres.initial_cost},
+                  {"final_cost", r.ceres.final_cost},
+                  {"terms",
+                   {{"fidelity", r.ceres.fidelity},
+                    {"smoothness", r.ceres.smoothness},
+                    {"line", r.ceres.line},
+                    {"reach", r.ceres.reach},
+                    {"reach_before", r.ceres.initial_reach}}},
+                  {"iterations", r.ceres.iterations},
+                  {"termination", r.ceres.termination},
+                  {"time_s", r.ceres.time_s}};
+  ref["nlopt"] = {{"run", r.nlopt.run},
+                  {"algorithm", r.nlopt.algorithm},
+                  {"fallback_used", r.nlopt.fallback_used},
+                  {"termination", r.nlopt.termination},
+                  {"evaluations", r.nlopt.evaluations},
+                  {"initial_objective", r.nlopt.initial_objective},
+                  {"final_objective", r.nlopt.final_objective},
+                  {"shift_m", Vec(r.nlopt.shift)},
+                  {"yaw_deg", r.nlopt.yaw / kDeg},
+                  {"closure", r.nlopt.closure},
+                  {"time_s", r.nlopt.time_s}};
+  ref["thresholds"] = {{"clearance_margin_m", s.clearance_margin},
+                       {"penetration_tolerance_m", s.penetration_tolerance},
+                       {"contact_tolerance_m", s.contact_tolerance}};
+  return ref;
+}
+
+json QualityJson(const PhysicsGateResult& gate) {
+  const GraspQuality& q = gate.quality;
+  return {{"contacts", gate.contacts.size()},
+          {"force_closure", q.force_closure},
+          {"epsilon", q.epsilon},
+          {"volume", q.volume},
+          {"wrenches", q.wrenches},
+          {"facets", q.facets},
+          {"torque_scale_m", q.torque_scale},
+          {"message", q.message}};
+}
+
+json ValidationJson(const PhysicsGateResult& gate, bool forced) {
+  const TrialResult& n = gate.nominal;
+  json v = {{"passed", gate.passed},
+            {"forced", forced},
+            {"reason", gate.reason},
+            {"nominal",
+             {{"success", n.success()},
+              {"outcome", ToString(n.outcome)},
+              {"reason", n.reason},
+              {"lift_m", n.lift},
+              {"max_lift_m", n.max_lift},
+              {"max_penetration_m", n.max_penetration}}}};
+  if (gate.robustness_run) {
+    const RobustnessResult& rb = gate.robustness;
+    v["robustness"] = {{"trials", rb.trials.size()},
+                       {"successes", rb.successes},
+                       {"score", rb.score},
+                       {"ci95", json::array({rb.ci95.lo, rb.ci95.hi})}};
+  } else {
+    v["robustness"] = nullptr;
+  }
+  return v;
+}
+
+}  // namespace
+
 std::string GraspFileToJson(const SynthesisResult& s, const PhysicsGateResult* gate, bool forced) {
   json j;
   j["format"] = kGraspFileFormat;
   j["theta_deg"] = s.theta_deg;
-  j["method"] = {{"requested", ToString(s.requested)},
-                 {"used", ToString(s.used)},
-                 {"fallback", s.fallback},
-                 {"reason", s.fallback_reason}};
-  if (s.side != 0) j["method"]["side"] = s.side;
+  j["method"] = MethodJson(s);
   j["reach"] = {{"used", ToString(s.reach_used)}, {"reason", s.reach_reason}};
-  const Bracket& b = s.bracket;
-  j["bracket"] = {{"kind", ToString(b.kind)},
-                  {"lower", b.lower},
-                  {"upper", b.upper},
-                  {"nearest", b.nearest},
-                  {"t", b.t},
-                  {"blendable", b.blendable},
-                  {"reason", b.reason},
-                  {"orientation_change_deg", b.orientation_change / kDeg},
-                  {"sides", json::array({b.side_lower, b.side_upper})}};
+  j["bracket"] = BracketJson(s.bracket);
   json sources = json::array();
   for (const SourceDemo& d : s.sources) {
     sources.push_back(
@@ -80,76 +166,11 @@ std::string GraspFileToJson(const SynthesisResult& s, const PhysicsGateResult* g
   }
   j["waypoints"] = waypoints;
   j["trajectory"] = json::parse(JointTrajectoryToJson(s.trajectory));
-  const RefinementReport& r = s.refinement;
-  json ref = {{"refined", s.refined}};
-  if (s.refined) {
-    ref["kept"] = r.kept;
-    ref["time_s"] = r.time_s;
-    ref["before"] = Constraints(r.before);
-    ref["after_ceres"] = Constraints(r.after_ceres);
-    ref["after"] = Constraints(r.after);
-    ref["ceres"] = {{"run", r.ceres.run},
-                    {"initial_cost", r.ceres.initial_cost},
-                    {"final_cost", r.ceres.final_cost},
-                    {"terms",
-                     {{"fidelity", r.ceres.fidelity},
-                      {"smoothness", r.ceres.smoothness},
-                      {"line", r.ceres.line},
-                      {"reach", r.ceres.reach},
-                      {"reach_before", r.ceres.initial_reach}}},
-                    {"iterations", r.ceres.iterations},
-                    {"termination", r.ceres.termination},
-                    {"time_s", r.ceres.time_s}};
-    ref["nlopt"] = {{"run", r.nlopt.run},
-                    {"algorithm", r.nlopt.algorithm},
-                    {"fallback_used", r.nlopt.fallback_used},
-                    {"termination", r.nlopt.termination},
-                    {"evaluations", r.nlopt.evaluations},
-                    {"initial_objective", r.nlopt.initial_objective},
-                    {"final_objective", r.nlopt.final_objective},
-                    {"shift_m", Vec(r.nlopt.shift)},
-                    {"yaw_deg", r.nlopt.yaw / kDeg},
-                    {"closure", r.nlopt.closure},
-                    {"time_s", r.nlopt.time_s}};
-  }
-  if (s.refined) {
-    ref["thresholds"] = {{"clearance_margin_m", s.clearance_margin},
-                         {"penetration_tolerance_m", s.penetration_tolerance},
-                         {"contact_tolerance_m", s.contact_tolerance}};
-  }
-  j["refinement"] = ref;
+  j["refinement"] = RefinementJson(s);
   json timing = {{"generate_s", s.generate_s}, {"refine_s", s.refine_s}, {"joints_s", s.joints_s}};
   if (gate) {
-    const GraspQuality& q = gate->quality;
-    j["quality"] = {{"contacts", gate->contacts.size()},
-                    {"force_closure", q.force_closure},
-                    {"epsilon", q.epsilon},
-                    {"volume", q.volume},
-                    {"wrenches", q.wrenches},
-                    {"facets", q.facets},
-                    {"torque_scale_m", q.torque_scale},
-                    {"message", q.message}};
-    const TrialResult& n = gate->nominal;
-    json v = {{"passed", gate->passed},
-              {"forced", forced},
-              {"reason", gate->reason},
-              {"nominal",
-               {{"success", n.success()},
-                {"outcome", ToString(n.outcome)},
-                {"reason", n.reason},
-                {"lift_m", n.lift},
-                {"max_lift_m", n.max_lift},
-                {"max_penetration_m", n.max_penetration}}}};
-    if (gate->robustness_run) {
-      const RobustnessResult& rb = gate->robustness;
-      v["robustness"] = {{"trials", rb.trials.size()},
-                         {"successes", rb.successes},
-                         {"score", rb.score},
-                         {"ci95", json::array({rb.ci95.lo, rb.ci95.hi})}};
-    } else {
-      v["robustness"] = nullptr;
-    }
-    j["validation"] = v;
+    j["quality"] = QualityJson(*gate);
+    j["validation"] = ValidationJson(*gate, forced);
     timing["gate_s"] = gate->time_s;
   } else {
     j["quality"] = nullptr;

@@ -111,6 +111,60 @@ SideKnot SideModel::At(double theta) const {
   return k;
 }
 
+namespace {
+
+// The knot of a library grasping motion at object orientation theta (rad, object pose X_WO)
+// on `side`, its approach resampled to n waypoints; the handle axis point under the hand in H,
+// weighted by `weight`, added to *handle_in_hand.
+SideKnot KnotOf(const SceneModel& scene, const GraspingMotion& motion,
+                const Eigen::Isometry3d& X_WO, double theta, int side, int n, double weight,
+                Eigen::Vector3d* handle_in_hand) {
+  const MotionWaypoint& g = motion.grasp();
+  const Eigen::Matrix3d R_G = g.q_WH.toRotationMatrix();
+  const double yaw = HandYaw(R_G);
+  SideKnot knot;
+  knot.theta = theta;
+  knot.height = g.p_WH.z() - X_WO.translation().z();
+  // unwrap about the side's nominal yaw (+-90 deg: z_H across the handle).
+  const double rel = Wrap(yaw - HandleAngle(scene, theta));
+  knot.yaw = side * M_PI / 2 + Wrap(rel - side * M_PI / 2);
+  knot.residual = RotationVector((Rz(yaw) * CanonicalHand()).transpose() * R_G);
+  knot.fingers = g.f;
+  // the handle axis point under the hand: where the hand's forward axis (z_H, seen from
+  // above) crosses the handle's axis - the bar in the pinch of the scripted grasp and in the
+  // hook of the synthetic operator alike, whatever the hand's yaw; the point nearest the
+  // wrist when the hand lies (nearly) along the handle. In H.
+  const ObjectModel& o = scene.object;
+  const Eigen::Vector3d h = X_WO.linear().col(0);
+  const Eigen::Vector3d a0 =
+      X_WO.translation() + (o.handle_axis_height - o.rest_height()) * Eigen::Vector3d::UnitZ();
+  const Eigen::Vector2d u = R_G.col(2).head<2>().normalized();
+  const Eigen::Vector2d d = (a0 - g.p_WH).head<2>();
+  auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return a.x() * b.y() - a.y() * b.x();
+  };
+  const double sine = cross(u, h.head<2>());
+  const double crossing = std::abs(sine) > 0.1 ? -cross(u, d) / sine : (g.p_WH - a0).dot(h);
+  const double along = std::clamp(crossing, o.handle_start_radius, o.handle_end_radius);
+  *handle_in_hand += weight * (R_G.transpose() * (a0 + along * h - g.p_WH));
+  // the approach relative to the grasp.
+  const GraspingMotion r = Resample(motion, n);
+  knot.duration = r.duration();
+  const Eigen::Matrix3d Ryaw = Rz(-yaw);
+  for (int i = 0; i < n; ++i) {
+    const MotionWaypoint& w = r.waypoints[i];
+    RelativeWaypoint a;
+    a.u = static_cast<double>(i) / (n - 1);
+    a.p = Ryaw * (w.p_WH - g.p_WH);
+    a.r = RotationVector(R_G.transpose() * w.q_WH.toRotationMatrix());
+    a.df = w.f - g.f;
+    knot.approach.push_back(a);
+  }
+  return knot;
+}
+
+}  // namespace
+
 LinePrincipleModel FitLinePrinciple(const GraspLibrary& library, const SceneModel& scene,
                                     const LinePrincipleOptions& options) {
   LinePrincipleModel model;
@@ -161,49 +215,10 @@ LinePrincipleModel FitLinePrinciple(const GraspLibrary& library, const SceneMode
   for (size_t k = 0; k < used.size(); ++k) {
     const LibraryEntry& e = entries[used[k]];
     const Eigen::Isometry3d X_WO = scene.ObjectPose(theta[k]);
-    const MotionWaypoint& g = e.motion.grasp();
     s.push_back(line.direction.dot(points[k] - line.point));
-    const Eigen::Matrix3d R_G = g.q_WH.toRotationMatrix();
-    const double yaw = HandYaw(R_G);
     const int side = model.entry_sides[used[k]];
-    SideKnot knot;
-    knot.theta = theta[k];
-    knot.height = g.p_WH.z() - X_WO.translation().z();
-    // unwrap about the side's nominal yaw (+-90 deg: z_H across the handle).
-    const double rel = Wrap(yaw - HandleAngle(scene, theta[k]));
-    knot.yaw = side * M_PI / 2 + Wrap(rel - side * M_PI / 2);
-    knot.residual = RotationVector((Rz(yaw) * CanonicalHand()).transpose() * R_G);
-    knot.fingers = g.f;
-    // the handle axis point under the hand: where the hand's forward axis (z_H, seen from
-    // above) crosses the handle's axis - the bar in the pinch of the scripted grasp and in the
-    // hook of the synthetic operator alike, whatever the hand's yaw; the point nearest the
-    // wrist when the hand lies (nearly) along the handle. In H.
-    const ObjectModel& o = scene.object;
-    const Eigen::Vector3d h = X_WO.linear().col(0);
-    const Eigen::Vector3d a0 =
-        X_WO.translation() + (o.handle_axis_height - o.rest_height()) * Eigen::Vector3d::UnitZ();
-    const Eigen::Vector2d u = R_G.col(2).head<2>().normalized();
-    const Eigen::Vector2d d = (a0 - g.p_WH).head<2>();
-    auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-      return a.x() * b.y() - a.y() * b.x();
-    };
-    const double sine = cross(u, h.head<2>());
-    const double crossing = std::abs(sine) > 0.1 ? -cross(u, d) / sine : (g.p_WH - a0).dot(h);
-    const double along = std::clamp(crossing, o.handle_start_radius, o.handle_end_radius);
-    model.handle_in_hand += inv * (R_G.transpose() * (a0 + along * h - g.p_WH));
-    // the approach relative to the grasp.
-    const GraspingMotion r = Resample(e.motion, n);
-    knot.duration = r.duration();
-    const Eigen::Matrix3d Ryaw = Rz(-yaw);
-    for (int i = 0; i < n; ++i) {
-      const MotionWaypoint& w = r.waypoints[i];
-      RelativeWaypoint a;
-      a.u = static_cast<double>(i) / (n - 1);
-      a.p = Ryaw * (w.p_WH - g.p_WH);
-      a.r = RotationVector(R_G.transpose() * w.q_WH.toRotationMatrix());
-      a.df = w.f - g.f;
-      knot.approach.push_back(a);
-    }
+    const SideKnot knot =
+        KnotOf(scene, e.motion, X_WO, theta[k], side, n, inv, &model.handle_in_hand);
     model.sides[side > 0 ? 1 : 0].knots.push_back(knot);  // used[] is theta-increasing
   }
   model.s = FitLinear(theta, s);

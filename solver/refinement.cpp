@@ -27,23 +27,6 @@ double Since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-// Widest feasible arm-angle arc of wrist pose X_WH on `branch`, rad (0 when there is none).
-double PsiWidth(const RobotModel& robot, const Eigen::Isometry3d& X_WH, ArmBranch branch) {
-  const Eigen::Isometry3d X_WF = X_WH * robot.X_FH.inverse();
-  const ArmTargetForm form = PrepareArmTarget(robot.arm, X_WF, branch.gc4);
-  if (form.status != IkStatus::kOk) return 0.0;
-  const std::optional<Interval> widest =
-      WidestInterval(FeasibleArmAngles(robot.arm, form, branch.gc2, branch.gc6));
-  return widest ? widest->width() : 0.0;
-}
-
-Eigen::Isometry3d PoseOf(const MotionWaypoint& w) {
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.linear() = w.q_WH.toRotationMatrix();
-  X.translation() = w.p_WH;
-  return X;
-}
-
 // Index of the first waypoint where the fingers have started closing (motion size if never).
 int FingerStart(const GraspingMotion& m, double threshold) {
   const HandVector& f0 = m.waypoints.front().f;
@@ -86,9 +69,9 @@ CheckedStates ChooseStates(const GraspingMotion& m, const RefinementOptions& o) 
   return s;
 }
 
-double HandleAxisDistance(const SceneModel& scene, double theta, const Eigen::Vector3d& p_W) {
-  const Eigen::Isometry3d X_WO = scene.ObjectPose(theta);
-  const ObjectModel& o = scene.object;
+// Distance of p_W from the handle's axis (clamped to the bar) of object `o` at pose X_WO.
+double HandleAxisDistance(const ObjectModel& o, const Eigen::Isometry3d& X_WO,
+                          const Eigen::Vector3d& p_W) {
   const Eigen::Vector3d h = X_WO.linear().col(0);
   const Eigen::Vector3d a0 =
       X_WO.translation() + (o.handle_axis_height - o.rest_height()) * Eigen::Vector3d::UnitZ();
@@ -120,7 +103,7 @@ struct ReachResidual {
   bool operator()(const double* d, double* r) const {
     Eigen::Isometry3d Y = X;
     Y.translation() = b + Eigen::Vector3d(d[0], d[1], d[2]);
-    r[0] = std::max(0.0, min_width - PsiWidth(*robot, Y, branch)) / sigma;
+    r[0] = std::max(0.0, min_width - WidestArmAngleWidth(*robot, Y, branch)) / sigma;
     return true;
   }
 };
@@ -179,6 +162,167 @@ void ConstraintsAt(NloptContext& c, const double* x, double* g) {
   if (c.inputs->handle_in_hand) g[3] = v.contact_error - c.options->contact_tolerance;
 }
 
+// The residual blocks of stage 1, by kind.
+struct CeresTerms {
+  std::vector<ceres::ResidualBlockId> fidelity, smoothness, line, reach;
+};
+
+// Adds stage 1's residuals over the corrections `d` (one per waypoint) to `problem`.
+CeresTerms AddCeresResiduals(const RobotModel& robot, const GraspingMotion& motion,
+                             const RefinementInputs& inputs, const RefinementOptions& options,
+                             std::vector<Eigen::Vector3d>* d, ceres::Problem* problem) {
+  CeresTerms t;
+  const int n = static_cast<int>(motion.waypoints.size());
+  for (int i = 0; i < n; ++i) {
+    t.fidelity.push_back(
+        problem->AddResidualBlock(new ceres::AutoDiffCostFunction<FidelityResidual, 3, 3>(
+                                      new FidelityResidual{1.0 / options.fidelity_sigma}),
+                                  nullptr, (*d)[i].data()));
+  }
+  for (int i = 1; i + 1 < n; ++i) {
+    t.smoothness.push_back(
+        problem->AddResidualBlock(new ceres::AutoDiffCostFunction<SmoothnessResidual, 3, 3, 3, 3>(
+                                      new SmoothnessResidual{1.0 / options.smoothness_sigma}),
+                                  nullptr, (*d)[i - 1].data(), (*d)[i].data(), (*d)[i + 1].data()));
+  }
+  if (inputs.wrist_line) {
+    const Line2d& l = *inputs.wrist_line;
+    const Eigen::Vector2d o = motion.p_WO.head<2>();
+    t.line.push_back(problem->AddResidualBlock(
+        new ceres::AutoDiffCostFunction<LineResidual, 1, 3>(
+            new LineResidual{l.normal(), l.normal().dot(l.point + o), motion.grasp().p_WH.head<2>(),
+                             1.0 / options.line_sigma}),
+        nullptr, (*d)[n - 1].data()));
+  }
+  const ArmBranch branch = BranchOf(inputs.q_start);
+  for (int i = 0; i < n; i += options.reach_stride) {
+    const int k = (i + options.reach_stride >= n) ? n - 1 : i;
+    const MotionWaypoint& w = motion.waypoints[k];
+    t.reach.push_back(problem->AddResidualBlock(
+        new ceres::NumericDiffCostFunction<ReachResidual, ceres::CENTRAL, 1, 3>(new ReachResidual{
+            &robot, w.p_WH, WaypointPose(w), branch, options.min_psi_width, options.reach_sigma}),
+        nullptr, (*d)[k].data()));
+    if (k == n - 1) break;
+  }
+  return t;
+}
+
+// 1/2 the sum of squared residuals of `ids` (0 when there are none).
+double TermCost(ceres::Problem& problem, const std::vector<ceres::ResidualBlockId>& ids) {
+  if (ids.empty()) return 0.0;
+  ceres::Problem::EvaluateOptions eo;
+  eo.residual_blocks = ids;
+  double cost = 0.0;
+  problem.Evaluate(eo, &cost, nullptr, nullptr, nullptr);
+  return cost;
+}
+
+ceres::Solver::Options CeresSolverOptions(const RefinementOptions& options) {
+  ceres::Solver::Options so;
+  so.max_num_iterations = options.ceres_max_iterations;
+  so.linear_solver_type =
+      ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::SUITE_SPARSE) ||
+              ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::EIGEN_SPARSE)
+          ? ceres::SPARSE_NORMAL_CHOLESKY
+          : ceres::DENSE_QR;
+  if (!ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::SUITE_SPARSE)) {
+    so.sparse_linear_algebra_library_type = ceres::EIGEN_SPARSE;
+  }
+  so.logging_type = ceres::SILENT;
+  so.minimizer_progress_to_stdout = false;
+  so.num_threads = 1;
+  return so;
+}
+
+// NLopt's callback for stage 2's constraints, with forward-difference gradients.
+void NloptConstraints(unsigned mm, double* g, unsigned nn, const double* x, double* grad,
+                      void* data) {
+  NloptContext& c = *static_cast<NloptContext*>(data);
+  ConstraintsAt(c, x, g);
+  if (grad) {
+    const double steps[5] = {1e-4, 1e-4, 1e-4, 1e-3, 1e-3};
+    std::vector<double> xh(x, x + nn), gh(mm);
+    for (unsigned j = 0; j < nn; ++j) {
+      xh[j] = x[j] + steps[j];
+      ConstraintsAt(c, xh.data(), gh.data());
+      for (unsigned k = 0; k < mm; ++k) grad[k * nn + j] = (gh[k] - g[k]) / steps[j];
+      xh[j] = x[j];
+    }
+  }
+}
+
+// Stage 2's objective: the scaled distance of x from (0, 0, 0, 0, 1).
+double NloptObjective(unsigned, const double* x, double* grad, void* data) {
+  const RefinementOptions& o = *static_cast<NloptContext*>(data)->options;
+  const double ws = 1.0 / (o.shift_scale * o.shift_scale);
+  const double wy = 1.0 / (o.yaw_scale * o.yaw_scale);
+  const double wc = 1.0 / (o.closure_scale * o.closure_scale);
+  if (grad) {
+    for (int k = 0; k < 3; ++k) grad[k] = 2.0 * ws * x[k];
+    grad[3] = 2.0 * wy * x[3];
+    grad[4] = 2.0 * wc * (x[4] - 1.0);
+  }
+  return ws * (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) + wy * x[3] * x[3] +
+         wc * (x[4] - 1.0) * (x[4] - 1.0);
+}
+
+std::string TerminationText(nlopt::result r) {
+  switch (r) {
+    case nlopt::SUCCESS:
+      return "success";
+    case nlopt::FTOL_REACHED:
+      return "ftol reached";
+    case nlopt::XTOL_REACHED:
+      return "xtol reached";
+    case nlopt::MAXEVAL_REACHED:
+      return "maximum evaluations reached";
+    default:
+      return "nlopt result " + std::to_string(static_cast<int>(r));
+  }
+}
+
+// One NLopt run of stage 2 from x = (0, 0, 0, 0, 1).
+struct NloptAttempt {
+  std::vector<double> x;
+  double f = 0.0;
+  double violation = INFINITY;
+  std::string algorithm, termination;
+};
+
+NloptAttempt RunNloptAlgorithm(NloptAlgorithm algorithm, unsigned constraints,
+                               const RefinementOptions& options, NloptContext* ctx) {
+  NloptAttempt a;
+  a.algorithm = ToString(algorithm);
+  a.x = {0.0, 0.0, 0.0, 0.0, 1.0};
+  const nlopt::algorithm which = algorithm == NloptAlgorithm::kSlsqp ? nlopt::LD_SLSQP
+                                 : algorithm == NloptAlgorithm::kMma ? nlopt::LD_MMA
+                                                                     : nlopt::LN_COBYLA;
+  nlopt::opt opt(which, 5);
+  opt.set_lower_bounds({-options.max_shift, -options.max_shift, -options.max_shift,
+                        -options.max_yaw, options.min_closure});
+  opt.set_upper_bounds({options.max_shift, options.max_shift, options.max_shift, options.max_yaw,
+                        options.max_closure});
+  opt.set_min_objective(NloptObjective, ctx);
+  opt.add_inequality_mconstraint(NloptConstraints, ctx,
+                                 std::vector<double>(constraints, 0.5 * kFeasibilityTolerance));
+  opt.set_xtol_rel(options.xtol);
+  opt.set_maxeval(options.max_evaluations);
+  if (algorithm == NloptAlgorithm::kCobyla) {
+    opt.set_initial_step({0.01, 0.01, 0.01, 2.0 * kDeg, 0.02});
+  }
+  try {
+    a.termination = TerminationText(opt.optimize(a.x, a.f));
+  } catch (const std::exception& e) {
+    a.termination = std::string("failed: ") + e.what();
+    a.f = NloptObjective(5, a.x.data(), nullptr, ctx);
+  }
+  std::vector<double> g(constraints);
+  ConstraintsAt(*ctx, a.x.data(), g.data());
+  a.violation = 0.0;
+  for (double v : g) a.violation += std::max(0.0, v);
+  return a;
+}
+
 }  // namespace
 
 const char* ToString(NloptAlgorithm algorithm) {
@@ -232,6 +376,7 @@ RefinementConstraints EvaluateRefinementConstraints(
     const GraspingMotion& motion, const RefinementInputs& inputs, const RefinementOptions& options,
     CollisionData* data) {
   RefinementConstraints c;
+  const Eigen::Isometry3d X_WO = scene.ObjectPose(motion.theta);
   c.approach_clearance = std::numeric_limits<double>::infinity();
   c.grasp_clearance = std::numeric_limits<double>::infinity();
   c.reachable = true;
@@ -246,7 +391,7 @@ RefinementConstraints EvaluateRefinementConstraints(
   auto check = [&](const MotionWaypoint& w, const HandVector& f, double* into) {
     ++c.states;
     const std::optional<Vector7d> q =
-        SolveWristPose(robot, PoseOf(w), branch, psi, q_near, 5.0 * kDeg);
+        SolveWristPose(robot, WaypointPose(w), branch, psi, q_near, 5.0 * kDeg);
     if (!q) {
       c.reachable = false;
       *into = std::min(*into, -0.1);  // unreachable: counts as a deep violation
@@ -254,7 +399,7 @@ RefinementConstraints EvaluateRefinementConstraints(
     }
     q_near = *q;
     psi = ArmAngleOf(robot.arm, *q);
-    SetState(collision, *q, f, motion.theta, data);
+    SetState(collision, *q, f, X_WO, data);
     const SignedDistanceResult r =
         SignedDistance(collision, GroupSet::Robot(), GroupSet::World(), data, sd);
     *into = std::min(*into, r.distance);
@@ -266,15 +411,15 @@ RefinementConstraints EvaluateRefinementConstraints(
   for (int i : s.far) check(motion.waypoints[i], motion.waypoints[i].f, &c.approach_clearance);
   for (int i : s.near) check(motion.waypoints[i], motion.waypoints[i].f, &c.grasp_clearance);
   check(motion.grasp(), motion.waypoints[s.approach_end].f, &c.grasp_clearance);
-  c.min_psi_width = std::min(PsiWidth(robot, PoseOf(motion.pregrasp()), branch),
-                             PsiWidth(robot, PoseOf(motion.grasp()), branch));
+  c.min_psi_width = std::min(WidestArmAngleWidth(robot, WaypointPose(motion.pregrasp()), branch),
+                             WidestArmAngleWidth(robot, WaypointPose(motion.grasp()), branch));
   c.contact_error = std::numeric_limits<double>::quiet_NaN();
   double violation = std::max(0.0, options.clearance_margin - c.approach_clearance) +
                      std::max(0.0, -options.penetration_tolerance - c.grasp_clearance) +
                      kRadToMetre * std::max(0.0, options.min_psi_width - c.min_psi_width);
   if (inputs.handle_in_hand) {
-    const Eigen::Vector3d p = PoseOf(motion.grasp()) * *inputs.handle_in_hand;
-    c.contact_error = HandleAxisDistance(scene, motion.theta, p);
+    const Eigen::Vector3d p = WaypointPose(motion.grasp()) * *inputs.handle_in_hand;
+    c.contact_error = HandleAxisDistance(scene.object, X_WO, p);
     violation += std::max(0.0, c.contact_error - options.contact_tolerance);
   }
   c.violation = violation;
@@ -300,8 +445,102 @@ std::string RefinementReport::BriefReport() const {
   }
   s << "; nlopt " << (nlopt.run ? nlopt.algorithm + " " : std::string()) << nlopt.termination;
   if (nlopt.run) s << ", " << nlopt.evaluations << " evaluations";
-  s << "; kept " << kept << ", " << time_s * 1e3 << " ms";
+  s << "; kept " << ToString(kept) << ", " << time_s * 1e3 << " ms";
   return s.str();
+}
+
+const char* ToString(RefinementStage stage) {
+  switch (stage) {
+    case RefinementStage::kInput:
+      return "input";
+    case RefinementStage::kCeres:
+      return "ceres";
+    case RefinementStage::kNlopt:
+      return "nlopt";
+  }
+  return "?";
+}
+
+RefinementOptions ThresholdsFromSources(const RefinementOptions& options,
+                                        const std::vector<RefinementConstraints>& sources) {
+  RefinementOptions ro = options;
+  for (const RefinementConstraints& c : sources) {
+    ro.clearance_margin = std::min(ro.clearance_margin, c.approach_clearance);
+    ro.penetration_tolerance = std::max(ro.penetration_tolerance, -c.grasp_clearance);
+    if (std::isfinite(c.contact_error)) {
+      ro.contact_tolerance = std::max(ro.contact_tolerance, c.contact_error);
+    }
+  }
+  return ro;
+}
+
+CeresStageResult RunCeresStage(const RobotModel& robot, const GraspingMotion& motion,
+                               const RefinementInputs& inputs, const RefinementOptions& options) {
+  const auto t0 = Clock::now();
+  CeresStageResult result;
+  CeresStageReport& cr = result.report;
+  cr.run = true;
+  const int n = static_cast<int>(motion.waypoints.size());
+  std::vector<Eigen::Vector3d> d(static_cast<size_t>(n), Eigen::Vector3d::Zero());
+  ceres::Problem::Options po;
+  ceres::Problem problem(po);
+  const CeresTerms terms = AddCeresResiduals(robot, motion, inputs, options, &d, &problem);
+  cr.initial_reach = TermCost(problem, terms.reach);
+  ceres::Solver::Summary summary;
+  ceres::Solve(CeresSolverOptions(options), &problem, &summary);
+  cr.initial_cost = summary.initial_cost;
+  cr.final_cost = summary.final_cost;
+  cr.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  cr.termination = ceres::TerminationTypeToString(summary.termination_type);
+  cr.fidelity = TermCost(problem, terms.fidelity);
+  cr.smoothness = TermCost(problem, terms.smoothness);
+  cr.line = TermCost(problem, terms.line);
+  cr.reach = TermCost(problem, terms.reach);
+  result.motion = motion;
+  result.usable = summary.IsSolutionUsable();
+  if (result.usable) {
+    for (int i = 0; i < n; ++i) result.motion.waypoints[i].p_WH += d[i];
+  }
+  cr.time_s = Since(t0);
+  return result;
+}
+
+NloptStageResult RunNloptStage(const RobotModel& robot, const SceneModel& scene,
+                               const CollisionModel& collision, const GraspingMotion& motion,
+                               const RefinementInputs& inputs, const RefinementOptions& options,
+                               CollisionData* data) {
+  const auto t0 = Clock::now();
+  NloptStageResult result;
+  NloptStageReport& nr = result.report;
+  nr.run = true;
+  const unsigned m = inputs.handle_in_hand.has_value() ? 4 : 3;
+  NloptContext ctx{&robot, &scene, &collision, &motion, &inputs, &options, data};
+  nr.initial_objective = 0.0;
+  NloptAttempt best = RunNloptAlgorithm(options.algorithm, m, options, &ctx);
+  if (best.violation > kFeasibilityTolerance && options.cobyla_fallback &&
+      options.algorithm != NloptAlgorithm::kCobyla) {
+    NloptAttempt second = RunNloptAlgorithm(NloptAlgorithm::kCobyla, m, options, &ctx);
+    nr.fallback_used = true;
+    second.termination += " (fallback after " + best.algorithm + ": " + best.termination + ")";
+    if (second.violation < best.violation - 1e-9 ||
+        (second.violation <= kFeasibilityTolerance && second.f < best.f)) {
+      best = second;
+    } else {
+      best.termination += " (the cobyla fallback did no better)";
+    }
+  }
+  nr.algorithm = best.algorithm;
+  nr.termination = best.termination;
+  nr.evaluations = ctx.evaluations;
+  nr.final_objective = best.f;
+  nr.shift = Eigen::Vector3d(best.x[0], best.x[1], best.x[2]);
+  nr.yaw = best.x[3];
+  nr.closure = best.x[4];
+  result.motion = Transformed(motion, best.x.data(), robot.hand);
+  result.constraints =
+      EvaluateRefinementConstraints(robot, scene, collision, result.motion, inputs, options, data);
+  nr.time_s = Since(t0);
+  return result;
 }
 
 RefinementResult RefineGraspingMotion(const RobotModel& robot, const SceneModel& scene,
@@ -317,224 +556,37 @@ RefinementResult RefineGraspingMotion(const RobotModel& robot, const SceneModel&
       EvaluateRefinementConstraints(robot, scene, collision, motion, inputs, options, data);
   GraspingMotion current = motion;
   RefinementConstraints current_c = rep.before;
-  rep.kept = "input";
+  rep.kept = RefinementStage::kInput;
 
-  // stage 1: ceres over the waypoint positions.
+  // stage 1: ceres over the waypoint positions; kept unless it adds violation.
   if (options.run_ceres) {
-    const auto t0 = Clock::now();
-    CeresStageReport& cr = rep.ceres;
-    cr.run = true;
-    const int n = static_cast<int>(motion.waypoints.size());
-    std::vector<Eigen::Vector3d> d(static_cast<size_t>(n), Eigen::Vector3d::Zero());
-    ceres::Problem::Options po;
-    ceres::Problem problem(po);
-    std::vector<ceres::ResidualBlockId> fid, smooth, line, reach;
-    for (int i = 0; i < n; ++i) {
-      fid.push_back(
-          problem.AddResidualBlock(new ceres::AutoDiffCostFunction<FidelityResidual, 3, 3>(
-                                       new FidelityResidual{1.0 / options.fidelity_sigma}),
-                                   nullptr, d[i].data()));
-    }
-    for (int i = 1; i + 1 < n; ++i) {
-      smooth.push_back(
-          problem.AddResidualBlock(new ceres::AutoDiffCostFunction<SmoothnessResidual, 3, 3, 3, 3>(
-                                       new SmoothnessResidual{1.0 / options.smoothness_sigma}),
-                                   nullptr, d[i - 1].data(), d[i].data(), d[i + 1].data()));
-    }
-    if (inputs.wrist_line) {
-      const Line2d& l = *inputs.wrist_line;
-      const Eigen::Vector2d o = motion.p_WO.head<2>();
-      line.push_back(problem.AddResidualBlock(
-          new ceres::AutoDiffCostFunction<LineResidual, 1, 3>(
-              new LineResidual{l.normal(), l.normal().dot(l.point + o),
-                               motion.grasp().p_WH.head<2>(), 1.0 / options.line_sigma}),
-          nullptr, d[n - 1].data()));
-    }
-    const ArmBranch branch = BranchOf(inputs.q_start);
-    for (int i = 0; i < n; i += options.reach_stride) {
-      const int k = (i + options.reach_stride >= n) ? n - 1 : i;
-      const MotionWaypoint& w = motion.waypoints[k];
-      reach.push_back(problem.AddResidualBlock(
-          new ceres::NumericDiffCostFunction<ReachResidual, ceres::CENTRAL, 1, 3>(new ReachResidual{
-              &robot, w.p_WH, PoseOf(w), branch, options.min_psi_width, options.reach_sigma}),
-          nullptr, d[k].data()));
-      if (k == n - 1) break;
-    }
-    auto term_cost = [&](const std::vector<ceres::ResidualBlockId>& ids) {
-      if (ids.empty()) return 0.0;
-      ceres::Problem::EvaluateOptions eo;
-      eo.residual_blocks = ids;
-      double cost = 0.0;
-      problem.Evaluate(eo, &cost, nullptr, nullptr, nullptr);
-      return cost;
-    };
-    cr.initial_reach = term_cost(reach);
-    ceres::Solver::Options so;
-    so.max_num_iterations = options.ceres_max_iterations;
-    so.linear_solver_type =
-        ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::SUITE_SPARSE) ||
-                ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::EIGEN_SPARSE)
-            ? ceres::SPARSE_NORMAL_CHOLESKY
-            : ceres::DENSE_QR;
-    if (!ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::SUITE_SPARSE)) {
-      so.sparse_linear_algebra_library_type = ceres::EIGEN_SPARSE;
-    }
-    so.logging_type = ceres::SILENT;
-    so.minimizer_progress_to_stdout = false;
-    so.num_threads = 1;
-    ceres::Solver::Summary summary;
-    ceres::Solve(so, &problem, &summary);
-    cr.initial_cost = summary.initial_cost;
-    cr.final_cost = summary.final_cost;
-    cr.iterations = static_cast<int>(summary.iterations.size()) - 1;
-    cr.termination = ceres::TerminationTypeToString(summary.termination_type);
-    cr.fidelity = term_cost(fid);
-    cr.smoothness = term_cost(smooth);
-    cr.line = term_cost(line);
-    cr.reach = term_cost(reach);
-    GraspingMotion stage1 = motion;
-    if (summary.IsSolutionUsable()) {
-      for (int i = 0; i < n; ++i) stage1.waypoints[i].p_WH += d[i];
-    }
-    cr.time_s = Since(t0);
-    rep.after_ceres =
-        EvaluateRefinementConstraints(robot, scene, collision, stage1, inputs, options, data);
-    if (summary.IsSolutionUsable() && rep.after_ceres.violation <= current_c.violation + 1e-9) {
-      current = std::move(stage1);
+    CeresStageResult stage1 = RunCeresStage(robot, motion, inputs, options);
+    rep.ceres = stage1.report;
+    rep.after_ceres = EvaluateRefinementConstraints(robot, scene, collision, stage1.motion, inputs,
+                                                    options, data);
+    if (stage1.usable && rep.after_ceres.violation <= current_c.violation + 1e-9) {
+      current = std::move(stage1.motion);
       current_c = rep.after_ceres;
-      rep.kept = "ceres";
+      rep.kept = RefinementStage::kCeres;
     }
   } else {
     rep.after_ceres = rep.before;
   }
 
   // stage 2: nlopt on the grasp pose and the closure, only when infeasible.
-  NloptStageReport& nr = rep.nlopt;
   if (!options.run_nlopt) {
-    nr.termination = "not run (disabled)";
+    rep.nlopt.termination = "not run (disabled)";
   } else if (current_c.feasible) {
-    nr.termination = "not run (the start satisfies every constraint)";
+    rep.nlopt.termination = "not run (the start satisfies every constraint)";
   } else {
-    const auto t0 = Clock::now();
-    nr.run = true;
-    const bool contact = inputs.handle_in_hand.has_value();
-    const unsigned m = contact ? 4 : 3;
-    NloptContext ctx{&robot, &scene, &collision, &current, &inputs, &options, data};
-    auto mconstraint = [](unsigned mm, double* g, unsigned nn, const double* x, double* grad,
-                          void* data) {
-      NloptContext& c = *static_cast<NloptContext*>(data);
-      ConstraintsAt(c, x, g);
-      if (grad) {
-        const double steps[5] = {1e-4, 1e-4, 1e-4, 1e-3, 1e-3};
-        std::vector<double> xh(x, x + nn), gh(mm);
-        for (unsigned j = 0; j < nn; ++j) {
-          xh[j] = x[j] + steps[j];
-          ConstraintsAt(c, xh.data(), gh.data());
-          for (unsigned k = 0; k < mm; ++k) grad[k * nn + j] = (gh[k] - g[k]) / steps[j];
-          xh[j] = x[j];
-        }
-      }
-    };
-    auto objective = [](unsigned, const double* x, double* grad, void* data) {
-      const RefinementOptions& o = *static_cast<NloptContext*>(data)->options;
-      const double ws = 1.0 / (o.shift_scale * o.shift_scale);
-      const double wy = 1.0 / (o.yaw_scale * o.yaw_scale);
-      const double wc = 1.0 / (o.closure_scale * o.closure_scale);
-      if (grad) {
-        for (int k = 0; k < 3; ++k) grad[k] = 2.0 * ws * x[k];
-        grad[3] = 2.0 * wy * x[3];
-        grad[4] = 2.0 * wc * (x[4] - 1.0);
-      }
-      return ws * (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) + wy * x[3] * x[3] +
-             wc * (x[4] - 1.0) * (x[4] - 1.0);
-    };
-    const std::vector<double> lb = {-options.max_shift, -options.max_shift, -options.max_shift,
-                                    -options.max_yaw, options.min_closure};
-    const std::vector<double> ub = {options.max_shift, options.max_shift, options.max_shift,
-                                    options.max_yaw, options.max_closure};
-    struct Attempt {
-      std::vector<double> x;
-      double f = 0.0;
-      double violation = INFINITY;
-      std::string algorithm, termination;
-    };
-    auto run = [&](NloptAlgorithm algorithm) {
-      Attempt a;
-      a.algorithm = ToString(algorithm);
-      a.x = {0.0, 0.0, 0.0, 0.0, 1.0};
-      const nlopt::algorithm which = algorithm == NloptAlgorithm::kSlsqp ? nlopt::LD_SLSQP
-                                     : algorithm == NloptAlgorithm::kMma ? nlopt::LD_MMA
-                                                                         : nlopt::LN_COBYLA;
-      nlopt::opt opt(which, 5);
-      opt.set_lower_bounds(lb);
-      opt.set_upper_bounds(ub);
-      opt.set_min_objective(objective, &ctx);
-      opt.add_inequality_mconstraint(mconstraint, &ctx,
-                                     std::vector<double>(m, 0.5 * kFeasibilityTolerance));
-      opt.set_xtol_rel(options.xtol);
-      opt.set_maxeval(options.max_evaluations);
-      if (algorithm == NloptAlgorithm::kCobyla) {
-        opt.set_initial_step({0.01, 0.01, 0.01, 2.0 * kDeg, 0.02});
-      }
-      try {
-        const nlopt::result r = opt.optimize(a.x, a.f);
-        a.termination = "nlopt result " + std::to_string(static_cast<int>(r));
-        switch (r) {
-          case nlopt::SUCCESS:
-            a.termination = "success";
-            break;
-          case nlopt::FTOL_REACHED:
-            a.termination = "ftol reached";
-            break;
-          case nlopt::XTOL_REACHED:
-            a.termination = "xtol reached";
-            break;
-          case nlopt::MAXEVAL_REACHED:
-            a.termination = "maximum evaluations reached";
-            break;
-          default:
-            break;
-        }
-      } catch (const std::exception& e) {
-        a.termination = std::string("failed: ") + e.what();
-        a.f = objective(5, a.x.data(), nullptr, &ctx);
-      }
-      std::vector<double> g(m);
-      ConstraintsAt(ctx, a.x.data(), g.data());
-      a.violation = 0.0;
-      for (double v : g) a.violation += std::max(0.0, v);
-      return a;
-    };
-    nr.initial_objective = 0.0;
-    Attempt best = run(options.algorithm);
-    if (best.violation > kFeasibilityTolerance && options.cobyla_fallback &&
-        options.algorithm != NloptAlgorithm::kCobyla) {
-      Attempt second = run(NloptAlgorithm::kCobyla);
-      nr.fallback_used = true;
-      second.termination += " (fallback after " + best.algorithm + ": " + best.termination + ")";
-      if (second.violation < best.violation - 1e-9 ||
-          (second.violation <= kFeasibilityTolerance && second.f < best.f)) {
-        best = second;
-      } else {
-        best.termination += " (the cobyla fallback did no better)";
-      }
+    NloptStageResult stage2 =
+        RunNloptStage(robot, scene, collision, current, inputs, options, data);
+    rep.nlopt = stage2.report;
+    if (stage2.constraints.violation <= current_c.violation + 1e-9) {
+      current = std::move(stage2.motion);
+      current_c = stage2.constraints;
+      rep.kept = RefinementStage::kNlopt;
     }
-    nr.algorithm = best.algorithm;
-    nr.termination = best.termination;
-    nr.evaluations = ctx.evaluations;
-    nr.final_objective = best.f;
-    nr.shift = Eigen::Vector3d(best.x[0], best.x[1], best.x[2]);
-    nr.yaw = best.x[3];
-    nr.closure = best.x[4];
-    GraspingMotion stage2 = Transformed(current, best.x.data(), robot.hand);
-    const RefinementConstraints c2 =
-        EvaluateRefinementConstraints(robot, scene, collision, stage2, inputs, options, data);
-    if (c2.violation <= current_c.violation + 1e-9) {
-      current = std::move(stage2);
-      current_c = c2;
-      rep.kept = "nlopt";
-    }
-    nr.time_s = Since(t0);
   }
   rep.after = current_c;
   rep.time_s = Since(t_start);

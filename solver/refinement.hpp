@@ -37,6 +37,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "collision/collision_scene.hpp"
 #include "kinematics/robot_description.hpp"
@@ -138,14 +139,20 @@ struct NloptStageReport {
   double time_s = 0.0;
 };
 
+/// A stage of the refinement: the one whose output RefineGraspingMotion returns.
+enum class RefinementStage { kInput, kCeres, kNlopt };
+
+/// "input", "ceres" or "nlopt".
+const char* ToString(RefinementStage stage);
+
 /// The refinement's report.
 struct RefinementReport {
   CeresStageReport ceres;
   NloptStageReport nlopt;
-  RefinementConstraints before;       ///< of the input
-  RefinementConstraints after_ceres;  ///< of stage 1's output
-  RefinementConstraints after;        ///< of the returned motion
-  std::string kept;                   ///< "input", "ceres" or "nlopt": whose output is returned
+  RefinementConstraints before;                    ///< of the input
+  RefinementConstraints after_ceres;               ///< of stage 1's output
+  RefinementConstraints after;                     ///< of the returned motion
+  RefinementStage kept = RefinementStage::kInput;  ///< whose output is returned
   double time_s = 0.0;
 
   /// One line: constraint values before and after, costs, iterations, termination.
@@ -163,6 +170,43 @@ RefinementConstraints EvaluateRefinementConstraints(
     const RobotModel& robot, const SceneModel& scene, const CollisionModel& collision,
     const GraspingMotion& motion, const RefinementInputs& inputs, const RefinementOptions& options,
     CollisionData* data);
+
+/// `options` with the thresholds loosened to what the source demonstrations did themselves
+/// (SynthesisOptions::thresholds_from_sources): the clearance margin down to the smallest
+/// approach clearance of `sources`, the penetration tolerance up to the deepest grasp
+/// penetration, the contact tolerance up to the largest finite contact error; the other
+/// fields unchanged.
+RefinementOptions ThresholdsFromSources(const RefinementOptions& options,
+                                        const std::vector<RefinementConstraints>& sources);
+
+/// Stage 1's output: the motion with the corrections applied (the input when the solution is
+/// not usable) and the figures.
+struct CeresStageResult {
+  GraspingMotion motion;
+  CeresStageReport report;
+  bool usable = false;  ///< Ceres' solution is usable (its corrections were applied)
+};
+
+/// Stage 1 alone (see the file comment): Ceres least squares over the waypoint positions of
+/// `motion` (well formed), with options' fidelity, smoothness, line and reach terms (options
+/// assumed valid). Orientations, fingers and times are kept; the constraints are not checked.
+CeresStageResult RunCeresStage(const RobotModel& robot, const GraspingMotion& motion,
+                               const RefinementInputs& inputs, const RefinementOptions& options);
+
+/// Stage 2's output: the moved motion, its constraint values and the figures.
+struct NloptStageResult {
+  GraspingMotion motion;
+  RefinementConstraints constraints;  ///< of `motion`
+  NloptStageReport report;
+};
+
+/// Stage 2 alone (see the file comment): NLopt on the shift, yaw and closure of `motion`
+/// (options assumed valid), with the COBYLA fallback when options say so. Runs whatever the
+/// start's feasibility; an optimizer that fails is reported, never thrown.
+NloptStageResult RunNloptStage(const RobotModel& robot, const SceneModel& scene,
+                               const CollisionModel& collision, const GraspingMotion& motion,
+                               const RefinementInputs& inputs, const RefinementOptions& options,
+                               CollisionData* data);
 
 /// Refines `motion` (well formed) in the two stages. Throws InputError for invalid options;
 /// an optimizer that fails is reported, never thrown.

@@ -29,6 +29,7 @@
 #include "simulation/simulation_model.hpp"
 #include "simulation/trial.hpp"
 #include "solver/analysis_report.hpp"
+#include "solver/study_method.hpp"
 #include "solver/synthesis.hpp"
 
 namespace graspsynth {
@@ -41,31 +42,6 @@ inline constexpr std::string_view kStudyTimingFormat = "graspsynth-study-timing/
 inline constexpr std::string_view kStudySynthesisCsvHeader =
     "theta_deg,method,status,used,fallback,refined,nominal_success,nominal_outcome,trials,"
     "successes,robustness,ci_low,ci_high,passed,epsilon,force_closure,failures";
-
-/// One synthesis method of the study: how the grasping motion is made, with or without the
-/// refinement, and the variants the ablations turn (experiments/ablations.sh).
-struct StudyMethod {
-  SynthesisMethod method = SynthesisMethod::kInterp;
-  bool refine = true;
-  bool ceres = true;  ///< the refinement's stage 1 (with refine)
-  bool nlopt = true;  ///< the refinement's stage 2 (with refine)
-  ResampleMode resample = ResampleMode::kNormalizedTime;  ///< of the blend
-  ReachMethod reach = ReachMethod::kAuto;
-  bool thresholds_from_sources = true;  ///< SynthesisOptions' (false: "/strict")
-
-  /// The name: the method ("interp", "line", "nearest"), then "+refine" when both refinement
-  /// stages run, "+ceres" or "+nlopt" when only that one does, then "/arc" for arc-length
-  /// resampling, "/spline" or "/joint" for a reach other than auto, and "/strict" for the
-  /// refinement's default thresholds whatever the sources did. E.g. "interp+refine", "line",
-  /// "interp+ceres/arc".
-  std::string Label() const;
-  /// The synthesis options of this method.
-  SynthesisOptions Options() const;
-};
-
-/// Parses a StudyMethod::Label(); throws InputError naming the label and the part it does not
-/// know otherwise.
-StudyMethod ParseStudyMethod(const std::string& label);
 
 /// The stages of the study, in order.
 enum class StudyStage { kAnalysis, kSelection, kSynthesis };

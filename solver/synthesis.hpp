@@ -2,24 +2,20 @@
 
 /// @file
 /// Grasp synthesis for an object orientation absent from the library (paper section IV and
-/// DESIGN.md's "generalize", "refine", "reach"): a grasping motion by one of three methods, the
-/// refinement (refinement.hpp), a spline reach from the start configuration, the lift, and the
-/// joint trajectory through the analytic IK with a continuous arm angle.
-///
-/// Methods:
-/// - interp: the paper's blend (motion/interpolation.hpp) of the bracket theta1 < theta <
-///   theta2 (bracket.hpp); a demonstrated theta is that demonstration, unless it is weak
-///   (bracket.hpp) and a neighbour is not: then that neighbour turned with the object. Outside
-///   the library's range: an error (kOutOfRange) that names the range. A bracket that cannot be
-///   blended (the hard case, or one weak end) falls back, in this order: (1) the nearer
-///   demonstration of the bracket (the robust one when one end is weak) turned with the object
-///   about its vertical axis (the hand keeps the demonstrated hold of the handle; accepted when
-///   its grasp and pre-grasp are reachable on the start branch with min_psi_width to spare);
-///   (2) the line principle on that demonstration's side of the handle; (3) the plain blend,
-///   left to the refinement. The result says which and why.
-/// - nearest: the nearest demonstration turned with the object (any theta).
-/// - line: the line principle (line_principle.hpp) on the nearest demonstration's side (any
-///   theta).
+/// DESIGN.md's "generalize", "refine", "reach"), as a pipeline of stages, each a free function
+/// with its own options and result:
+/// 1. GenerateGraspingMotion (motion_generation.hpp): the grasping motion by one of three
+///    methods, with the interp method's fallbacks and their typed reason;
+/// 2. CheckStart: the start configuration (given, or the rest pose) within the joint limits
+///    and free of collision;
+/// 3. RefineSynthesizedMotion: the refinement (refinement.hpp: its Ceres stage, then its NLopt
+///    stage), with thresholds loosened to what the sources did;
+/// 4. PlanReach (reach_planning.hpp): the reach from the start to the pre-grasp, played with
+///    the grasping motion and the lift (GraspAndLift) through the analytic IK with a
+///    continuous arm angle;
+/// 5. AssembleTrajectory: the robot's trajectory and its waypoints.
+/// SynthesizeGrasp runs them in that order on one SynthesisTask, the object's placement
+/// entered once.
 
 #include <string>
 #include <vector>
@@ -33,67 +29,14 @@
 #include "motion/reach.hpp"
 #include "solver/bracket.hpp"
 #include "solver/line_principle.hpp"
+#include "solver/motion_generation.hpp"
+#include "solver/reach_planning.hpp"
 #include "solver/refinement.hpp"
+#include "solver/synthesis_model.hpp"
 
 namespace graspsynth {
 
-/// How the grasping motion is made.
-enum class SynthesisMethod { kInterp, kLine, kNearest };
-
-/// How the robot reaches the pre-grasp pose from the start configuration.
-/// - spline: the paper's reach (IV-C), a cubic spline of the wrist position with slerp
-///   orientation, played through the IK on the start's branch;
-/// - joint: a minimum-jerk move in joint space to the pre-grasp configuration (motion/
-///   joint_space.hpp's JointReach); the grasping motion is played on the start's branch when
-///   it can be, else on the first other branch that can play it; the move is checked for
-///   collision;
-/// - auto: the spline when every one of its poses stays reachable with the wrist moved by
-///   reach_margin along each world axis (a reach near the edge of the workspace fails under
-///   the perturbations of the physics gate), else the joint reach.
-enum class ReachMethod { kSpline, kJoint, kAuto };
-
-/// "interp", "line" or "nearest".
-const char* ToString(SynthesisMethod method);
-/// Parses "interp", "line" or "nearest"; throws InputError naming the value otherwise.
-SynthesisMethod ParseSynthesisMethod(const std::string& text);
-
-/// "spline", "joint" or "auto".
-const char* ToString(ReachMethod method);
-/// Parses "spline", "joint" or "auto"; throws InputError naming the value otherwise.
-ReachMethod ParseReachMethod(const std::string& text);
-
-/// Everything the synthesis needs that does not change between queries (STYLE.md's Model):
-/// robot, scene, collision model, library and the line-principle models fitted over it.
-class SynthesisModel {
- public:
-  /// Checks the library (at least one entry, theta strictly increasing, every motion well
-  /// formed; throws InputError naming the entry otherwise) and fits the line principle.
-  SynthesisModel(RobotModel robot, SceneModel scene, GraspLibrary library,
-                 const LinePrincipleOptions& line_options = {});
-
-  const RobotModel& robot() const { return robot_; }
-  const SceneModel& scene() const { return scene_; }
-  const CollisionModel& collision() const { return collision_; }
-  const GraspLibrary& library() const { return library_; }
-  const LinePrincipleModel& line() const { return line_; }
-  /// The refinement's constraint values of each library entry's own motion (from the rest pose
-  /// for its grasp orientation), in entry order: what the demonstrations that held the object
-  /// in physics did (SynthesisOptions::thresholds_from_sources).
-  const std::vector<RefinementConstraints>& entry_constraints() const { return entry_constraints_; }
-  /// The library's range, deg.
-  double theta_min_deg() const { return library_.entries.front().theta_deg; }
-  double theta_max_deg() const { return library_.entries.back().theta_deg; }
-
- private:
-  RobotModel robot_;
-  SceneModel scene_;
-  GraspLibrary library_;
-  CollisionModel collision_;
-  LinePrincipleModel line_;
-  std::vector<RefinementConstraints> entry_constraints_;
-};
-
-/// Options of SynthesizeGrasp.
+/// Options of SynthesizeGrasp: every stage's, in pipeline order.
 struct SynthesisOptions {
   SynthesisMethod method = SynthesisMethod::kInterp;
   bool refine = true;
@@ -125,6 +68,10 @@ struct SynthesisOptions {
   Vector7d start = Vector7d::Constant(NAN);
 
   bool IsValid(std::string* why) const;
+
+  /// The options of each stage.
+  MotionGenerationOptions Generation() const;
+  ReachPlanOptions Reach() const;
 };
 
 /// How a synthesis ended.
@@ -139,15 +86,6 @@ enum class SynthesisStatus {
 /// "ok", "out_of_range", "bad_start", "no_model" or "unreachable".
 const char* ToString(SynthesisStatus status);
 
-/// A demonstration the grasp was made from.
-struct SourceDemo {
-  int entry = -1;  ///< library entry index
-  double theta_deg = 0.0;
-  std::string file;
-  std::string trial;
-  double weight = 0.0;  ///< its share in the grasp (blend weights sum to 1)
-};
-
 /// The synthesized grasp.
 struct SynthesisResult {
   SynthesisStatus status = SynthesisStatus::kUnreachable;
@@ -155,9 +93,9 @@ struct SynthesisResult {
   double theta_deg = 0.0;
   SynthesisMethod requested = SynthesisMethod::kInterp;
   SynthesisMethod used = SynthesisMethod::kInterp;
-  bool fallback = false;        ///< a method other than the requested one was used
-  std::string fallback_reason;  ///< why, and what was tried
-  int side = 0;                 ///< side of the handle of the line-principle grasp (0: unused)
+  bool fallback = false;           ///< a method other than the requested one was used
+  FallbackReason fallback_reason;  ///< why, and what was tried (kind kNone: no fallback)
+  int side = 0;                    ///< side of the handle of the line-principle grasp (0: unused)
   Bracket bracket;
   std::vector<SourceDemo> sources;
   GraspingMotion unrefined;  ///< the grasping motion before refinement
@@ -178,14 +116,72 @@ struct SynthesisResult {
   bool ok() const { return status == SynthesisStatus::kOk; }
 };
 
-/// Synthesizes a grasp for object orientation `theta_deg`. Throws InputError for invalid
-/// options; bad queries and failures are results. `data` is the caller's collision data
-/// (made from model.collision()).
+/// Options of CheckStart.
+struct StartCheckOptions {
+  /// Arm configuration at the start, rad; all NaN: DefaultRestConfiguration for the grasp
+  /// orientation of the motion.
+  Vector7d start = Vector7d::Constant(NAN);
+};
+
+/// The start configuration and whether it can be used.
+struct StartCheckResult {
+  bool ok = false;
+  std::string message;                ///< why not, when not ok
+  Vector7d start = Vector7d::Zero();  ///< the start configuration, rad
+};
+
+/// The start configuration of `motion` for `task`: options.start when given (each joint within
+/// its limits), else the rest pose for the grasp orientation; free of collision with the
+/// fingers in the pre-grasp shape and the object at task.X_WO.
+StartCheckResult CheckStart(const SynthesisModel& model, const SynthesisTask& task,
+                            const GraspingMotion& motion, const StartCheckOptions& options,
+                            CollisionData* data);
+
+/// Options of RefineSynthesizedMotion.
+struct MotionRefinementOptions {
+  RefinementOptions refinement;
+  bool thresholds_from_sources = true;  ///< see SynthesisOptions
+};
+
+/// The refined motion, the refinement's report and the thresholds it used.
+struct MotionRefinementResult {
+  GraspingMotion motion;
+  RefinementReport report;
+  RefinementOptions used;  ///< the refinement's options, thresholds from the sources applied
+};
+
+/// The refinement (refinement.hpp) of the generated motion from the start configuration
+/// `q_start`, with the line prior and contact constraint when the line principle is fitted.
+/// The thresholds' sources: the generated motion's sources, or the nearest entry for the line
+/// principle. Throws InputError for invalid refinement options.
+MotionRefinementResult RefineSynthesizedMotion(const SynthesisModel& model,
+                                               const MotionGenerationResult& generated,
+                                               const GraspingMotion& motion,
+                                               const Vector7d& q_start,
+                                               const MotionRefinementOptions& options,
+                                               CollisionData* data);
+
+/// The tail of the robot's path after the pre-grasp: the grasping motion, then the lift.
+struct GraspAndLiftPath {
+  CartesianPath path;      ///< times from the pre-grasp
+  size_t grasp_index = 0;  ///< the grasp pose's sample in `path`
+  LiftOptions lift;        ///< the lift used (height and duration from the sources)
+};
+
+/// `motion` followed by the lift of `options`, its height and duration replaced by the
+/// sources' weighted library figures where those are positive.
+GraspAndLiftPath GraspAndLift(const GraspLibrary& library, const std::vector<SourceDemo>& sources,
+                              const GraspingMotion& motion, const LiftOptions& options);
+
+/// The robot's trajectory from a played reach (reach.ok()) and its tail: the joint samples,
+/// the first one set to the start configuration exactly, with the waypoints start, pre-grasp,
+/// grasp, lift start and top (those at a later time than the one before).
+JointTrajectory AssembleTrajectory(const ReachPlanResult& reach, const GraspAndLiftPath& tail);
+
+/// Synthesizes a grasp for object orientation `theta_deg`: the stages above, in order. Throws
+/// InputError for invalid options; bad queries and failures are results. `data` is the
+/// caller's collision data (made from model.collision()).
 SynthesisResult SynthesizeGrasp(const SynthesisModel& model, double theta_deg,
                                 const SynthesisOptions& options, CollisionData* data);
-
-/// A library entry's grasping motion turned with the object from its theta to `theta` (rad)
-/// about the vertical through the object centre.
-GraspingMotion TurnWithObject(const GraspingMotion& motion, double theta);
 
 }  // namespace graspsynth

@@ -93,7 +93,7 @@ TEST(Refinement, NloptRemovesAPlantedPenetration) {
     EXPECT_FALSE(rep.before.feasible);
     EXPECT_LT(rep.before.grasp_clearance, -o.penetration_tolerance);
     EXPECT_TRUE(rep.nlopt.run);
-    EXPECT_EQ(rep.kept, "nlopt") << rep.BriefReport();
+    EXPECT_EQ(rep.kept, RefinementStage::kNlopt) << rep.BriefReport();
     EXPECT_TRUE(rep.after.feasible) << ToString(algorithm) << ": " << rep.BriefReport();
     EXPECT_GE(rep.after.grasp_clearance, -o.penetration_tolerance - 1e-4);
     EXPECT_GE(rep.after.approach_clearance, o.clearance_margin - 1e-4);

@@ -93,7 +93,8 @@ TEST(Synthesis, HardCaseFallsBackAndSaysWhy) {
   EXPECT_FALSE(r.bracket.blendable);
   EXPECT_TRUE(r.fallback);
   EXPECT_NE(r.used, SynthesisMethod::kInterp);
-  EXPECT_NE(r.fallback_reason.find("sides of the handle"), std::string::npos) << r.fallback_reason;
+  EXPECT_NE(r.fallback_reason.Text().find("sides of the handle"), std::string::npos)
+      << r.fallback_reason.Text();
   // the hand lies across the handle: its long axis z_H at least 60 deg from the handle.
   const Eigen::Vector3d h =
       ShippedSimulationModel().scene().ObjectPose(45.0 * kDeg).linear().col(0);
@@ -123,7 +124,7 @@ TEST(Synthesis, BadStartIsAResult) {
 
 TEST(Synthesis, TurnWithObjectKeepsTheHoldRelativeToTheObject) {
   const GraspingMotion& m = Library406080().entries[0].motion;
-  const GraspingMotion t = TurnWithObject(m, 55.0 * kDeg);
+  const GraspingMotion t = TurnWithObject(m, Placement{55.0 * kDeg});
   const SceneModel& scene = ShippedSimulationModel().scene();
   const Eigen::Isometry3d X_OH_a =
       scene.ObjectPose(m.theta).inverse() * (Eigen::Translation3d(m.grasp().p_WH) * m.grasp().q_WH);
@@ -296,7 +297,7 @@ TEST(SynthesisWeak, AWeakRepresentativeGivesWayToItsRobustNeighbour) {
     EXPECT_EQ(r.used, SynthesisMethod::kNearest) << theta;
     ASSERT_EQ(r.sources.size(), 1u);
     EXPECT_EQ(r.sources[0].theta_deg, 30.0) << theta;
-    EXPECT_NE(r.fallback_reason.find("weak"), std::string::npos) << r.fallback_reason;
+    EXPECT_NE(r.fallback_reason.Text().find("weak"), std::string::npos) << r.fallback_reason.Text();
   }
   // the 20 deg grasp itself drops the pan; its neighbour turned by -10 deg lifts it.
   const TrialResult t = RunTrial(ShippedSimulationModel(), Synthesize(model, 20.0).trajectory);

@@ -1,0 +1,72 @@
+#include "solver/study_method.hpp"
+
+#include "common/errors.hpp"
+
+namespace graspsynth {
+
+std::string StudyMethod::Label() const {
+  std::string label = ToString(method);
+  if (refine && ceres && nlopt) label += "+refine";
+  if (refine && ceres && !nlopt) label += "+ceres";
+  if (refine && !ceres && nlopt) label += "+nlopt";
+  if (resample == ResampleMode::kArcLength) label += "/arc";
+  if (reach != ReachMethod::kAuto) label += std::string("/") + ToString(reach);
+  if (!thresholds_from_sources) label += "/strict";
+  return label;
+}
+
+SynthesisOptions StudyMethod::Options() const {
+  SynthesisOptions o;
+  o.method = method;
+  o.refine = refine && (ceres || nlopt);
+  o.refinement.run_ceres = ceres;
+  o.refinement.run_nlopt = nlopt;
+  o.blend.resample = resample;
+  o.reach_method = reach;
+  o.thresholds_from_sources = thresholds_from_sources;
+  return o;
+}
+
+StudyMethod ParseStudyMethod(const std::string& label) {
+  const auto fail = [&](const std::string& part) {
+    return InputError("unknown method '" + label + "': '" + part +
+                      "' is not known (a method interp, line or nearest, then optionally "
+                      "+refine, +ceres or +nlopt, /arc, /spline or /joint, /strict; e.g. "
+                      "interp+refine/arc)");
+  };
+  StudyMethod m;
+  m.refine = false;
+  size_t end = label.find_first_of("+/");
+  const std::string name = label.substr(0, end);
+  try {
+    m.method = ParseSynthesisMethod(name);
+  } catch (const InputError&) {
+    throw fail(name);
+  }
+  while (end != std::string::npos) {
+    const size_t next = label.find_first_of("+/", end + 1);
+    const std::string part = label.substr(end, next == std::string::npos ? next : next - end);
+    if (part == "+refine" && !m.refine) {
+      m.refine = true;
+    } else if (part == "+ceres" && !m.refine) {
+      m.refine = true;
+      m.nlopt = false;
+    } else if (part == "+nlopt" && !m.refine) {
+      m.refine = true;
+      m.ceres = false;
+    } else if (part == "/arc" && m.resample == ResampleMode::kNormalizedTime) {
+      m.resample = ResampleMode::kArcLength;
+    } else if ((part == "/spline" || part == "/joint") && m.reach == ReachMethod::kAuto) {
+      m.reach = ParseReachMethod(part.substr(1));
+    } else if (part == "/strict" && m.thresholds_from_sources) {
+      m.thresholds_from_sources = false;
+    } else {
+      throw fail(part);
+    }
+    end = next;
+  }
+  if (m.Label() != label) throw fail(label);  // e.g. parts out of order
+  return m;
+}
+
+}  // namespace graspsynth

@@ -1,0 +1,43 @@
+#pragma once
+
+/// @file
+/// The synthesis methods of the study and of `generalize` (experiments/ablations.sh): a label
+/// such as "interp+refine/arc" names which stages of the synthesis pipeline (synthesis.hpp)
+/// run and with which options.
+
+#include <string>
+
+#include "solver/synthesis.hpp"
+
+namespace graspsynth {
+
+/// One synthesis method of the study: how the grasping motion is made, with or without the
+/// refinement, and the variants the ablations turn (experiments/ablations.sh).
+struct StudyMethod {
+  SynthesisMethod method = SynthesisMethod::kInterp;
+  bool refine = true;
+  bool ceres = true;  ///< the refinement's stage 1 (with refine)
+  bool nlopt = true;  ///< the refinement's stage 2 (with refine)
+  ResampleMode resample = ResampleMode::kNormalizedTime;  ///< of the blend
+  ReachMethod reach = ReachMethod::kAuto;
+  bool thresholds_from_sources = true;  ///< SynthesisOptions' (false: "/strict")
+
+  /// The name: the method ("interp", "line", "nearest"), then "+refine" when both refinement
+  /// stages run, "+ceres" or "+nlopt" when only that one does, then "/arc" for arc-length
+  /// resampling, "/spline" or "/joint" for a reach other than auto, and "/strict" for the
+  /// refinement's default thresholds whatever the sources did. E.g. "interp+refine", "line",
+  /// "interp+ceres/arc".
+  std::string Label() const;
+  /// The synthesis options of this method, one part per stage: the method is the motion
+  /// generation's (GenerateGraspingMotion), "/arc" its blend's resampling; "+refine", "+ceres"
+  /// and "+nlopt" the refinement stages that run (RunCeresStage, RunNloptStage); "/strict" the
+  /// refinement's thresholds (no ThresholdsFromSources); "/spline" and "/joint" the reach stage
+  /// (PlanReach).
+  SynthesisOptions Options() const;
+};
+
+/// Parses a StudyMethod::Label(); throws InputError naming the label and the part it does not
+/// know otherwise.
+StudyMethod ParseStudyMethod(const std::string& label);
+
+}  // namespace graspsynth

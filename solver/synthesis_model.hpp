@@ -1,0 +1,61 @@
+#pragma once
+
+/// @file
+/// What every stage of the synthesis (synthesis.hpp) shares: the model, built once from the
+/// robot, scene and library, and the task, the object's placement entered once per query.
+
+#include <vector>
+
+#include "collision/collision_scene.hpp"
+#include "kinematics/robot_description.hpp"
+#include "kinematics/scene_model.hpp"
+#include "learning_data/grasp_library.hpp"
+#include "solver/line_principle.hpp"
+#include "solver/refinement.hpp"
+
+namespace graspsynth {
+
+/// Everything the synthesis needs that does not change between queries (STYLE.md's Model):
+/// robot, scene, collision model, library and the line-principle models fitted over it.
+class SynthesisModel {
+ public:
+  /// Checks the library (at least one entry, theta strictly increasing, every motion well
+  /// formed; throws InputError naming the entry otherwise) and fits the line principle.
+  SynthesisModel(RobotModel robot, SceneModel scene, GraspLibrary library,
+                 const LinePrincipleOptions& line_options = {});
+
+  const RobotModel& robot() const { return robot_; }
+  const SceneModel& scene() const { return scene_; }
+  const CollisionModel& collision() const { return collision_; }
+  const GraspLibrary& library() const { return library_; }
+  const LinePrincipleModel& line() const { return line_; }
+  /// The refinement's constraint values of each library entry's own motion (from the rest pose
+  /// for its grasp orientation), in entry order: what the demonstrations that held the object
+  /// in physics did (SynthesisOptions::thresholds_from_sources).
+  const std::vector<RefinementConstraints>& entry_constraints() const { return entry_constraints_; }
+  /// The library's range, deg.
+  double theta_min_deg() const { return library_.entries.front().theta_deg; }
+  double theta_max_deg() const { return library_.entries.back().theta_deg; }
+
+ private:
+  RobotModel robot_;
+  SceneModel scene_;
+  GraspLibrary library_;
+  CollisionModel collision_;
+  LinePrincipleModel line_;
+  std::vector<RefinementConstraints> entry_constraints_;
+};
+
+/// One synthesis query: the object's placement, converted from the degrees the user gives
+/// once, and the object's pose computed from it once; every stage reads it from here.
+struct SynthesisTask {
+  double theta_deg = 0.0;  ///< the object orientation as asked, deg (bracket, reports)
+  Placement placement;     ///< the object's placement, theta = theta_deg * pi / 180 rad
+  /// The object's pose at rest, scene.ObjectPose(placement) (object frame O in world W).
+  Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
+};
+
+/// The task of orientation `theta_deg` (deg, finite) in `scene`.
+SynthesisTask MakeSynthesisTask(const SceneModel& scene, double theta_deg);
+
+}  // namespace graspsynth
