@@ -25,8 +25,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr double kDeg = M_PI / 180.0;
-
 struct AnalyzeOptions {
   std::string directory;
   std::string out;

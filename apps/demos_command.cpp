@@ -27,7 +27,6 @@ namespace graspsynth::apps {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kDeg = M_PI / 180.0;
 
 struct DemosOptions {
   std::string out;

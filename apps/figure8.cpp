@@ -28,8 +28,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr double kDeg = M_PI / 180.0;
-
 // A folder under the system's temporary folder, removed with everything in it on destruction.
 class TempFolder {
  public:

@@ -100,9 +100,7 @@ json IkLine(const ArmModel& arm, std::optional<ArmBranch> only, std::string_view
   if (psi < -M_PI - 1e-12 || psi > M_PI + 1e-12) {
     throw InputError("psi = " + std::to_string(psi) + " is outside [-pi, pi]");
   }
-  Eigen::Isometry3d X_WF = Eigen::Isometry3d::Identity();
-  X_WF.linear() = quat.normalized().toRotationMatrix();
-  X_WF.translation() = Eigen::Vector3d(v[0], v[1], v[2]);
+  Eigen::Isometry3d X_WF = PoseFrom(Eigen::Vector3d(v[0], v[1], v[2]), quat.normalized());
 
   json solutions = json::array();
   json branches = json::array();

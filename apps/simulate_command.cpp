@@ -27,7 +27,6 @@ namespace {
 
 using json = nlohmann::ordered_json;
 
-constexpr double kDeg = M_PI / 180.0;
 constexpr std::string_view kReportFormat = "graspsynth-simulation/1";
 
 struct SimulateOptions {

@@ -22,6 +22,7 @@
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
 #include "common/orientation_list.hpp"
+#include "kinematics/pose_math.hpp"
 #include "learning_data/demo_log.hpp"
 #include "simulation/simulation_model.hpp"
 #include "teleop/calibration.hpp"
@@ -201,9 +202,7 @@ struct ClientOptions {
 // joint values, the grasp and end events as button presses.
 teleop::OperatorCommand CommandOf(const DemoSample& s, const teleop::TeleopCalibration& calibration,
                                   uint32_t sequence) {
-  Eigen::Isometry3d X_WH = Eigen::Isometry3d::Identity();
-  X_WH.linear() = s.q_WH.normalized().toRotationMatrix();
-  X_WH.translation() = s.p_WH;
+  Eigen::Isometry3d X_WH = PoseFrom(s.p_WH, s.q_WH.normalized());
   const Eigen::Isometry3d X_TS = calibration.SensorInTracker(X_WH);
   teleop::OperatorCommand c;
   c.sequence = sequence;

@@ -67,4 +67,19 @@ Eigen::Quaterniond Canonical(const Eigen::Quaterniond& q) {
   return c;
 }
 
+Eigen::Quaterniond CanonicalForFile(const Eigen::Quaterniond& q) {
+  Eigen::Quaterniond r = q;
+  const double norm = r.norm();
+  if (std::abs(norm - 1.0) > 1e-15) r.coeffs() /= norm;
+  if (r.w() < 0.0) r.coeffs() = -r.coeffs();
+  return r;
+}
+
+Eigen::Isometry3d PoseFrom(const Eigen::Vector3d& p, const Eigen::Quaterniond& q) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = q.toRotationMatrix();
+  X.translation() = p;
+  return X;
+}
+
 }  // namespace graspsynth

@@ -45,4 +45,13 @@ PoseDistance DistanceBetween(const Eigen::Isometry3d& X_a, const Eigen::Isometry
 /// The canonical form of q for files: unit and sign-normalized so that w >= 0.
 Eigen::Quaterniond Canonical(const Eigen::Quaterniond& q);
 
+/// Canonical for writing to a file: sign-normalized (w >= 0), and divided by its norm only when
+/// that differs from 1 by more than 1e-15, so that a unit quaternion read from a file is
+/// written back bit for bit.
+Eigen::Quaterniond CanonicalForFile(const Eigen::Quaterniond& q);
+
+/// The pose with position `p` (m) and the rotation of the unit quaternion `q` (normalize a
+/// quaternion read from a file or a message first).
+Eigen::Isometry3d PoseFrom(const Eigen::Vector3d& p, const Eigen::Quaterniond& q);
+
 }  // namespace graspsynth

@@ -8,12 +8,6 @@
 #include "kinematics/arm_ik.hpp"
 
 namespace graspsynth {
-namespace {
-
-constexpr double kDeg = M_PI / 180.0;
-
-}  // namespace
-
 Vector7d DefaultRestConfiguration(const RobotModel& robot, const SceneModel& scene,
                                   const Eigen::Matrix3d& R_WH) {
   const Eigen::Vector2d toward = scene.object.centre_xy.normalized();

@@ -16,6 +16,7 @@
 
 #include "common/data_dir.hpp"
 #include "common/errors.hpp"
+#include "kinematics/pose_math.hpp"
 
 namespace graspsynth {
 namespace {
@@ -83,11 +84,9 @@ urdf::ModelInterfaceSharedPtr ParseWithUrdfdom(std::string_view urdf_xml,
 }
 
 Eigen::Isometry3d ToIsometry(const urdf::Pose& pose) {
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.translation() = Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
   const Eigen::Quaterniond q(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z);
-  X.linear() = q.normalized().toRotationMatrix();
-  return X;
+  return PoseFrom(Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z),
+                  q.normalized());
 }
 
 std::string Quoted(const std::string& name) { return "'" + name + "'"; }

@@ -15,9 +15,13 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace graspsynth {
+
+/// One degree in radians: degrees (files, flags, reports) times kDeg are radians.
+inline constexpr double kDeg = M_PI / 180.0;
 
 /// Number of arm joints (PA-10-7C: S1 S2 S3 E1 E2 W1 W2).
 inline constexpr int kArmDof = 7;

@@ -9,6 +9,7 @@
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
 #include "common/text_input.hpp"
+#include "kinematics/pose_math.hpp"
 
 namespace graspsynth {
 namespace {
@@ -20,9 +21,6 @@ constexpr int kColQuat = 4;
 constexpr int kColFingers = 8;
 constexpr int kColEvent = 24;
 constexpr int kColObject = 25;
-
-// A quaternion whose norm is within this of 1 is written without rescaling.
-constexpr double kUnitNormSlack = 1e-15;
 
 std::vector<std::string> MakeColumns() {
   std::vector<std::string> names = {"t",        "wrist_x",  "wrist_y",  "wrist_z",
@@ -393,11 +391,7 @@ std::string FormatChecked(const DemoLog& log, const std::string& source) {
       throw InputError(source + ": sample " + std::to_string(k) +
                        ": the wrist quaternion has norm " + FormatNumber(norm) + ", not 1");
     }
-    // sign-normalized; rescaled only when not already unit to the last bits, so that writing
-    // what was read gives the same bytes.
-    Eigen::Quaterniond q = s.q_WH;
-    if (std::abs(norm - 1.0) > kUnitNormSlack) q.coeffs() /= norm;
-    if (q.w() < 0.0) q.coeffs() = -q.coeffs();
+    const Eigen::Quaterniond q = CanonicalForFile(s.q_WH);
     const auto add = [&out](double value) {
       out += FormatNumber(value);
       out += ',';

@@ -1,4 +1,5 @@
 #include "learning_data/demo_replay.hpp"
+#include "kinematics/pose_math.hpp"
 
 #include <optional>
 #include <sstream>
@@ -23,9 +24,7 @@ DemoReplay ReplayDemoLog(const RobotModel& robot, const DemoLog& log,
     w.f = s.f;
     path.push_back(w);
   }
-  Eigen::Isometry3d X_WH0 = Eigen::Isometry3d::Identity();
-  X_WH0.linear() = path.front().q_WH.toRotationMatrix();
-  X_WH0.translation() = path.front().p_WH;
+  Eigen::Isometry3d X_WH0 = PoseFrom(path.front().p_WH, path.front().q_WH);
   const Eigen::Isometry3d X_WF0 = X_WH0 * robot.X_FH.inverse();
   // the elbow-up branch first, then its wrist flip, then the others; the first branch on
   // which the whole log converts is used.

@@ -11,6 +11,7 @@
 #include "common/data_dir.hpp"
 #include "common/errors.hpp"
 #include "common/json_reader.hpp"
+#include "kinematics/pose_math.hpp"
 
 namespace graspsynth {
 namespace {
@@ -18,21 +19,11 @@ namespace {
 using json = nlohmann::ordered_json;
 
 constexpr std::string_view kLibraryFormat = "graspsynth-library/1";
-constexpr double kDeg = M_PI / 180.0;
 // a quaternion read from a library may be off unit by this much (rounding by other writers);
 // it is then normalized, so that the motion passes IsWellFormed (1e-9).
 constexpr double kQuaternionTolerance = 1e-6;
 // theta_rad of a motion must agree with its entry's theta_deg this closely, rad.
 constexpr double kThetaTolerance = 1e-9;
-
-// Sign-normalized (w >= 0) and unit: divided by its norm unless that is already within 1e-15
-// of 1, so that a unit quaternion is written (and read back) bit for bit.
-Eigen::Quaterniond ForFile(const Eigen::Quaterniond& q) {
-  Eigen::Quaterniond r = q;
-  if (std::abs(r.norm() - 1.0) > 1e-15) r.normalize();
-  if (r.w() < 0.0) r.coeffs() = -r.coeffs();
-  return r;
-}
 
 json Vector(const Eigen::VectorXd& v) {
   json a = json::array();
@@ -43,7 +34,7 @@ json Vector(const Eigen::VectorXd& v) {
 json MotionJson(const GraspingMotion& motion) {
   json waypoints = json::array();
   for (const MotionWaypoint& w : motion.waypoints) {
-    const Eigen::Quaterniond q = ForFile(w.q_WH);
+    const Eigen::Quaterniond q = CanonicalForFile(w.q_WH);
     waypoints.push_back({{"t", w.t},
                          {"position", Vector(w.p_WH)},
                          {"quaternion", {q.w(), q.x(), q.y(), q.z()}},

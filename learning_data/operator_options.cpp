@@ -12,7 +12,6 @@
 namespace graspsynth {
 namespace {
 
-constexpr double kDeg = M_PI / 180.0;
 constexpr char kOperatorFormat[] = "graspsynth-operator/1";
 constexpr int64_t kMaxCount = std::numeric_limits<int>::max();
 using json = nlohmann::ordered_json;

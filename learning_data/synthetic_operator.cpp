@@ -19,7 +19,6 @@
 namespace graspsynth {
 namespace {
 
-constexpr double kDeg = M_PI / 180.0;
 constexpr int kMaxAttempts = 5;
 
 // One sub-movement of the wrist and fingers: minimum-jerk in position, slerp in orientation,

@@ -1,13 +1,12 @@
 #include "motion/grasping_motion.hpp"
+#include "kinematics/pose_math.hpp"
 
 #include <cmath>
 
 namespace graspsynth {
 
 Eigen::Isometry3d WaypointPose(const MotionWaypoint& w) {
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.linear() = w.q_WH.toRotationMatrix();
-  X.translation() = w.p_WH;
+  Eigen::Isometry3d X = PoseFrom(w.p_WH, w.q_WH);
   return X;
 }
 

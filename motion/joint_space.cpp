@@ -4,6 +4,7 @@
 
 #include "common/demand.hpp"
 #include "kinematics/arm_ik.hpp"
+#include "kinematics/pose_math.hpp"
 #include "motion/reach.hpp"
 
 namespace graspsynth {
@@ -84,9 +85,7 @@ JointSpaceResult ToJointTrajectory(const RobotModel& robot, const CartesianPath&
   double time_shift = 0.0;
   for (size_t k = 0; k < path.size(); ++k) {
     const MotionWaypoint& w = path[k];
-    Eigen::Isometry3d X_WH = Eigen::Isometry3d::Identity();
-    X_WH.linear() = w.q_WH.normalized().toRotationMatrix();
-    X_WH.translation() = w.p_WH;
+    Eigen::Isometry3d X_WH = PoseFrom(w.p_WH, w.q_WH.normalized());
     const std::optional<Vector7d> q =
         SolveWristPose(robot, X_WH, branch, psi, q_prev, options.psi_margin);
     if (!q) {

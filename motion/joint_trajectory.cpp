@@ -36,9 +36,7 @@ json RoundedArray(const double* data, int n) {
 }  // namespace
 
 Eigen::Isometry3d WristWaypoint::pose() const {
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.linear() = q_WH.normalized().toRotationMatrix();
-  X.translation() = p_WH;
+  Eigen::Isometry3d X = PoseFrom(p_WH, q_WH.normalized());
   return X;
 }
 

@@ -10,8 +10,6 @@
 namespace graspsynth {
 namespace {
 
-constexpr double kDeg = M_PI / 180.0;
-
 Eigen::Isometry3d Pose(const Eigen::Matrix3d& R, const Eigen::Vector3d& p) {
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
   X.linear() = R;

@@ -15,6 +15,7 @@
 
 #include "common/demand.hpp"
 #include "common/errors.hpp"
+#include "kinematics/pose_math.hpp"
 
 #ifndef dDOUBLE
 #error "graspsynth needs ODE built in double precision (Debian's libode-dev is)"
@@ -93,9 +94,8 @@ void ToOde(const Eigen::Matrix3d& R, dMatrix3 out) {
 Eigen::Isometry3d BodyPose(dBodyID body) {
   const dReal* p = dBodyGetPosition(body);
   const dReal* q = dBodyGetQuaternion(body);
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.linear() = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
-  X.translation() = Eigen::Vector3d(p[0], p[1], p[2]);
+  Eigen::Isometry3d X = PoseFrom(Eigen::Vector3d(p[0], p[1], p[2]),
+                                 Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized());
   return X;
 }
 

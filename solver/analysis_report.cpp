@@ -12,8 +12,6 @@ namespace {
 
 using nlohmann::json;
 
-constexpr double kDeg = M_PI / 180.0;
-
 json Xy(const Eigen::Vector2d& v) { return json::array({v.x(), v.y()}); }
 
 json PolarJson(const PolarMean& m) {

@@ -7,10 +7,6 @@
 
 namespace graspsynth {
 
-namespace {
-constexpr double kDeg = M_PI / 180.0;
-}  // namespace
-
 bool BracketOptions::IsValid(std::string* why) const {
   auto fail = [&](const char* what) {
     if (why) *why = what;

@@ -15,7 +15,6 @@ namespace graspsynth {
 namespace {
 
 using nlohmann::json;
-constexpr double kDeg = M_PI / 180.0;
 
 json Vec(const Eigen::VectorXd& v) {
   json a = json::array();

@@ -11,8 +11,6 @@ namespace graspsynth {
 
 namespace {
 
-constexpr double kDeg = M_PI / 180.0;
-
 double Wrap(double a) { return std::remainder(a, 2.0 * M_PI); }
 
 // The "palm down, long axis z_H along world x" orientation: x_H = -z_W, y_H = y_W, z_H = x_W.

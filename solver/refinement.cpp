@@ -17,7 +17,6 @@ namespace graspsynth {
 
 namespace {
 
-constexpr double kDeg = M_PI / 180.0;
 constexpr double kRadToMetre = 0.1;  // weight of a rad of violation against a metre
 // a constraint violated by less than this (m) holds: NLopt's constraint tolerance.
 constexpr double kFeasibilityTolerance = 1e-5;

@@ -17,8 +17,6 @@ namespace {
 using study_text::Deg;
 using study_text::Num17;
 
-constexpr double kDeg = M_PI / 180.0;
-
 double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

@@ -50,8 +50,6 @@ using study_text::Deg;
 using study_text::Format;
 using study_text::Num17;
 
-constexpr double kDeg = M_PI / 180.0;
-
 json RowJson(const StudyRow& r) {
   json j;
   j["theta_deg"] = r.theta_deg;

@@ -9,8 +9,6 @@ namespace graspsynth {
 
 namespace {
 
-constexpr double kDeg = M_PI / 180.0;
-
 std::string Degrees(double v) {
   std::ostringstream s;
   s << v;

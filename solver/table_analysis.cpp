@@ -9,8 +9,6 @@
 namespace graspsynth {
 namespace {
 
-constexpr double kDeg = M_PI / 180.0;
-
 // Sample standard deviation from deviations about the mean (n - 1; 0 for fewer than two).
 double SampleStd(const std::vector<double>& deviations) {
   if (deviations.size() < 2) return 0.0;

@@ -7,6 +7,7 @@
 #include "common/data_dir.hpp"
 #include "common/errors.hpp"
 #include "common/json_reader.hpp"
+#include "kinematics/pose_math.hpp"
 
 namespace graspsynth::teleop {
 namespace {
@@ -15,9 +16,7 @@ Eigen::Isometry3d Pose(const JsonReader& object) {
   object.AsObject().RejectUnknownKeys({"position", "quaternion"});
   const Eigen::Vector3d p = object.Vector3("position");
   const Eigen::Quaterniond quaternion = object.UnitQuaternion("quaternion", 1e-6);
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.linear() = quaternion.normalized().toRotationMatrix();
-  X.translation() = p;
+  Eigen::Isometry3d X = PoseFrom(p, quaternion.normalized());
   return X;
 }
 

@@ -8,6 +8,7 @@
 
 #include "common/errors.hpp"
 #include "kinematics/arm_ik.hpp"
+#include "kinematics/pose_math.hpp"
 #include "kinematics/rest_pose.hpp"
 #include "motion/joint_space.hpp"
 #include "simulation/scripted_grasp.hpp"
@@ -213,9 +214,7 @@ struct TeleopSession::Impl {
   // the newest valid command of the tick sets the targets.
   void Apply(const OperatorCommand& command) {
     const RobotModel& robot = model.robot();
-    Eigen::Isometry3d X_TS = Eigen::Isometry3d::Identity();
-    X_TS.linear() = command.q_TW.normalized().toRotationMatrix();
-    X_TS.translation() = command.p_TW;
+    Eigen::Isometry3d X_TS = PoseFrom(command.p_TW, command.q_TW.normalized());
     const Eigen::Isometry3d X_WH = options.calibration.WristInWorld(X_TS);
     const std::optional<Vector7d> q =
         SolveWristPose(robot, X_WH, BranchOf(q_ik), ArmAngleOf(robot.arm, q_ik), q_ik);

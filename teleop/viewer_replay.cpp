@@ -7,12 +7,11 @@
 
 #include "common/demand.hpp"
 #include "kinematics/arm_ik.hpp"
+#include "kinematics/pose_math.hpp"
 #include "motion/joint_space.hpp"
 
 namespace graspsynth::teleop {
 namespace {
-
-constexpr double kDeg = M_PI / 180.0;
 
 std::string ThetaText(double theta_deg) {
   std::ostringstream out;
@@ -47,9 +46,7 @@ ViewerReplay ReplayOfLog(const RobotModel& robot, const DemoLog& log) {
   std::optional<Vector7d> q;
   std::optional<size_t> first_reached;
   for (const DemoSample& s : log.samples) {
-    Eigen::Isometry3d X_WH = Eigen::Isometry3d::Identity();
-    X_WH.linear() = s.q_WH.normalized().toRotationMatrix();
-    X_WH.translation() = s.p_WH;
+    Eigen::Isometry3d X_WH = PoseFrom(s.p_WH, s.q_WH.normalized());
     const std::optional<Vector7d> next =
         q ? SolveWristPose(robot, X_WH, BranchOf(*q), ArmAngleOf(robot.arm, *q), *q)
           : RestConfiguration(robot, X_WH);

@@ -14,8 +14,6 @@ namespace {
 
 using nlohmann::json;
 
-constexpr double kDeg = M_PI / 180.0;
-
 // pose as [x, y, z, qw, qx, qy, qz] (quaternion sign-normalized).
 json PoseJson(const Eigen::Isometry3d& X) {
   const Eigen::Quaterniond q = Canonical(Eigen::Quaterniond(X.linear()));

@@ -140,5 +140,14 @@ TEST(Canonical, HasNonNegativeScalarPart) {
   EXPECT_LT(AngleBetween(c, q), 1e-15);
 }
 
+TEST(PoseFrom, MapsThePointsAsTranslationAfterRotation) {
+  const Eigen::Quaterniond q(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()));
+  const Eigen::Isometry3d X = PoseFrom(Eigen::Vector3d(1.0, 2.0, 3.0), q);
+  EXPECT_TRUE(X.translation().isApprox(Eigen::Vector3d(1.0, 2.0, 3.0)));
+  // x rotated a quarter turn about z is y, then moved by the translation.
+  EXPECT_LT((X * Eigen::Vector3d::UnitX() - Eigen::Vector3d(1.0, 3.0, 3.0)).norm(), 1e-15);
+  EXPECT_DOUBLE_EQ(X.matrix()(3, 3), 1.0);
+}
+
 }  // namespace
 }  // namespace graspsynth

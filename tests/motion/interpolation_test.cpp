@@ -12,8 +12,6 @@ namespace {
 using testing::LineMotion;
 using testing::MatricesNear;
 
-constexpr double kDeg = M_PI / 180.0;
-
 // two demonstrations around an object at p_WO, like the paper's neighbouring orientations.
 struct Pair {
   Eigen::Vector3d p_WO{-0.25, 0.85, 0.025};

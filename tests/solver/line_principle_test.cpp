@@ -13,7 +13,6 @@ using testing::Library406080;
 using testing::ShippedSimulationModel;
 using testing::SideSwitchLibrary;
 
-constexpr double kDeg = M_PI / 180.0;
 const SceneModel& Scene() { return ShippedSimulationModel().scene(); }
 
 TEST(LinePrinciple, ReproducesTheLibrarysGraspsInsideTheRange) {

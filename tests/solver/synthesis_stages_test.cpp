@@ -15,8 +15,6 @@ using testing::Library406080;
 using testing::Model406080;
 using testing::SideSwitchModel;
 
-constexpr double kDeg = M_PI / 180.0;
-
 TEST(SynthesisTask, ThePlacementEntersOnceWithTheObjectPose) {
   const SynthesisTask task = MakeSynthesisTask(Model406080().scene(), 55.0);
   EXPECT_EQ(task.theta_deg, 55.0);

@@ -17,8 +17,6 @@ using testing::Model406080;
 using testing::ShippedSimulationModel;
 using testing::SideSwitchModel;
 
-constexpr double kDeg = M_PI / 180.0;
-
 SynthesisResult Synthesize(const SynthesisModel& model, double theta_deg,
                            SynthesisMethod method = SynthesisMethod::kInterp, bool refine = true) {
   SynthesisOptions o;

@@ -17,8 +17,6 @@ namespace {
 using ::testing::HasSubstr;
 using testing::Polar;
 
-constexpr double kDeg = M_PI / 180.0;
-
 // Points on the line through `p0` along unit `u` at the given arc positions.
 std::vector<Eigen::Vector2d> OnLine(const Eigen::Vector2d& p0, const Eigen::Vector2d& u,
                                     const std::vector<double>& s) {
