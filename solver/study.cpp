@@ -177,9 +177,9 @@ std::vector<StudyRow> SynthesisTable(const SimulationModel& model, const GraspLi
       row.status = s.status;
       row.message = s.message;
       if (s.ok()) {
-        row.used = ToString(s.used);
+        row.used = s.used;
         row.fallback = s.fallback;
-        row.fallback_reason = s.fallback_reason.Text();
+        row.fallback_reason = s.fallback_reason;
         row.refined = s.refined;
         for (const SourceDemo& d : s.sources) row.source_thetas_deg.push_back(d.theta_deg);
         PhysicsGateOptions go;

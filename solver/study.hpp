@@ -102,11 +102,12 @@ struct StudyRow {
   double theta_deg = 0.0;  ///< deg
   std::string method;      ///< StudyMethod::Label()
   std::string message;     ///< the synthesis' message when status is not "ok"
-  std::string used;        ///< method used ("interp", "line", "nearest"); empty if none
-  bool fallback = false;   ///< a method other than the requested one was used
-  std::string fallback_reason;
-  bool refined = false;   ///< the refinement ran
-  bool gate_run = false;  ///< the physics gate ran (status "ok")
+  /// The method used; unset when the synthesis did not succeed (the files write "").
+  std::optional<SynthesisMethod> used;
+  bool fallback = false;           ///< a method other than the requested one was used
+  FallbackReason fallback_reason;  ///< why (kind kNone without a fallback)
+  bool refined = false;            ///< the refinement ran
+  bool gate_run = false;           ///< the physics gate ran (status "ok")
   /// The synthesis' status ("ok" is SynthesisStatus::kOk); unset when the synthesis did not run
   /// for want of a library (the files write "no_library").
   std::optional<SynthesisStatus> status;

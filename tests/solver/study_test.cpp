@@ -154,9 +154,13 @@ StudyResult HandMadeResult() {
   ok.theta_deg = 45;
   ok.method = "interp+refine";
   ok.status = SynthesisStatus::kOk;
-  ok.used = "nearest";
+  ok.used = SynthesisMethod::kNearest;
   ok.fallback = true;
-  ok.fallback_reason = "sides differ, so the nearer demonstration was turned";
+  ok.fallback_reason.kind = FallbackKind::kTurnedDemo;
+  ok.fallback_reason.bracket_reason = "the sides differ";
+  ok.fallback_reason.lower_deg = 40;
+  ok.fallback_reason.upper_deg = 50;
+  ok.fallback_reason.used_deg = 40;
   ok.refined = true;
   ok.gate_run = true;
   ok.nominal_success = true;
@@ -175,9 +179,9 @@ StudyResult HandMadeResult() {
   ok.gate_s = 1.5;
   StudyRow dropped = ok;
   dropped.method = "line+refine";
-  dropped.used = "line";
+  dropped.used = SynthesisMethod::kLine;
   dropped.fallback = false;
-  dropped.fallback_reason.clear();
+  dropped.fallback_reason = FallbackReason();
   dropped.nominal_success = false;
   dropped.nominal_outcome = TrialOutcome::kDropped;
   dropped.nominal_reason = "lifted 6 cm, then slipped | fell";
@@ -194,7 +198,7 @@ StudyResult HandMadeResult() {
   StudyRow line60 = ok;
   line60.theta_deg = 60;
   line60.method = "line+refine";
-  line60.used = "line";
+  line60.used = SynthesisMethod::kLine;
   line60.fallback = false;
   r.rows = {ok, dropped, out_of_range, line60};
   r.total_s = 12.5;
@@ -269,7 +273,9 @@ TEST(StudyReportMarkdown, StatesTheHeadlinesTablesAndFailureReasons) {
   // the reasons of every shortfall, with the pipe escaped.
   EXPECT_THAT(md, HasSubstr("45 deg: nominal trial dropped: lifted 6 cm, then slipped \\| fell"));
   EXPECT_THAT(md, HasSubstr("60 deg: not synthesized (out_of_range): 60 deg is outside"));
-  EXPECT_THAT(md, HasSubstr("sides differ, so the nearer demonstration was turned"));
+  EXPECT_THAT(md, HasSubstr("45 deg, interp+refine used nearest: the bracket 40 - 50 deg cannot be "
+                            "blended (the sides differ); used the nearer demonstration (40 deg) "
+                            "turned with the object"));
 }
 
 TEST(StudyReportMarkdown, SectionsComeInOrder) {
