@@ -9,15 +9,10 @@
 #include <sstream>
 
 #include "common/errors.hpp"
+#include "common/format.hpp"
 
 namespace graspsynth {
 namespace {
-
-std::string Format(const char* fmt, double a, double b = 0.0, double c = 0.0) {
-  char buf[256];
-  std::snprintf(buf, sizeof(buf), fmt, a, b, c);
-  return buf;
-}
 
 double ThreadCpuSeconds() {
   timespec ts{};

@@ -1,16 +1,11 @@
 #include "simulation/trial_judge.hpp"
+#include "common/format.hpp"
 
 #include <algorithm>
 #include <cstdio>
 
 namespace graspsynth {
 namespace {
-
-std::string Format(const char* fmt, double a, double b = 0.0, double c = 0.0) {
-  char buf[256];
-  std::snprintf(buf, sizeof(buf), fmt, a, b, c);
-  return buf;
-}
 
 // Angle between the object's up axis and the world's, rad.
 double Tilt(const Eigen::Isometry3d& X_WO) {

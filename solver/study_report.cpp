@@ -47,7 +47,6 @@ using nlohmann::json;
 using study_text::Cell;
 using study_text::CsvField;
 using study_text::Deg;
-using study_text::Format;
 using study_text::Num17;
 
 json RowJson(const StudyRow& r) {
@@ -56,9 +55,9 @@ json RowJson(const StudyRow& r) {
   j["method"] = r.method;
   j["status"] = StatusName(r);
   j["message"] = r.message;
-  j["used"] = r.used;
+  j["used"] = UsedName(r);
   j["fallback"] = r.fallback;
-  j["fallback_reason"] = r.fallback_reason;
+  j["fallback_reason"] = r.fallback_reason.Text();
   j["refined"] = r.refined;
   j["gate_run"] = r.gate_run;
   j["nominal"] = {{"success", r.nominal_success},
@@ -95,6 +94,10 @@ std::string StatusName(const StudyRow& row) {
   return row.status ? ToString(*row.status) : "no_library";
 }
 
+std::string UsedName(const StudyRow& row) {
+  return row.used ? std::string(ToString(*row.used)) : std::string();
+}
+
 std::string NominalOutcomeName(const StudyRow& row) {
   return row.nominal_outcome ? std::string(ToString(*row.nominal_outcome)) : std::string();
 }
@@ -105,7 +108,7 @@ std::string StudySynthesisCsv(const std::vector<StudyRow>& rows) {
     const std::vector<std::string> fields = {Num17(r.theta_deg),
                                              r.method,
                                              StatusName(r),
-                                             r.used,
+                                             UsedName(r),
                                              r.fallback ? "1" : "0",
                                              r.refined ? "1" : "0",
                                              r.nominal_success ? "1" : "0",
@@ -187,7 +190,7 @@ std::string SynthesisTableMarkdown(const std::vector<StudyRow>& rows) {
          << " | |\n";
       continue;
     }
-    md << r.used << (r.fallback ? " (fallback)" : "") << " | "
+    md << UsedName(r) << (r.fallback ? " (fallback)" : "") << " | "
        << (r.nominal_success ? "success" : "**" + NominalOutcomeName(r) + "**") << " | "
        << (r.trials > 0 ? Format("%d/%d", r.successes, r.trials) : std::string("-")) << " | "
        << (r.trials > 0 ? Format("[%.2f, %.2f]", r.ci_low, r.ci_high) : std::string("-")) << " | "
@@ -203,8 +206,8 @@ std::string SynthesisTableMarkdown(const std::vector<StudyRow>& rows) {
     md << "Fallbacks:\n\n";
     for (const StudyRow& r : rows) {
       if (r.fallback) {
-        md << "- " << Deg(r.theta_deg) << " deg, " << r.method << " used " << r.used << ": "
-           << Cell(r.fallback_reason) << "\n";
+        md << "- " << Deg(r.theta_deg) << " deg, " << r.method << " used " << UsedName(r) << ": "
+           << Cell(r.fallback_reason.Text()) << "\n";
       }
     }
     md << "\n";

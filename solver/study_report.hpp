@@ -9,20 +9,13 @@
 #include <string>
 #include <vector>
 
+#include "common/format.hpp"
 #include "solver/study.hpp"
 
 namespace graspsynth {
 
 /// Text helpers shared by the study and its reports.
 namespace study_text {
-
-/// printf into a std::string (at most 511 characters).
-template <typename... Args>
-std::string Format(const char* format, Args... args) {
-  char buffer[512];
-  std::snprintf(buffer, sizeof(buffer), format, args...);
-  return buffer;
-}
 
 /// A number with 17 significant digits (reads back bit for bit), "nan" for NaN.
 std::string Num17(double value);
@@ -41,6 +34,10 @@ std::string CsvField(const std::string& text);
 /// The row's status as the files write it: ToString(SynthesisStatus), or "no_library" when
 /// the synthesis did not run (StudyRow::status unset).
 std::string StatusName(const StudyRow& row);
+
+/// The row's method used as the files write it: ToString(SynthesisMethod), or "" when the
+/// synthesis did not succeed (StudyRow::used unset).
+std::string UsedName(const StudyRow& row);
 
 /// The row's nominal outcome as the files write it: ToString(TrialOutcome), or "" when the
 /// gate did not run (StudyRow::nominal_outcome unset).

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "kinematics/arm_ik.hpp"
 #include "kinematics/pose_math.hpp"
 #include "kinematics/rest_pose.hpp"

@@ -1,0 +1,23 @@
+#pragma once
+
+/// @file
+/// printf-style formatting into a std::string, for the sentences of reports and reasons.
+
+#include <cstdio>
+#include <string>
+
+namespace graspsynth {
+
+/// printf into a std::string of whatever length the text needs. The arguments must match the
+/// conversions (`%f` takes a double, `%d` an int): the compiler does not check a format that is
+/// not a literal at the call.
+template <typename... Args>
+std::string Format(const char* format, Args... args) {
+  const int n = std::snprintf(nullptr, 0, format, args...);
+  if (n <= 0) return std::string();
+  std::string text(static_cast<size_t>(n), '\0');
+  std::snprintf(text.data(), text.size() + 1, format, args...);
+  return text;
+}
+
+}  // namespace graspsynth
