@@ -82,7 +82,9 @@ TEST(TeleopCommand, HelpExplainsTheLoopAndTheClient) {
 TEST(TeleopCommand, BadOptionsAreNamed) {
   const testing::CommandOutput r = RunGraspsynth("teleop --orientations 20,abc --port 0");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("--orientations: \"abc\" is not a number"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--orientations: 'abc' is not a finite number of degrees (in '20,abc')"),
+            std::string::npos)
+      << r.err;
   const testing::CommandOutput t = RunGraspsynth("teleop --timeout-ms -5 --port 0");
   EXPECT_EQ(t.exit_code, 2);
   EXPECT_NE(t.err.find("--timeout-ms"), std::string::npos) << t.err;
