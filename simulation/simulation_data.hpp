@@ -143,7 +143,8 @@ class SimulationData {
   /// Use only while nothing touches (see HandNearObject and contacts()).
   void StepKinematically();
   /// True when some arm or hand geometry lies within options.proximity_margin of the object
-  /// (tested against inflated copies of the object's shapes).
+  /// (tested against inflated copies of the object's shapes). Known defect: the proxies have
+  /// no category or collide bits, so ODE drops every pair and this returns false.
   bool HandNearObject();
 
   /// Simulated time since construction, s.
