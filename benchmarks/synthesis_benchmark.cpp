@@ -46,8 +46,8 @@ const SynthesisModel& SideSwitch() {
 void Synthesize(benchmark::State& state, const SynthesisModel& model, double theta,
                 SynthesisMethod method, bool refine) {
   SynthesisOptions o;
-  o.method = method;
-  o.refine = refine;
+  o.generation.method = method;
+  if (!refine) o.refinement_stages.clear();
   CollisionData data(model.collision());
   double generate = 0.0, refine_s = 0.0, joints = 0.0;
   int nlopt = 0, ok = 0;

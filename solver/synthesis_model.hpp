@@ -31,7 +31,7 @@ class SynthesisModel {
   const LinePrincipleModel& line() const { return line_; }
   /// The refinement's constraint values of each library entry's own motion (from the rest pose
   /// for its grasp orientation), in entry order: what the demonstrations that held the object
-  /// in physics did (SynthesisOptions::thresholds_from_sources).
+  /// in physics did (SynthesisOptions::source_thresholds).
   const std::vector<RefinementConstraints>& entry_constraints() const { return entry_constraints_; }
   /// The library's range, deg.
   double theta_min_deg() const { return library_.entries.front().theta_deg; }

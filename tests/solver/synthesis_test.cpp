@@ -20,8 +20,8 @@ using testing::SideSwitchModel;
 SynthesisResult Synthesize(const SynthesisModel& model, double theta_deg,
                            SynthesisMethod method = SynthesisMethod::kInterp, bool refine = true) {
   SynthesisOptions o;
-  o.method = method;
-  o.refine = refine;
+  o.generation.method = method;
+  if (!refine) o.refinement_stages.clear();
   CollisionData data(model.collision());
   return SynthesizeGrasp(model, theta_deg, o, &data);
 }
@@ -165,7 +165,7 @@ Vector7d StartAcrossTheRobot(double theta_deg) {
 SynthesisResult WithReach(double theta_deg, ReachMethod reach,
                           const Vector7d& start = Vector7d::Constant(NAN)) {
   SynthesisOptions o;
-  o.reach_method = reach;
+  o.reach.method = reach;
   o.start = start;
   CollisionData data(Model406080().collision());
   return SynthesizeGrasp(Model406080(), theta_deg, o, &data);
@@ -249,7 +249,7 @@ TEST(SynthesisThresholds, TheSourcesLoosenOnlyWhatTheyBreakThemselves) {
   EXPECT_FALSE(r.refinement.nlopt.run);
   EXPECT_LT((r.motion.grasp().p_WH - r.unrefined.grasp().p_WH).norm(), 1e-3);
   // with the default thresholds the same demonstration counts as infeasible and is changed.
-  o.thresholds_from_sources = false;
+  o.source_thresholds.reset();
   const SynthesisResult strict = SynthesizeGrasp(model, 60.0, o, &data);
   ASSERT_TRUE(strict.ok()) << strict.message;
   EXPECT_FALSE(strict.refinement.before.feasible);
