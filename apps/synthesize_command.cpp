@@ -80,7 +80,7 @@ int RunSynthesize(const SynthesizeOptions& o) {
   so.refinement.clearance_margin = o.clearance_margin;
   if (o.strict_thresholds) so.source_thresholds.reset();
   if (!o.start.empty()) so.start = ParseStart(o.start);
-  CollisionData data(model.collision());
+  SynthesisData data(model);
   const SynthesisResult s = SynthesizeGrasp(model, o.theta, so, &data);
   switch (s.status) {
     case SynthesisStatus::kOk:

@@ -195,11 +195,12 @@ JointTrajectory AssembleTrajectory(const ReachPlanResult& reach, const GraspAndL
 }
 
 SynthesisResult SynthesizeGrasp(const SynthesisModel& model, double theta_deg,
-                                const SynthesisOptions& options, CollisionData* data) {
+                                const SynthesisOptions& options, SynthesisData* workspace) {
   std::string why;
   if (!options.IsValid(&why)) throw InputError("invalid synthesis option: " + why);
   if (!std::isfinite(theta_deg)) throw InputError("theta is not finite");
   const SynthesisTask task = MakeSynthesisTask(model.scene(), theta_deg);
+  CollisionData* data = workspace->collision();
   SynthesisResult r;
   r.theta_deg = theta_deg;
   r.requested = options.generation.method;

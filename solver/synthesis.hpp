@@ -146,7 +146,6 @@ StartCheckResult CheckStart(const SynthesisModel& model, const SynthesisTask& ta
                             const GraspingMotion& motion, const StartCheckOptions& options,
                             CollisionData* data);
 
-
 /// Options of RefineSynthesizedMotion.
 struct MotionRefinementOptions {
   RefinementOptions refinement;
@@ -193,8 +192,8 @@ JointTrajectory AssembleTrajectory(const ReachPlanResult& reach, const GraspAndL
 
 /// Synthesizes a grasp for object orientation `theta_deg`: the stages above, in order. Throws
 /// InputError for invalid options; bad queries and failures are results. `data` is the
-/// caller's collision data (made from model.collision()).
+/// calling thread's workspace, made from `model`.
 SynthesisResult SynthesizeGrasp(const SynthesisModel& model, double theta_deg,
-                                const SynthesisOptions& options, CollisionData* data);
+                                const SynthesisOptions& options, SynthesisData* data);
 
 }  // namespace graspsynth

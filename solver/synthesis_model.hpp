@@ -46,6 +46,24 @@ class SynthesisModel {
   std::vector<RefinementConstraints> entry_constraints_;
 };
 
+/// The synthesis's per-thread workspace (STYLE.md's Data): everything a query writes while it
+/// runs, made from a SynthesisModel and reused from one query to the next; one per thread. It
+/// holds the collision data every stage moves the robot and the object in. The stages' other
+/// working state (the Ceres problem, whose residuals hold the motion; NLopt's optimizer, set up
+/// from the options; the IK, which keeps no scratch) is built per query: reusing it would not
+/// save a measurable share of a query, and the results must not depend on what ran before.
+class SynthesisData {
+ public:
+  /// A workspace for queries on `model`, which must outlive it.
+  explicit SynthesisData(const SynthesisModel& model) : collision_(model.collision()) {}
+
+  /// The collision data, made from model.collision().
+  CollisionData* collision() { return &collision_; }
+
+ private:
+  CollisionData collision_;
+};
+
 /// One synthesis query: the object's placement, converted from the degrees the user gives
 /// once, and the object's pose computed from it once; every stage reads it from here.
 struct SynthesisTask {
