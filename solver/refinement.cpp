@@ -375,7 +375,7 @@ RefinementConstraints EvaluateRefinementConstraints(
     const GraspingMotion& motion, const RefinementInputs& inputs, const RefinementOptions& options,
     CollisionData* data) {
   RefinementConstraints c;
-  const Eigen::Isometry3d X_WO = scene.ObjectPose(motion.theta);
+  const Eigen::Isometry3d& X_WO = inputs.X_WO;
   c.approach_clearance = std::numeric_limits<double>::infinity();
   c.grasp_clearance = std::numeric_limits<double>::infinity();
   c.reachable = true;

@@ -88,6 +88,10 @@ struct RefinementOptions {
 
 /// What the refinement knows besides the motion.
 struct RefinementInputs {
+  /// The object's pose at rest (object frame O in world W) where the motion grasps it: the
+  /// task's, computed once from its placement (SceneModel::ObjectPose). The constraints place
+  /// the object here.
+  Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
   /// Arm configuration the robot starts from: its branch is kept and its arm angle starts the
   /// IK along the motion.
   Vector7d q_start = Vector7d::Zero();

@@ -113,13 +113,12 @@ StartCheckResult CheckStart(const SynthesisModel& model, const SynthesisTask& ta
   return r;
 }
 
-MotionRefinementResult RefineSynthesizedMotion(const SynthesisModel& model,
-                                               const MotionGenerationResult& generated,
-                                               const GraspingMotion& motion,
-                                               const Vector7d& q_start,
-                                               const MotionRefinementOptions& options,
-                                               CollisionData* data) {
+MotionRefinementResult RefineSynthesizedMotion(
+    const SynthesisModel& model, const SynthesisTask& task, const MotionGenerationResult& generated,
+    const GraspingMotion& motion, const Vector7d& q_start, const MotionRefinementOptions& options,
+    CollisionData* data) {
   RefinementInputs in;
+  in.X_WO = task.X_WO;
   in.q_start = q_start;
   if (model.line().valid) {
     in.wrist_line = model.line().wrist_line.line;
@@ -228,7 +227,7 @@ SynthesisResult SynthesizeGrasp(const SynthesisModel& model, double theta_deg,
   r.motion = generated.motion;
   if (options.refines()) {
     MotionRefinementResult refined = RefineSynthesizedMotion(
-        model, generated, generated.motion, r.start,
+        model, task, generated, generated.motion, r.start,
         {options.refinement, options.source_thresholds, options.refinement_stages}, data);
     r.clearance_margin = refined.used.clearance_margin;
     r.penetration_tolerance = refined.used.penetration_tolerance;

@@ -8,14 +8,16 @@
 ///    methods, with the interp method's fallbacks and their typed reason;
 /// 2. CheckStart: the start configuration (given, or the rest pose) within the joint limits
 ///    and free of collision;
-/// 3. RefineSynthesizedMotion: the refinement (refinement.hpp: its Ceres stage, then its NLopt
-///    stage), with thresholds loosened to what the sources did;
+/// 3. RefineSynthesizedMotion: the optional stages of the refinement: the thresholds loosened
+///    to what the sources did (SourceThresholdsOptions), then the refinement stages named in
+///    SynthesisOptions::refinement_stages (refinement.hpp: Ceres, then NLopt);
 /// 4. PlanReach (reach_planning.hpp): the reach from the start to the pre-grasp, played with
 ///    the grasping motion and the lift (GraspAndLift) through the analytic IK with a
 ///    continuous arm angle;
 /// 5. AssembleTrajectory: the robot's trajectory and its waypoints.
 /// SynthesizeGrasp runs them in that order on one SynthesisTask, the object's placement
-/// entered once.
+/// entered once and its pose X_WO computed once, which every stage reads; SynthesisOptions
+/// says which optional stages run (solver/study_method.hpp builds it from a method's label).
 
 #include <optional>
 #include <string>
@@ -165,13 +167,12 @@ struct MotionRefinementResult {
 /// The thresholds stage then the refinement stages (refinement.hpp) on the generated motion from
 /// the start configuration `q_start`, with the line prior and contact constraint when the line
 /// principle is fitted. The thresholds' sources: the generated motion's sources, or the nearest
-/// entry for the line principle. Throws InputError for invalid refinement options.
-MotionRefinementResult RefineSynthesizedMotion(const SynthesisModel& model,
-                                               const MotionGenerationResult& generated,
-                                               const GraspingMotion& motion,
-                                               const Vector7d& q_start,
-                                               const MotionRefinementOptions& options,
-                                               CollisionData* data);
+/// entry for the line principle. The object stands at task.X_WO. Throws InputError for invalid
+/// refinement options.
+MotionRefinementResult RefineSynthesizedMotion(
+    const SynthesisModel& model, const SynthesisTask& task, const MotionGenerationResult& generated,
+    const GraspingMotion& motion, const Vector7d& q_start, const MotionRefinementOptions& options,
+    CollisionData* data);
 
 /// The tail of the robot's path after the pre-grasp: the grasping motion, then the lift.
 struct GraspAndLiftPath {

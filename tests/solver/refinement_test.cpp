@@ -17,6 +17,7 @@ struct RefineCase {
   GraspingMotion motion = Library406080().entries[1].motion;  // 60 deg
   RefinementInputs inputs;
   RefineCase() {
+    inputs.X_WO = model.scene().ObjectPose(motion.theta);
     inputs.q_start = DefaultRestConfiguration(model.robot(), model.scene(),
                                               motion.grasp().q_WH.toRotationMatrix());
     inputs.wrist_line = model.line().wrist_line.line;
