@@ -74,13 +74,13 @@ int RunSynthesize(const SynthesizeOptions& o) {
   SynthesisModel model(sim.robot(), sim.scene(), std::move(library));
 
   SynthesisOptions so;
-  so.method = method;
-  so.refine = !o.no_refine;
-  so.reach_method = ParseReachMethod(o.reach);
+  so.generation.method = method;
+  if (o.no_refine) so.refinement_stages.clear();
+  so.reach.method = ParseReachMethod(o.reach);
   so.refinement.clearance_margin = o.clearance_margin;
-  so.thresholds_from_sources = !o.strict_thresholds;
+  if (o.strict_thresholds) so.source_thresholds.reset();
   if (!o.start.empty()) so.start = ParseStart(o.start);
-  CollisionData data(model.collision());
+  SynthesisData data(model);
   const SynthesisResult s = SynthesizeGrasp(model, o.theta, so, &data);
   switch (s.status) {
     case SynthesisStatus::kOk:

@@ -46,9 +46,9 @@ const SynthesisModel& SideSwitch() {
 void Synthesize(benchmark::State& state, const SynthesisModel& model, double theta,
                 SynthesisMethod method, bool refine) {
   SynthesisOptions o;
-  o.method = method;
-  o.refine = refine;
-  CollisionData data(model.collision());
+  o.generation.method = method;
+  if (!refine) o.refinement_stages.clear();
+  SynthesisData data(model);
   double generate = 0.0, refine_s = 0.0, joints = 0.0;
   int nlopt = 0, ok = 0;
   for (auto _ : state) {
@@ -107,7 +107,7 @@ void BM_ShippedLine(benchmark::State& s) {
 // thread (the command's default of 30 replays spreads over every core).
 void Gate(benchmark::State& state, int perturbations) {
   SynthesisOptions o;
-  CollisionData data(Library406080().collision());
+  SynthesisData data(Library406080());
   const SynthesisResult r = SynthesizeGrasp(Library406080(), 50.0, o, &data);
   PhysicsGateOptions g;
   g.perturbations = perturbations;

@@ -35,7 +35,8 @@ DemoReplay ReplayDemoLog(const RobotModel& robot, const DemoLog& log,
     const std::optional<MidArcSolution> s =
         SolveArmIkMidArc(robot.arm, X_WF0, ArmBranch::FromIndex(index));
     if (!s) continue;
-    JointSpaceResult j = ToJointTrajectory(robot, path, s->q, log.metadata.theta_deg, options);
+    JointSpaceResult j = ToJointTrajectory(robot, path, s->q, options);
+    j.trajectory.theta_deg = log.metadata.theta_deg;
     if (j.status == JointSpaceStatus::kOk) {
       start = s;
       joints = std::move(j);

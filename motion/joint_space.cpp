@@ -74,11 +74,9 @@ std::optional<Vector7d> SolveWristPose(const RobotModel& robot, const Eigen::Iso
 }
 
 JointSpaceResult ToJointTrajectory(const RobotModel& robot, const CartesianPath& path,
-                                   const Vector7d& q_start, double theta_deg,
-                                   const JointSpaceOptions& options) {
+                                   const Vector7d& q_start, const JointSpaceOptions& options) {
   GS_DEMAND(options.IsValid(nullptr), "invalid JointSpaceOptions");
   JointSpaceResult result;
-  result.trajectory.theta_deg = theta_deg;
   const ArmBranch branch = BranchOf(q_start);
   Vector7d q_prev = q_start;
   double psi = ArmAngleOf(robot.arm, q_start);

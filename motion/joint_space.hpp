@@ -52,10 +52,10 @@ struct JointSpaceResult {
 
 /// Converts `path` (times strictly increasing; wrist = hand-mount frame H) into joint samples
 /// starting from the arm configuration q_start, whose branch is kept. The first sample's time
-/// is kept; later times grow by the re-timing. theta_deg is stored in the trajectory.
+/// is kept; later times grow by the re-timing. The conversion knows nothing of the object: the
+/// trajectory's theta_deg is left at 0 for the caller, who knows the task, to set.
 JointSpaceResult ToJointTrajectory(const RobotModel& robot, const CartesianPath& path,
-                                   const Vector7d& q_start, double theta_deg,
-                                   const JointSpaceOptions& options = {});
+                                   const Vector7d& q_start, const JointSpaceOptions& options = {});
 
 /// Options of the joint-space reach.
 struct JointReachOptions {

@@ -150,12 +150,13 @@ ScriptedGraspResult BuildScriptedGrasp(const RobotModel& robot, const SceneModel
   AppendSegment(&path, X_lift, X_lift, options.closed, options.closed, options.end_duration, dt);
 
   JointSpaceOptions js;
-  const JointSpaceResult joints = ToJointTrajectory(robot, path, rest, options.theta_deg, js);
+  const JointSpaceResult joints = ToJointTrajectory(robot, path, rest, js);
   if (joints.status != JointSpaceStatus::kOk) {
     result.message = joints.message;
     return result;
   }
   result.trajectory = joints.trajectory;
+  result.trajectory.theta_deg = options.theta_deg;
   // the controller starts exactly at the rest configuration.
   result.trajectory.samples.front().arm = rest;
   const Eigen::Isometry3d poses[] = {X_rest, X_pre, X_grasp, X_grasp, X_lift};

@@ -38,9 +38,14 @@ Eigen::Matrix3d FromRotationVector(const Eigen::Vector3d& r) {
   return Eigen::AngleAxisd(angle, r / angle).matrix();
 }
 
-double HandleAngle(const SceneModel& scene, double theta) {
-  const Eigen::Vector3d h = scene.ObjectPose(theta).linear().col(0);
+// The world yaw of the handle of the object at pose X_WO.
+double HandleAngle(const Eigen::Isometry3d& X_WO) {
+  const Eigen::Vector3d h = X_WO.linear().col(0);
   return std::atan2(h.y(), h.x());
+}
+
+double HandleAngle(const SceneModel& scene, double theta) {
+  return HandleAngle(scene.ObjectPose(theta));
 }
 
 LinearFit FitLinear(const std::vector<double>& x, const std::vector<double>& y) {
@@ -258,16 +263,16 @@ SideKnot KnotAt(const LinePrincipleModel& model, double theta, int side, double*
   return (own.entries == 0 ? model.side_model(-side) : own).At(theta);
 }
 
-// The grasp wrist pose of `side` at theta for its knot `k` (KnotAt): the wrist on the side's
-// line, the rest from the knot.
-Eigen::Isometry3d GraspPose(const LinePrincipleModel& model, const SceneModel& scene, double theta,
-                            int side, const SideKnot& k, double turn) {
-  const Eigen::Isometry3d X_WO = scene.ObjectPose(theta);
+// The grasp wrist pose of `side` at the placement's theta, the object at X_WO, for its knot `k`
+// (KnotAt): the wrist on the side's line, the rest from the knot.
+Eigen::Isometry3d GraspPose(const LinePrincipleModel& model, double theta,
+                            const Eigen::Isometry3d& X_WO, int side, const SideKnot& k,
+                            double turn) {
   const SideModel& own = model.side_model(side);
   const Line2d& line = own.has_line ? own.line : model.wrist_line.line;
   const double s = own.has_line ? own.s(theta) : model.s(theta);
   const Eigen::Vector2d p_xy = line.point + s * line.direction;
-  const double yaw = HandleAngle(scene, theta) + k.yaw + turn;
+  const double yaw = HandleAngle(X_WO) + k.yaw + turn;
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
   X.linear() = Rz(yaw) * CanonicalHand() * FromRotationVector(k.residual);
   X.translation() = X_WO.translation() + Eigen::Vector3d(p_xy.x(), p_xy.y(), k.height);
@@ -276,23 +281,25 @@ Eigen::Isometry3d GraspPose(const LinePrincipleModel& model, const SceneModel& s
 
 }  // namespace
 
-Eigen::Isometry3d LinePrincipleGraspPose(const LinePrincipleModel& model, const SceneModel& scene,
-                                         double theta, int side) {
+Eigen::Isometry3d LinePrincipleGraspPose(const LinePrincipleModel& model,
+                                         const Placement& placement, const Eigen::Isometry3d& X_WO,
+                                         int side) {
   double turn = 0.0;
-  const SideKnot k = KnotAt(model, theta, side, &turn);
-  return GraspPose(model, scene, theta, side, k, turn);
+  const SideKnot k = KnotAt(model, placement.theta, side, &turn);
+  return GraspPose(model, placement.theta, X_WO, side, k, turn);
 }
 
-GraspingMotion LinePrincipleMotion(const LinePrincipleModel& model, const SceneModel& scene,
-                                   double theta, int side) {
+GraspingMotion LinePrincipleMotion(const LinePrincipleModel& model, const Placement& placement,
+                                   const Eigen::Isometry3d& X_WO, int side) {
+  const double theta = placement.theta;
   double turn = 0.0;
   const SideKnot k = KnotAt(model, theta, side, &turn);
-  const Eigen::Isometry3d X_G = GraspPose(model, scene, theta, side, k, turn);
+  const Eigen::Isometry3d X_G = GraspPose(model, theta, X_WO, side, k, turn);
   const Eigen::Matrix3d R_G = X_G.linear();
   const Eigen::Matrix3d Ryaw = Rz(HandYaw(R_G));
   GraspingMotion motion;
   motion.theta = theta;
-  motion.p_WO = scene.ObjectPose(theta).translation();
+  motion.p_WO = X_WO.translation();
   motion.source = "line principle";
   for (const RelativeWaypoint& a : k.approach) {
     MotionWaypoint w;

@@ -120,14 +120,17 @@ struct LinePrincipleModel {
 LinePrincipleModel FitLinePrinciple(const GraspLibrary& library, const SceneModel& scene,
                                     const LinePrincipleOptions& options = {});
 
-/// The grasp wrist pose the models give at theta (rad) for `side` (+1 or -1; a side that was
-/// not demonstrated uses the other side's grasps turned by 180 deg).
-Eigen::Isometry3d LinePrincipleGraspPose(const LinePrincipleModel& model, const SceneModel& scene,
-                                         double theta, int side);
+/// The grasp wrist pose the models give at `placement` for `side` (+1 or -1; a side that was
+/// not demonstrated uses the other side's grasps turned by 180 deg), the object at X_WO
+/// (scene.ObjectPose(placement), computed once by the caller).
+Eigen::Isometry3d LinePrincipleGraspPose(const LinePrincipleModel& model,
+                                         const Placement& placement, const Eigen::Isometry3d& X_WO,
+                                         int side);
 
-/// The grasping motion the models give at theta (rad) for `side`: the side's approach at theta
-/// placed at LinePrincipleGraspPose, with the side's fingers at theta. Requires model.valid.
-GraspingMotion LinePrincipleMotion(const LinePrincipleModel& model, const SceneModel& scene,
-                                   double theta, int side);
+/// The grasping motion the models give at `placement` for `side`, the object at X_WO
+/// (scene.ObjectPose(placement)): the side's approach at the placement's theta placed at
+/// LinePrincipleGraspPose, with the side's fingers at theta. Requires model.valid.
+GraspingMotion LinePrincipleMotion(const LinePrincipleModel& model, const Placement& placement,
+                                   const Eigen::Isometry3d& X_WO, int side);
 
 }  // namespace graspsynth

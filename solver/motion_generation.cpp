@@ -32,7 +32,7 @@ void UseLine(const SynthesisModel& model, const SynthesisTask& task, int side,
              MotionGenerationResult* r) {
   const GraspLibrary& library = model.library();
   r->side = side;
-  r->motion = LinePrincipleMotion(model.line(), model.scene(), task.placement.theta, side);
+  r->motion = LinePrincipleMotion(model.line(), task.placement, task.X_WO, side);
   r->sources.clear();
   for (size_t i = 0; i < library.entries.size(); ++i) {
     r->sources.push_back(Source(library, static_cast<int>(i), 1.0 / library.entries.size()));
@@ -74,7 +74,7 @@ void UseFallback(const SynthesisModel& model, const SynthesisTask& task,
   f.min_psi_width = options.min_psi_width;
   if (line.valid) {
     const int side = line.entry_sides[nearer];
-    const GraspingMotion lm = LinePrincipleMotion(line, model.scene(), task.placement.theta, side);
+    const GraspingMotion lm = LinePrincipleMotion(line, task.placement, task.X_WO, side);
     if (Reachable(model.robot(), lm, options.branch, options.min_psi_width)) {
       UseLine(model, task, side, r);
       r->used = SynthesisMethod::kLine;

@@ -74,7 +74,8 @@ ReachAttempt SplineReachAttempt(const RobotModel& robot, const GraspingMotion& m
   a.path = SplineReach(start, motion.pregrasp(), v_end, options.spline);
   a.reach_samples = a.path.size();
   AppendTail(tail, a.path.back().t, &a.path);
-  a.joints = ToJointTrajectory(robot, a.path, q_start, theta_deg, options.joint_space);
+  a.joints = ToJointTrajectory(robot, a.path, q_start, options.joint_space);
+  a.joints.trajectory.theta_deg = theta_deg;
   if (a.ok()) {
     a.margin_failed_sample =
         FirstPoseWithoutMargin(robot, a.path, a.reach_samples, BranchOf(q_start), options.margin);
@@ -105,8 +106,7 @@ std::optional<ReachAttempt> JointReachAttempt(const SynthesisModel& model,
         SolveWristPose(robot, WaypointPose(motion.pregrasp()), ArmBranch::FromIndex(index), psi,
                        q_start, options.joint_space.psi_margin);
     if (!q_pre) continue;
-    JointSpaceResult after =
-        ToJointTrajectory(robot, tail, *q_pre, task.theta_deg, options.joint_space);
+    JointSpaceResult after = ToJointTrajectory(robot, tail, *q_pre, options.joint_space);
     if (after.status != JointSpaceStatus::kOk) continue;
     const std::vector<TrajectorySample> reach =
         JointReach(robot, q_start, motion.pregrasp().f, *q_pre, motion.pregrasp().f, options.joint);
@@ -135,6 +135,7 @@ std::optional<ReachAttempt> JointReachAttempt(const SynthesisModel& model,
     a.reach_samples = a.path.size();
     AppendTail(tail, reach.back().t, &a.path);
     a.joints = std::move(after);
+    a.joints.trajectory.theta_deg = task.theta_deg;
     a.joints.trajectory.samples.erase(a.joints.trajectory.samples.begin());
     for (TrajectorySample& s : a.joints.trajectory.samples) s.t += reach.back().t;
     a.joints.trajectory.samples.insert(a.joints.trajectory.samples.begin(), reach.begin(),

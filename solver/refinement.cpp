@@ -375,7 +375,7 @@ RefinementConstraints EvaluateRefinementConstraints(
     const GraspingMotion& motion, const RefinementInputs& inputs, const RefinementOptions& options,
     CollisionData* data) {
   RefinementConstraints c;
-  const Eigen::Isometry3d X_WO = scene.ObjectPose(motion.theta);
+  const Eigen::Isometry3d& X_WO = inputs.X_WO;
   c.approach_clearance = std::numeric_limits<double>::infinity();
   c.grasp_clearance = std::numeric_limits<double>::infinity();
   c.reachable = true;
@@ -542,12 +542,26 @@ NloptStageResult RunNloptStage(const RobotModel& robot, const SceneModel& scene,
   return result;
 }
 
+bool IsValidRefinementStages(const RefinementStages& stages, std::string* why) {
+  RefinementStage last = RefinementStage::kInput;
+  for (RefinementStage stage : stages) {
+    if (stage == RefinementStage::kInput || stage <= last) {
+      if (why) *why = "the refinement stages must be ceres, then nlopt, each at most once";
+      return false;
+    }
+    last = stage;
+  }
+  return true;
+}
+
 RefinementResult RefineGraspingMotion(const RobotModel& robot, const SceneModel& scene,
                                       const CollisionModel& collision, const GraspingMotion& motion,
                                       const RefinementInputs& inputs,
-                                      const RefinementOptions& options, CollisionData* data) {
+                                      const RefinementOptions& options, CollisionData* data,
+                                      const RefinementStages& stages) {
   std::string why;
   if (!options.IsValid(&why)) throw InputError("invalid refinement option: " + why);
+  if (!IsValidRefinementStages(stages, &why)) throw InputError("invalid refinement: " + why);
   const auto t_start = Clock::now();
   RefinementResult result;
   RefinementReport& rep = result.report;
@@ -556,35 +570,32 @@ RefinementResult RefineGraspingMotion(const RobotModel& robot, const SceneModel&
   GraspingMotion current = motion;
   RefinementConstraints current_c = rep.before;
   rep.kept = RefinementStage::kInput;
-
-  // stage 1: ceres over the waypoint positions; kept unless it adds violation.
-  if (options.run_ceres) {
-    CeresStageResult stage1 = RunCeresStage(robot, motion, inputs, options);
-    rep.ceres = stage1.report;
-    rep.after_ceres = EvaluateRefinementConstraints(robot, scene, collision, stage1.motion, inputs,
-                                                    options, data);
-    if (stage1.usable && rep.after_ceres.violation <= current_c.violation + 1e-9) {
-      current = std::move(stage1.motion);
-      current_c = rep.after_ceres;
-      rep.kept = RefinementStage::kCeres;
-    }
-  } else {
-    rep.after_ceres = rep.before;
-  }
-
-  // stage 2: nlopt on the grasp pose and the closure, only when infeasible.
-  if (!options.run_nlopt) {
-    rep.nlopt.termination = "not run (disabled)";
-  } else if (current_c.feasible) {
-    rep.nlopt.termination = "not run (the start satisfies every constraint)";
-  } else {
-    NloptStageResult stage2 =
-        RunNloptStage(robot, scene, collision, current, inputs, options, data);
-    rep.nlopt = stage2.report;
-    if (stage2.constraints.violation <= current_c.violation + 1e-9) {
-      current = std::move(stage2.motion);
-      current_c = stage2.constraints;
-      rep.kept = RefinementStage::kNlopt;
+  rep.after_ceres = rep.before;
+  rep.nlopt.termination = "not run (disabled)";
+  for (RefinementStage stage : stages) {
+    if (stage == RefinementStage::kCeres) {
+      // stage 1: ceres over the waypoint positions; kept unless it adds violation.
+      CeresStageResult stage1 = RunCeresStage(robot, motion, inputs, options);
+      rep.ceres = stage1.report;
+      rep.after_ceres = EvaluateRefinementConstraints(robot, scene, collision, stage1.motion,
+                                                      inputs, options, data);
+      if (stage1.usable && rep.after_ceres.violation <= current_c.violation + 1e-9) {
+        current = std::move(stage1.motion);
+        current_c = rep.after_ceres;
+        rep.kept = RefinementStage::kCeres;
+      }
+    } else if (current_c.feasible) {
+      // stage 2: nlopt on the grasp pose and the closure, only when infeasible.
+      rep.nlopt.termination = "not run (the start satisfies every constraint)";
+    } else {
+      NloptStageResult stage2 =
+          RunNloptStage(robot, scene, collision, current, inputs, options, data);
+      rep.nlopt = stage2.report;
+      if (stage2.constraints.violation <= current_c.violation + 1e-9) {
+        current = std::move(stage2.motion);
+        current_c = stage2.constraints;
+        rep.kept = RefinementStage::kNlopt;
+      }
     }
   }
   rep.after = current_c;

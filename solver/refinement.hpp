@@ -55,7 +55,6 @@ const char* ToString(NloptAlgorithm algorithm);
 
 /// Options of RefineGraspingMotion. Lengths in m, angles in rad.
 struct RefinementOptions {
-  bool run_ceres = true;
   double fidelity_sigma = 0.01;                ///< m
   double smoothness_sigma = 0.002;             ///< m
   double line_sigma = 0.05;                    ///< m
@@ -64,7 +63,6 @@ struct RefinementOptions {
   int reach_stride = 5;                        ///< >= 1
   int ceres_max_iterations = 20;               ///< >= 1
 
-  bool run_nlopt = true;
   NloptAlgorithm algorithm = NloptAlgorithm::kSlsqp;
   bool cobyla_fallback = true;
   double clearance_margin = 0.005;       ///< m
@@ -90,6 +88,10 @@ struct RefinementOptions {
 
 /// What the refinement knows besides the motion.
 struct RefinementInputs {
+  /// The object's pose at rest (object frame O in world W) where the motion grasps it: the
+  /// task's, computed once from its placement (SceneModel::ObjectPose). The constraints place
+  /// the object here.
+  Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
   /// Arm configuration the robot starts from: its branch is kept and its arm angle starts the
   /// IK along the motion.
   Vector7d q_start = Vector7d::Zero();
@@ -172,8 +174,8 @@ RefinementConstraints EvaluateRefinementConstraints(
     CollisionData* data);
 
 /// `options` with the thresholds loosened to what the source demonstrations did themselves
-/// (SynthesisOptions::thresholds_from_sources): the clearance margin down to the smallest
-/// approach clearance of `sources`, the penetration tolerance up to the deepest grasp
+/// (SynthesisOptions::source_thresholds, the thresholds stage): the clearance margin down to the
+/// smallest approach clearance of `sources`, the penetration tolerance up to the deepest grasp
 /// penetration, the contact tolerance up to the largest finite contact error; the other
 /// fields unchanged.
 RefinementOptions ThresholdsFromSources(const RefinementOptions& options,
@@ -208,11 +210,22 @@ NloptStageResult RunNloptStage(const RobotModel& robot, const SceneModel& scene,
                                const RefinementInputs& inputs, const RefinementOptions& options,
                                CollisionData* data);
 
-/// Refines `motion` (well formed) in the two stages. Throws InputError for invalid options;
-/// an optimizer that fails is reported, never thrown.
+/// The stages RefineGraspingMotion runs, in the order they run: kCeres, then kNlopt, each at
+/// most once (kInput is not a stage). The default runs both.
+using RefinementStages = std::vector<RefinementStage>;
+
+/// True when `stages` names kCeres and kNlopt at most once each, in that order, and nothing
+/// else; otherwise false with the reason in `why`.
+bool IsValidRefinementStages(const RefinementStages& stages, std::string* why);
+
+/// Refines `motion` (well formed) by `stages` in order (a stage absent from it does not run).
+/// Throws InputError for invalid options or stages; an optimizer that fails is reported, never
+/// thrown.
 RefinementResult RefineGraspingMotion(const RobotModel& robot, const SceneModel& scene,
                                       const CollisionModel& collision, const GraspingMotion& motion,
                                       const RefinementInputs& inputs,
-                                      const RefinementOptions& options, CollisionData* data);
+                                      const RefinementOptions& options, CollisionData* data,
+                                      const RefinementStages& stages = {RefinementStage::kCeres,
+                                                                        RefinementStage::kNlopt});
 
 }  // namespace graspsynth

@@ -157,7 +157,7 @@ std::vector<StudyRow> SynthesisTable(const SimulationModel& model, const GraspLi
                                      const SynthesisTableOptions& options,
                                      const SynthesisTableProgress& progress) {
   const SynthesisModel synthesis(model.robot(), model.scene(), library);
-  CollisionData data(synthesis.collision());
+  SynthesisData data(synthesis);
   const auto report = [&](int done, int total, const std::string& what) {
     if (progress) progress(done, total, what);
   };

@@ -17,13 +17,13 @@ std::string StudyMethod::Label() const {
 
 SynthesisOptions StudyMethod::Options() const {
   SynthesisOptions o;
-  o.method = method;
-  o.refine = refine && (ceres || nlopt);
-  o.refinement.run_ceres = ceres;
-  o.refinement.run_nlopt = nlopt;
-  o.blend.resample = resample;
-  o.reach_method = reach;
-  o.thresholds_from_sources = thresholds_from_sources;
+  o.generation.method = method;
+  o.generation.blend.resample = resample;
+  if (!thresholds_from_sources) o.source_thresholds.reset();
+  o.refinement_stages.clear();
+  if (refine && ceres) o.refinement_stages.push_back(RefinementStage::kCeres);
+  if (refine && nlopt) o.refinement_stages.push_back(RefinementStage::kNlopt);
+  o.reach.method = reach;
   return o;
 }
 

@@ -20,7 +20,7 @@ struct StudyMethod {
   bool nlopt = true;  ///< the refinement's stage 2 (with refine)
   ResampleMode resample = ResampleMode::kNormalizedTime;  ///< of the blend
   ReachMethod reach = ReachMethod::kAuto;
-  bool thresholds_from_sources = true;  ///< SynthesisOptions' (false: "/strict")
+  bool thresholds_from_sources = true;  ///< the thresholds stage runs (false: "/strict")
 
   /// The name: the method ("interp", "line", "nearest"), then "+refine" when both refinement
   /// stages run, "+ceres" or "+nlopt" when only that one does, then "/arc" for arc-length
@@ -28,11 +28,11 @@ struct StudyMethod {
   /// refinement's default thresholds whatever the sources did. E.g. "interp+refine", "line",
   /// "interp+ceres/arc".
   std::string Label() const;
-  /// The synthesis options of this method, one part per stage: the method is the motion
-  /// generation's (GenerateGraspingMotion), "/arc" its blend's resampling; "+refine", "+ceres"
-  /// and "+nlopt" the refinement stages that run (RunCeresStage, RunNloptStage); "/strict" the
-  /// refinement's thresholds (no ThresholdsFromSources); "/spline" and "/joint" the reach stage
-  /// (PlanReach).
+  /// The synthesis pipeline of this method (SynthesisOptions), one part per stage: the method
+  /// is the generation stage's (GenerateGraspingMotion), "/arc" its blend's resampling;
+  /// "+refine" the refinement stages Ceres then NLopt, "+ceres" and "+nlopt" that one stage
+  /// alone, none of them no refinement stage; "/strict" the thresholds stage absent; "/spline"
+  /// and "/joint" the reach stage's method (PlanReach).
   SynthesisOptions Options() const;
 };
 

@@ -48,15 +48,17 @@ const char* ToString(SynthesisStatus status) {
 }
 
 bool SynthesisOptions::IsValid(std::string* why) const {
-  if (!bracket.IsValid(why) || !blend.IsValid(why) || !refinement.IsValid(why) ||
-      !reach.IsValid(why) || !lift.IsValid(why) || !joint_space.IsValid(why)) {
+  const ReachPlanOptions r = Reach();
+  if (!generation.IsValid(why) || !IsValidRefinementStages(refinement_stages, why) ||
+      !refinement.IsValid(why) || !r.spline.IsValid(why) || !lift.IsValid(why) ||
+      !r.joint_space.IsValid(why)) {
     return false;
   }
-  if (!(reach_margin >= 0.0)) {
+  if (!(r.margin >= 0.0)) {
     if (why) *why = "reach_margin must be >= 0";
     return false;
   }
-  if (!joint_reach.IsValid(why)) return false;
+  if (!r.joint.IsValid(why)) return false;
   if (!start.allFinite() && !start.array().isNaN().all()) {
     if (why) *why = "start must be all finite or all NaN";
     return false;
@@ -65,22 +67,14 @@ bool SynthesisOptions::IsValid(std::string* why) const {
 }
 
 MotionGenerationOptions SynthesisOptions::Generation() const {
-  MotionGenerationOptions o;
-  o.method = method;
-  o.bracket = bracket;
-  o.blend = blend;
+  MotionGenerationOptions o = generation;
   o.min_psi_width = refinement.min_psi_width;
   o.branch = start.allFinite() ? BranchOf(start) : ArmBranch{};
   return o;
 }
 
 ReachPlanOptions SynthesisOptions::Reach() const {
-  ReachPlanOptions o;
-  o.method = reach_method;
-  o.spline = reach;
-  o.joint = joint_reach;
-  o.margin = reach_margin;
-  o.joint_space = joint_space;
+  ReachPlanOptions o = reach;
   o.start_given = start.allFinite();
   return o;
 }
@@ -119,13 +113,12 @@ StartCheckResult CheckStart(const SynthesisModel& model, const SynthesisTask& ta
   return r;
 }
 
-MotionRefinementResult RefineSynthesizedMotion(const SynthesisModel& model,
-                                               const MotionGenerationResult& generated,
-                                               const GraspingMotion& motion,
-                                               const Vector7d& q_start,
-                                               const MotionRefinementOptions& options,
-                                               CollisionData* data) {
+MotionRefinementResult RefineSynthesizedMotion(
+    const SynthesisModel& model, const SynthesisTask& task, const MotionGenerationResult& generated,
+    const GraspingMotion& motion, const Vector7d& q_start, const MotionRefinementOptions& options,
+    CollisionData* data) {
   RefinementInputs in;
+  in.X_WO = task.X_WO;
   in.q_start = q_start;
   if (model.line().valid) {
     in.wrist_line = model.line().wrist_line.line;
@@ -133,7 +126,7 @@ MotionRefinementResult RefineSynthesizedMotion(const SynthesisModel& model,
   }
   MotionRefinementResult r;
   r.used = options.refinement;
-  if (options.thresholds_from_sources) {
+  if (options.source_thresholds) {
     std::vector<RefinementConstraints> sources;
     if (generated.used == SynthesisMethod::kLine) {
       sources.push_back(model.entry_constraints()[generated.bracket.nearest]);
@@ -145,7 +138,7 @@ MotionRefinementResult RefineSynthesizedMotion(const SynthesisModel& model,
     r.used = ThresholdsFromSources(options.refinement, sources);
   }
   RefinementResult rr = RefineGraspingMotion(model.robot(), model.scene(), model.collision(),
-                                             motion, in, r.used, data);
+                                             motion, in, r.used, data, options.stages);
   r.motion = std::move(rr.motion);
   r.report = std::move(rr.report);
   return r;
@@ -201,14 +194,15 @@ JointTrajectory AssembleTrajectory(const ReachPlanResult& reach, const GraspAndL
 }
 
 SynthesisResult SynthesizeGrasp(const SynthesisModel& model, double theta_deg,
-                                const SynthesisOptions& options, CollisionData* data) {
+                                const SynthesisOptions& options, SynthesisData* workspace) {
   std::string why;
   if (!options.IsValid(&why)) throw InputError("invalid synthesis option: " + why);
   if (!std::isfinite(theta_deg)) throw InputError("theta is not finite");
   const SynthesisTask task = MakeSynthesisTask(model.scene(), theta_deg);
+  CollisionData* data = workspace->collision();
   SynthesisResult r;
   r.theta_deg = theta_deg;
-  r.requested = options.method;
+  r.requested = options.generation.method;
 
   // 1. the grasping motion.
   const auto t_generate = Clock::now();
@@ -231,10 +225,10 @@ SynthesisResult SynthesizeGrasp(const SynthesisModel& model, double theta_deg,
   // 3. refinement.
   const auto t_refine = Clock::now();
   r.motion = generated.motion;
-  if (options.refine) {
-    MotionRefinementResult refined =
-        RefineSynthesizedMotion(model, generated, generated.motion, r.start,
-                                {options.refinement, options.thresholds_from_sources}, data);
+  if (options.refines()) {
+    MotionRefinementResult refined = RefineSynthesizedMotion(
+        model, task, generated, generated.motion, r.start,
+        {options.refinement, options.source_thresholds, options.refinement_stages}, data);
     r.clearance_margin = refined.used.clearance_margin;
     r.penetration_tolerance = refined.used.penetration_tolerance;
     r.contact_tolerance = refined.used.contact_tolerance;

@@ -8,15 +8,18 @@
 ///    methods, with the interp method's fallbacks and their typed reason;
 /// 2. CheckStart: the start configuration (given, or the rest pose) within the joint limits
 ///    and free of collision;
-/// 3. RefineSynthesizedMotion: the refinement (refinement.hpp: its Ceres stage, then its NLopt
-///    stage), with thresholds loosened to what the sources did;
+/// 3. RefineSynthesizedMotion: the optional stages of the refinement: the thresholds loosened
+///    to what the sources did (SourceThresholdsOptions), then the refinement stages named in
+///    SynthesisOptions::refinement_stages (refinement.hpp: Ceres, then NLopt);
 /// 4. PlanReach (reach_planning.hpp): the reach from the start to the pre-grasp, played with
 ///    the grasping motion and the lift (GraspAndLift) through the analytic IK with a
 ///    continuous arm angle;
 /// 5. AssembleTrajectory: the robot's trajectory and its waypoints.
 /// SynthesizeGrasp runs them in that order on one SynthesisTask, the object's placement
-/// entered once.
+/// entered once and its pose X_WO computed once, which every stage reads; SynthesisOptions
+/// says which optional stages run (solver/study_method.hpp builds it from a method's label).
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,40 +39,48 @@
 
 namespace graspsynth {
 
-/// Options of SynthesizeGrasp: every stage's, in pipeline order.
+/// The thresholds stage: the refinement's thresholds loosened to what the source
+/// demonstrations did themselves: the clearance margin to their smallest approach clearance,
+/// the penetration tolerance to their deepest grasp penetration, the contact tolerance to their
+/// largest contact error, each only when the demonstration is outside the option's value. The
+/// sources held the object in physics, so a geometric threshold they break is the model's, not
+/// the grasp's, and enforcing it moves a working hold (measured on the shipped library: the
+/// 20-40 deg representatives break the defaults). For the line principle, the nearest entry is
+/// the source. It has no parameter: its presence in SynthesisOptions is the choice.
+struct SourceThresholdsOptions {};
+
+/// The synthesis pipeline: each stage's options, in pipeline order. The optional stages run
+/// when present: the thresholds stage when source_thresholds holds a value, each refinement
+/// stage named in refinement_stages.
 struct SynthesisOptions {
-  SynthesisMethod method = SynthesisMethod::kInterp;
-  bool refine = true;
-  BracketOptions bracket;
-  BlendOptions blend = {.waypoints = 40};
+  /// 1. The grasping motion: method, bracket and blend (its resampling). Its min_psi_width is
+  /// the refinement's and its branch the start's (set by SynthesizeGrasp).
+  MotionGenerationOptions generation;
+  /// 2. The start: arm configuration at the start, rad; all NaN: DefaultRestConfiguration for
+  /// the grasp orientation. With the spline reach, the rest pose on another branch (the wrist
+  /// flip first) when the motion cannot be played from the elbow-up one.
+  Vector7d start = Vector7d::Constant(NAN);
+  /// 3a. The thresholds stage: loosen the refinement's thresholds to what the source
+  /// demonstrations did themselves (see SourceThresholdsOptions); std::nullopt: the
+  /// refinement's own thresholds whatever the sources did. Without a refinement stage it
+  /// changes nothing.
+  std::optional<SourceThresholdsOptions> source_thresholds = SourceThresholdsOptions{};
+  /// 3b. The refinement stages that run, in order (refinement.hpp's RefinementStages); empty:
+  /// the generated motion is used as it is.
+  RefinementStages refinement_stages = {RefinementStage::kCeres, RefinementStage::kNlopt};
+  /// The parameters of the refinement stages (and of the thresholds they enforce).
   RefinementOptions refinement;
-  /// Loosen the refinement's thresholds to what the source demonstrations did themselves: the
-  /// clearance margin to their smallest approach clearance, the penetration tolerance to their
-  /// deepest grasp penetration, the contact tolerance to their largest contact error, each only
-  /// when the demonstration is outside the option's value. The sources held the object in
-  /// physics, so a geometric threshold they break is the model's, not the grasp's, and
-  /// enforcing it moves a working hold (measured on the shipped library: the 20-40 deg
-  /// representatives break the defaults). For the line principle, the nearest entry is the
-  /// source.
-  bool thresholds_from_sources = true;
-  ReachMethod reach_method = ReachMethod::kAuto;
-  SplineReachOptions reach;
-  JointReachOptions joint_reach;
-  /// m, the wrist displacement along each world axis every spline-reach pose must survive for
-  /// ReachMethod::kAuto to keep the spline.
-  double reach_margin = 0.01;
+  /// 4. The reach (its start_given is set by SynthesizeGrasp from `start`).
+  ReachPlanOptions reach;
   /// The lift after the grasp; height and duration come from the sources' library entries
   /// (weighted) when they are positive there.
   LiftOptions lift;
-  JointSpaceOptions joint_space;
-  /// Arm configuration at the start, rad; all NaN: DefaultRestConfiguration for the grasp
-  /// orientation. With the spline reach, the rest pose on another branch (the wrist flip
-  /// first) when the motion cannot be played from the elbow-up one.
-  Vector7d start = Vector7d::Constant(NAN);
 
   bool IsValid(std::string* why) const;
 
-  /// The options of each stage.
+  /// True when at least one refinement stage runs.
+  bool refines() const { return !refinement_stages.empty(); }
+  /// The options of the generation and reach stages, with what they take from the others.
   MotionGenerationOptions Generation() const;
   ReachPlanOptions Reach() const;
 };
@@ -101,7 +112,7 @@ struct SynthesisResult {
   GraspingMotion unrefined;  ///< the grasping motion before refinement
   GraspingMotion motion;     ///< the grasping motion after refinement (or unrefined)
   bool refined = false;
-  /// The thresholds the refinement used (thresholds_from_sources applied), m.
+  /// The thresholds the refinement used (the thresholds stage applied), m.
   double clearance_margin = 0.0, penetration_tolerance = 0.0, contact_tolerance = 0.0;
   RefinementReport refinement;
   Vector7d start = Vector7d::Zero();
@@ -140,7 +151,10 @@ StartCheckResult CheckStart(const SynthesisModel& model, const SynthesisTask& ta
 /// Options of RefineSynthesizedMotion.
 struct MotionRefinementOptions {
   RefinementOptions refinement;
-  bool thresholds_from_sources = true;  ///< see SynthesisOptions
+  /// The thresholds stage (see SynthesisOptions); std::nullopt: the refinement's own.
+  std::optional<SourceThresholdsOptions> source_thresholds = SourceThresholdsOptions{};
+  /// The refinement stages, in order.
+  RefinementStages stages = {RefinementStage::kCeres, RefinementStage::kNlopt};
 };
 
 /// The refined motion, the refinement's report and the thresholds it used.
@@ -150,16 +164,15 @@ struct MotionRefinementResult {
   RefinementOptions used;  ///< the refinement's options, thresholds from the sources applied
 };
 
-/// The refinement (refinement.hpp) of the generated motion from the start configuration
-/// `q_start`, with the line prior and contact constraint when the line principle is fitted.
-/// The thresholds' sources: the generated motion's sources, or the nearest entry for the line
-/// principle. Throws InputError for invalid refinement options.
-MotionRefinementResult RefineSynthesizedMotion(const SynthesisModel& model,
-                                               const MotionGenerationResult& generated,
-                                               const GraspingMotion& motion,
-                                               const Vector7d& q_start,
-                                               const MotionRefinementOptions& options,
-                                               CollisionData* data);
+/// The thresholds stage then the refinement stages (refinement.hpp) on the generated motion from
+/// the start configuration `q_start`, with the line prior and contact constraint when the line
+/// principle is fitted. The thresholds' sources: the generated motion's sources, or the nearest
+/// entry for the line principle. The object stands at task.X_WO. Throws InputError for invalid
+/// refinement options.
+MotionRefinementResult RefineSynthesizedMotion(
+    const SynthesisModel& model, const SynthesisTask& task, const MotionGenerationResult& generated,
+    const GraspingMotion& motion, const Vector7d& q_start, const MotionRefinementOptions& options,
+    CollisionData* data);
 
 /// The tail of the robot's path after the pre-grasp: the grasping motion, then the lift.
 struct GraspAndLiftPath {
@@ -180,8 +193,8 @@ JointTrajectory AssembleTrajectory(const ReachPlanResult& reach, const GraspAndL
 
 /// Synthesizes a grasp for object orientation `theta_deg`: the stages above, in order. Throws
 /// InputError for invalid options; bad queries and failures are results. `data` is the
-/// caller's collision data (made from model.collision()).
+/// calling thread's workspace, made from `model`.
 SynthesisResult SynthesizeGrasp(const SynthesisModel& model, double theta_deg,
-                                const SynthesisOptions& options, CollisionData* data);
+                                const SynthesisOptions& options, SynthesisData* data);
 
 }  // namespace graspsynth

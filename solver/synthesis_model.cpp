@@ -52,6 +52,7 @@ SynthesisModel::SynthesisModel(RobotModel robot, SceneModel scene, GraspLibrary 
   CollisionData data(collision_);
   for (const LibraryEntry& e : library_.entries) {
     RefinementInputs in;
+    in.X_WO = scene_.ObjectPose(e.motion.theta);
     in.q_start = DefaultRestConfiguration(robot_, scene_, e.motion.grasp().q_WH.toRotationMatrix());
     if (line_.valid) {
       in.wrist_line = line_.wrist_line.line;

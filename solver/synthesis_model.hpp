@@ -31,7 +31,7 @@ class SynthesisModel {
   const LinePrincipleModel& line() const { return line_; }
   /// The refinement's constraint values of each library entry's own motion (from the rest pose
   /// for its grasp orientation), in entry order: what the demonstrations that held the object
-  /// in physics did (SynthesisOptions::thresholds_from_sources).
+  /// in physics did (SynthesisOptions::source_thresholds).
   const std::vector<RefinementConstraints>& entry_constraints() const { return entry_constraints_; }
   /// The library's range, deg.
   double theta_min_deg() const { return library_.entries.front().theta_deg; }
@@ -44,6 +44,24 @@ class SynthesisModel {
   CollisionModel collision_;
   LinePrincipleModel line_;
   std::vector<RefinementConstraints> entry_constraints_;
+};
+
+/// The synthesis's per-thread workspace (STYLE.md's Data): everything a query writes while it
+/// runs, made from a SynthesisModel and reused from one query to the next; one per thread. It
+/// holds the collision data every stage moves the robot and the object in. The stages' other
+/// working state (the Ceres problem, whose residuals hold the motion; NLopt's optimizer, set up
+/// from the options; the IK, which keeps no scratch) is built per query: reusing it would not
+/// save a measurable share of a query, and the results must not depend on what ran before.
+class SynthesisData {
+ public:
+  /// A workspace for queries on `model`, which must outlive it.
+  explicit SynthesisData(const SynthesisModel& model) : collision_(model.collision()) {}
+
+  /// The collision data, made from model.collision().
+  CollisionData* collision() { return &collision_; }
+
+ private:
+  CollisionData collision_;
 };
 
 /// One synthesis query: the object's placement, converted from the degrees the user gives

@@ -55,10 +55,10 @@ CartesianPath ReachPath(double duration) {
 
 TEST(ToJointTrajectory, ReproducesThePathWithinLimitsAndWithoutJumps) {
   const CartesianPath path = ReachPath(3.0);
-  const JointSpaceResult r = ToJointTrajectory(Robot(), path, Rest(), 60.0);
+  const JointSpaceResult r = ToJointTrajectory(Robot(), path, Rest());
   ASSERT_EQ(r.status, JointSpaceStatus::kOk) << r.message;
   ASSERT_EQ(r.trajectory.samples.size(), path.size());
-  EXPECT_EQ(r.trajectory.theta_deg, 60.0);
+  EXPECT_EQ(r.trajectory.theta_deg, 0.0);  // the object is the caller's to name
   EXPECT_LT(r.max_joint_step, 0.1);
   for (size_t k = 0; k < path.size(); ++k) {
     const TrajectorySample& s = r.trajectory.samples[k];
@@ -75,7 +75,7 @@ TEST(ToJointTrajectory, ReproducesThePathWithinLimitsAndWithoutJumps) {
 TEST(ToJointTrajectory, RetimesToRespectTheVelocityCaps) {
   const CartesianPath path = ReachPath(0.3);  // far too fast for S1 and S2 (1 rad/s)
   JointSpaceOptions options;
-  const JointSpaceResult r = ToJointTrajectory(Robot(), path, Rest(), 60.0, options);
+  const JointSpaceResult r = ToJointTrajectory(Robot(), path, Rest(), options);
   ASSERT_EQ(r.status, JointSpaceStatus::kOk) << r.message;
   EXPECT_GT(r.retimed_segments, 0);
   EXPECT_GT(r.added_time, 0.0);
@@ -90,7 +90,7 @@ TEST(ToJointTrajectory, RetimesToRespectTheVelocityCaps) {
   EXPECT_NEAR(s.back().t, 0.3 + r.added_time, 1e-9);
   // without re-timing the same path is too fast.
   options.retime = false;
-  const JointSpaceResult fast = ToJointTrajectory(Robot(), path, Rest(), 60.0, options);
+  const JointSpaceResult fast = ToJointTrajectory(Robot(), path, Rest(), options);
   ASSERT_EQ(fast.status, JointSpaceStatus::kOk);
   EXPECT_EQ(fast.added_time, 0.0);
 }
@@ -98,7 +98,7 @@ TEST(ToJointTrajectory, RetimesToRespectTheVelocityCaps) {
 TEST(ToJointTrajectory, ReportsAnUnreachablePose) {
   CartesianPath path = ReachPath(2.0);
   path[40].p_WH = Eigen::Vector3d(2.0, 0.0, 0.5);  // 2 m away: out of reach
-  const JointSpaceResult r = ToJointTrajectory(Robot(), path, Rest(), 60.0);
+  const JointSpaceResult r = ToJointTrajectory(Robot(), path, Rest());
   EXPECT_EQ(r.status, JointSpaceStatus::kUnreachable);
   EXPECT_EQ(r.failed_sample, 40);
   EXPECT_EQ(r.trajectory.samples.size(), 40u);
@@ -110,7 +110,7 @@ TEST(ToJointTrajectory, ReportsAJump) {
   // a half turn of the wrist between two samples.
   path[50].q_WH =
       path[50].q_WH * Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()));
-  const JointSpaceResult r = ToJointTrajectory(Robot(), path, Rest(), 60.0);
+  const JointSpaceResult r = ToJointTrajectory(Robot(), path, Rest());
   EXPECT_EQ(r.status, JointSpaceStatus::kJump);
   EXPECT_EQ(r.failed_sample, 50);
 }

@@ -28,7 +28,7 @@ fs::path TempDir() {
 
 const SynthesisResult& Synthesized() {
   static const SynthesisResult r = [] {
-    CollisionData data(Model406080().collision());
+    SynthesisData data(Model406080());
     return SynthesizeGrasp(Model406080(), 50.0, {}, &data);
   }();
   return r;

@@ -15,13 +15,40 @@ using testing::SideSwitchLibrary;
 
 const SceneModel& Scene() { return ShippedSimulationModel().scene(); }
 
+// The models at orientation theta (rad) of the shipped scene, its object pose computed once.
+Eigen::Isometry3d GraspPoseAt(const LinePrincipleModel& m, double theta, int side) {
+  const Placement placement{theta};
+  return LinePrincipleGraspPose(m, placement, Scene().ObjectPose(placement), side);
+}
+GraspingMotion MotionAt(const LinePrincipleModel& m, double theta, int side) {
+  const Placement placement{theta};
+  return LinePrincipleMotion(m, placement, Scene().ObjectPose(placement), side);
+}
+
+TEST(LinePrinciple, TheMotionStandsAtTheObjectPoseItIsGiven) {
+  // the object pose is the caller's: the models place the grasp relative to it.
+  const LinePrincipleModel m = FitLinePrinciple(Library406080(), Scene());
+  ASSERT_TRUE(m.valid) << m.message;
+  const Placement placement{50.0 * kDeg};
+  const Eigen::Isometry3d X_WO = Scene().ObjectPose(placement);
+  Eigen::Isometry3d X_shifted = X_WO;
+  X_shifted.translation() += Eigen::Vector3d(0.1, -0.05, 0.0);
+  const GraspingMotion a = LinePrincipleMotion(m, placement, X_WO, +1);
+  const GraspingMotion b = LinePrincipleMotion(m, placement, X_shifted, +1);
+  EXPECT_EQ(a.p_WO, X_WO.translation());
+  EXPECT_EQ(b.p_WO, X_shifted.translation());
+  EXPECT_EQ(a.theta, placement.theta);
+  EXPECT_LT((b.grasp().p_WH - a.grasp().p_WH - Eigen::Vector3d(0.1, -0.05, 0.0)).norm(), 1e-12);
+  EXPECT_TRUE(b.grasp().q_WH.isApprox(a.grasp().q_WH, 1e-12));
+}
+
 TEST(LinePrinciple, ReproducesTheLibrarysGraspsInsideTheRange) {
   const LinePrincipleModel m = FitLinePrinciple(Library406080(), Scene());
   ASSERT_TRUE(m.valid) << m.message;
   EXPECT_EQ(m.sides[1].entries, 3);
   EXPECT_EQ(m.sides[0].entries, 0);
   for (const LibraryEntry& e : Library406080().entries) {
-    const Eigen::Isometry3d X = LinePrincipleGraspPose(m, Scene(), e.theta_deg * kDeg, +1);
+    const Eigen::Isometry3d X = GraspPoseAt(m, e.theta_deg * kDeg, +1);
     const Eigen::Isometry3d Y = Eigen::Translation3d(e.motion.grasp().p_WH) * e.motion.grasp().q_WH;
     const PoseDistance d = DistanceBetween(X, Y);
     // three grasps on a circle about the object centre are not on a line: a few cm; the
@@ -29,7 +56,7 @@ TEST(LinePrinciple, ReproducesTheLibrarysGraspsInsideTheRange) {
     EXPECT_LT(d.translation, 0.03) << e.theta_deg;
     EXPECT_NEAR(X.translation().z(), Y.translation().z(), 1e-12) << e.theta_deg;
     EXPECT_LT(d.rotation, 1e-9) << e.theta_deg;
-    const GraspingMotion g = LinePrincipleMotion(m, Scene(), e.theta_deg * kDeg, +1);
+    const GraspingMotion g = MotionAt(m, e.theta_deg * kDeg, +1);
     EXPECT_LT((g.grasp().f - e.motion.grasp().f).cwiseAbs().maxCoeff(), 1e-12) << e.theta_deg;
   }
 }
@@ -44,11 +71,11 @@ TEST(LinePrinciple, MotionsOutsideTheRangeAreWellFormedAndEndAtTheModelledGrasp)
   const LinePrincipleModel m = FitLinePrinciple(Library406080(), Scene());
   ASSERT_TRUE(m.valid);
   for (double theta_deg : {0.0, 10.0, 20.0, 100.0, 110.0, 120.0}) {
-    const GraspingMotion g = LinePrincipleMotion(m, Scene(), theta_deg * kDeg, +1);
+    const GraspingMotion g = MotionAt(m, theta_deg * kDeg, +1);
     std::string why;
     ASSERT_TRUE(IsWellFormed(g, &why)) << theta_deg << ": " << why;
     EXPECT_EQ(g.waypoints.size(), 40u);
-    const Eigen::Isometry3d X = LinePrincipleGraspPose(m, Scene(), theta_deg * kDeg, +1);
+    const Eigen::Isometry3d X = GraspPoseAt(m, theta_deg * kDeg, +1);
     EXPECT_LT((g.grasp().p_WH - X.translation()).norm(), 1e-12);
     // the hand's long axis lies across the handle (within the fitted yaw's drift).
     const Eigen::Vector3d h = Scene().ObjectPose(theta_deg * kDeg).linear().col(0);
@@ -70,13 +97,11 @@ TEST(LinePrinciple, OrientationIsFittedPerSideOfTheHandle) {
   EXPECT_TRUE(m.sides[0].has_line);
   // each side's grip is its own demonstrations': at 45 deg, the nearest of that side's.
   const GraspLibrary& library = SideSwitchLibrary();
-  EXPECT_EQ(LinePrincipleMotion(m, Scene(), 45.0 * kDeg, -1).grasp().f,
-            library.entries[1].motion.grasp().f);
-  EXPECT_EQ(LinePrincipleMotion(m, Scene(), 45.0 * kDeg, +1).grasp().f,
-            library.entries[2].motion.grasp().f);
-  const Eigen::Isometry3d left = LinePrincipleGraspPose(m, Scene(), 45.0 * kDeg, -1);
+  EXPECT_EQ(MotionAt(m, 45.0 * kDeg, -1).grasp().f, library.entries[1].motion.grasp().f);
+  EXPECT_EQ(MotionAt(m, 45.0 * kDeg, +1).grasp().f, library.entries[2].motion.grasp().f);
+  const Eigen::Isometry3d left = GraspPoseAt(m, 45.0 * kDeg, -1);
   EXPECT_EQ(HandleSide(Scene(), 45.0 * kDeg, left.translation(), 0.01), -1);
-  const Eigen::Isometry3d right = LinePrincipleGraspPose(m, Scene(), 45.0 * kDeg, +1);
+  const Eigen::Isometry3d right = GraspPoseAt(m, 45.0 * kDeg, +1);
   EXPECT_EQ(HandleSide(Scene(), 45.0 * kDeg, right.translation(), 0.01), 1);
 }
 
@@ -93,7 +118,7 @@ TEST(LinePrinciple, TheHandsTiltFollowsTheOrientationAndIsHeldOutsideTheRange) {
   ASSERT_TRUE(m.valid) << m.message;
   // how far the fingers point below the table plane at the modelled grasp.
   auto pitch_of = [&](double theta_deg) {
-    const Eigen::Isometry3d X = LinePrincipleGraspPose(m, Scene(), theta_deg * kDeg, +1);
+    const Eigen::Isometry3d X = GraspPoseAt(m, theta_deg * kDeg, +1);
     return std::asin(-X.linear().col(2).z());
   };
   for (double theta_deg : {40.0, 50.0, 60.0, 80.0}) {

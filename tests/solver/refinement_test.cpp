@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "common/errors.hpp"
 #include "tests/solver/synthesis_fixtures.hpp"
 
 namespace graspsynth {
@@ -16,15 +17,18 @@ struct RefineCase {
   GraspingMotion motion = Library406080().entries[1].motion;  // 60 deg
   RefinementInputs inputs;
   RefineCase() {
+    inputs.X_WO = model.scene().ObjectPose(motion.theta);
     inputs.q_start = DefaultRestConfiguration(model.robot(), model.scene(),
                                               motion.grasp().q_WH.toRotationMatrix());
     inputs.wrist_line = model.line().wrist_line.line;
     inputs.handle_in_hand = model.line().handle_in_hand;
   }
-  RefinementResult Refine(const RefinementOptions& o = {}) const {
+  RefinementResult Refine(const RefinementOptions& o = {},
+                          const RefinementStages& stages = {RefinementStage::kCeres,
+                                                            RefinementStage::kNlopt}) const {
     CollisionData data(model.collision());
     return RefineGraspingMotion(model.robot(), model.scene(), model.collision(), motion, inputs, o,
-                                &data);
+                                &data, stages);
   }
 };
 
@@ -62,9 +66,8 @@ TEST(Refinement, LinePriorPullsTheGraspTowardTheLine) {
   s.inputs.wrist_line = line;
   s.inputs.handle_in_hand.reset();
   RefinementOptions o;
-  o.run_nlopt = false;
   o.line_sigma = 0.005;  // as strong as the fidelity term: about half-way
-  const RefinementResult r = s.Refine(o);
+  const RefinementResult r = s.Refine(o, {RefinementStage::kCeres});
   const double before = line.Distance(p);
   const double after = line.Distance((r.motion.grasp().p_WH - s.motion.p_WO).head<2>());
   EXPECT_NEAR(before, 0.03, 1e-9);
@@ -130,6 +133,29 @@ TEST(Refinement, ConstraintsSeeTheTableAndTheReach) {
   EXPECT_FALSE(out.reachable);
   EXPECT_EQ(out.min_psi_width, 0.0);
   EXPECT_FALSE(out.feasible);
+}
+
+TEST(Refinement, RunsOnlyTheStagesNamedInOrder) {
+  using S = RefinementStage;
+  std::string why;
+  EXPECT_TRUE(IsValidRefinementStages({}, &why)) << why;
+  EXPECT_TRUE(IsValidRefinementStages({S::kNlopt}, &why)) << why;
+  EXPECT_FALSE(IsValidRefinementStages({S::kNlopt, S::kCeres}, &why));
+  EXPECT_NE(why.find("ceres, then nlopt"), std::string::npos) << why;
+  EXPECT_FALSE(IsValidRefinementStages({S::kCeres, S::kCeres}, &why));
+  EXPECT_FALSE(IsValidRefinementStages({S::kInput}, &why));
+  const RefineCase s;
+  EXPECT_THROW(s.Refine({}, {S::kNlopt, S::kCeres}), InputError);
+  // no stage: the input is returned, evaluated, with neither optimizer run.
+  const RefinementResult none = s.Refine({}, {});
+  EXPECT_FALSE(none.report.ceres.run);
+  EXPECT_FALSE(none.report.nlopt.run);
+  EXPECT_EQ(none.report.nlopt.termination, "not run (disabled)");
+  EXPECT_EQ(none.report.kept, S::kInput);
+  EXPECT_EQ(none.motion.grasp().p_WH, s.motion.grasp().p_WH);
+  const RefinementResult ceres = s.Refine({}, {S::kCeres});
+  EXPECT_TRUE(ceres.report.ceres.run);
+  EXPECT_EQ(ceres.report.nlopt.termination, "not run (disabled)");
 }
 
 TEST(Refinement, OptionsAreChecked) {

@@ -333,12 +333,68 @@ TEST(StudyMethod, LabelsRoundTripThroughTheParser) {
   EXPECT_TRUE(m.ceres);
   EXPECT_FALSE(m.nlopt);
   const SynthesisOptions o = m.Options();
-  EXPECT_TRUE(o.refine);
-  EXPECT_TRUE(o.refinement.run_ceres);
-  EXPECT_FALSE(o.refinement.run_nlopt);
-  EXPECT_EQ(o.blend.resample, ResampleMode::kArcLength);
-  EXPECT_EQ(o.reach_method, ReachMethod::kSpline);
-  EXPECT_FALSE(ParseStudyMethod("interp").Options().refine);
+  EXPECT_EQ(o.refinement_stages, RefinementStages{RefinementStage::kCeres});
+  EXPECT_EQ(o.generation.blend.resample, ResampleMode::kArcLength);
+  EXPECT_EQ(o.reach.method, ReachMethod::kSpline);
+  EXPECT_FALSE(ParseStudyMethod("interp").Options().refines());
+}
+
+TEST(StudyMethod, EachLabelBuildsThePipelineItNames) {
+  using S = RefinementStage;
+  struct Expected {
+    std::string label;
+    SynthesisMethod method;
+    RefinementStages stages;
+    ResampleMode resample;
+    ReachMethod reach;
+    bool source_thresholds;
+  };
+  const ResampleMode time = ResampleMode::kNormalizedTime, arc = ResampleMode::kArcLength;
+  for (const Expected& e : std::vector<Expected>{
+           {"interp", SynthesisMethod::kInterp, {}, time, ReachMethod::kAuto, true},
+           {"interp+refine",
+            SynthesisMethod::kInterp,
+            {S::kCeres, S::kNlopt},
+            time,
+            ReachMethod::kAuto,
+            true},
+           {"line+ceres", SynthesisMethod::kLine, {S::kCeres}, time, ReachMethod::kAuto, true},
+           {"nearest+nlopt",
+            SynthesisMethod::kNearest,
+            {S::kNlopt},
+            time,
+            ReachMethod::kAuto,
+            true},
+           {"interp+refine/arc",
+            SynthesisMethod::kInterp,
+            {S::kCeres, S::kNlopt},
+            arc,
+            ReachMethod::kAuto,
+            true},
+           {"interp/spline", SynthesisMethod::kInterp, {}, time, ReachMethod::kSpline, true},
+           {"interp+ceres/joint",
+            SynthesisMethod::kInterp,
+            {S::kCeres},
+            time,
+            ReachMethod::kJoint,
+            true},
+           {"interp+refine/strict",
+            SynthesisMethod::kInterp,
+            {S::kCeres, S::kNlopt},
+            time,
+            ReachMethod::kAuto,
+            false},
+       }) {
+    const SynthesisOptions o = ParseStudyMethod(e.label).Options();
+    EXPECT_EQ(o.generation.method, e.method) << e.label;
+    EXPECT_EQ(o.refinement_stages, e.stages) << e.label;
+    EXPECT_EQ(o.refines(), !e.stages.empty()) << e.label;
+    EXPECT_EQ(o.generation.blend.resample, e.resample) << e.label;
+    EXPECT_EQ(o.reach.method, e.reach) << e.label;
+    EXPECT_EQ(o.source_thresholds.has_value(), e.source_thresholds) << e.label;
+    std::string why;
+    EXPECT_TRUE(o.IsValid(&why)) << e.label << ": " << why;
+  }
 }
 
 TEST(StudyMethod, UnknownOrMisplacedPartsAreNamed) {

@@ -86,6 +86,7 @@ struct StageCase {
   GraspingMotion motion = Library406080().entries[1].motion;
   RefinementInputs inputs;
   StageCase() {
+    inputs.X_WO = model.scene().ObjectPose(motion.theta);
     inputs.q_start = DefaultRestConfiguration(model.robot(), model.scene(),
                                               motion.grasp().q_WH.toRotationMatrix());
     inputs.wrist_line = model.line().wrist_line.line;

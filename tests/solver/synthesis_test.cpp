@@ -20,9 +20,9 @@ using testing::SideSwitchModel;
 SynthesisResult Synthesize(const SynthesisModel& model, double theta_deg,
                            SynthesisMethod method = SynthesisMethod::kInterp, bool refine = true) {
   SynthesisOptions o;
-  o.method = method;
-  o.refine = refine;
-  CollisionData data(model.collision());
+  o.generation.method = method;
+  if (!refine) o.refinement_stages.clear();
+  SynthesisData data(model);
   return SynthesizeGrasp(model, theta_deg, o, &data);
 }
 
@@ -110,11 +110,32 @@ TEST(Synthesis, PlainBlendOfTheHardCaseLaysTheHandAlongTheHandle) {
   EXPECT_GT(std::abs(z_H.dot(h)), std::cos(60.0 * kDeg));
 }
 
+TEST(Synthesis, AReusedWorkspaceGivesTheResultsOfAFreshOne) {
+  const SynthesisModel& model = Model406080();
+  SynthesisData reused(model);
+  // a query that runs every stage, then others through the same workspace.
+  ASSERT_TRUE(SynthesizeGrasp(model, 50.0, {}, &reused).ok());
+  for (double theta : {60.0, 47.0}) {
+    SynthesisData fresh(model);
+    const SynthesisResult a = SynthesizeGrasp(model, theta, {}, &reused);
+    const SynthesisResult b = SynthesizeGrasp(model, theta, {}, &fresh);
+    ASSERT_TRUE(a.ok()) << a.message;
+    ASSERT_EQ(a.trajectory.samples.size(), b.trajectory.samples.size());
+    for (size_t i = 0; i < a.trajectory.samples.size(); ++i) {
+      EXPECT_EQ(a.trajectory.samples[i].t, b.trajectory.samples[i].t) << theta << " " << i;
+      EXPECT_EQ(a.trajectory.samples[i].arm, b.trajectory.samples[i].arm) << theta << " " << i;
+      EXPECT_EQ(a.trajectory.samples[i].hand, b.trajectory.samples[i].hand) << theta << " " << i;
+    }
+    EXPECT_EQ(a.refinement.after.approach_clearance, b.refinement.after.approach_clearance);
+    EXPECT_EQ(a.refinement.nlopt.evaluations, b.refinement.nlopt.evaluations);
+  }
+}
+
 TEST(Synthesis, BadStartIsAResult) {
   SynthesisOptions o;
   o.start = Vector7d::Zero();
   o.start[3] = 10.0;  // E1 far beyond its limit
-  CollisionData data(Model406080().collision());
+  SynthesisData data(Model406080());
   const SynthesisResult r = SynthesizeGrasp(Model406080(), 50.0, o, &data);
   EXPECT_EQ(r.status, SynthesisStatus::kBadStart);
   EXPECT_NE(r.message.find("joint 4"), std::string::npos) << r.message;
@@ -165,9 +186,9 @@ Vector7d StartAcrossTheRobot(double theta_deg) {
 SynthesisResult WithReach(double theta_deg, ReachMethod reach,
                           const Vector7d& start = Vector7d::Constant(NAN)) {
   SynthesisOptions o;
-  o.reach_method = reach;
+  o.reach.method = reach;
   o.start = start;
-  CollisionData data(Model406080().collision());
+  SynthesisData data(Model406080());
   return SynthesizeGrasp(Model406080(), theta_deg, o, &data);
 }
 
@@ -238,7 +259,7 @@ TEST(SynthesisThresholds, TheSourcesLoosenOnlyWhatTheyBreakThemselves) {
   const RefinementConstraints& c60 = model.entry_constraints()[1];
   ASSERT_EQ(model.library().entries[1].theta_deg, 60.0);
   ASSERT_GT(-c60.grasp_clearance, RefinementOptions{}.penetration_tolerance);
-  CollisionData data(model.collision());
+  SynthesisData data(model);
   SynthesisOptions o;
   const SynthesisResult r = SynthesizeGrasp(model, 60.0, o, &data);
   ASSERT_TRUE(r.ok()) << r.message;
@@ -249,7 +270,7 @@ TEST(SynthesisThresholds, TheSourcesLoosenOnlyWhatTheyBreakThemselves) {
   EXPECT_FALSE(r.refinement.nlopt.run);
   EXPECT_LT((r.motion.grasp().p_WH - r.unrefined.grasp().p_WH).norm(), 1e-3);
   // with the default thresholds the same demonstration counts as infeasible and is changed.
-  o.thresholds_from_sources = false;
+  o.source_thresholds.reset();
   const SynthesisResult strict = SynthesizeGrasp(model, 60.0, o, &data);
   ASSERT_TRUE(strict.ok()) << strict.message;
   EXPECT_FALSE(strict.refinement.before.feasible);
@@ -259,7 +280,7 @@ TEST(SynthesisThresholds, TheSourcesLoosenOnlyWhatTheyBreakThemselves) {
             1e-3);
   EXPECT_EQ(strict.penetration_tolerance, RefinementOptions{}.penetration_tolerance);
   // sources within every default change nothing: the unmodified scripted library keeps them.
-  CollisionData plain(Model406080().collision());
+  SynthesisData plain(Model406080());
   const SynthesisResult r60 = SynthesizeGrasp(Model406080(), 60.0, SynthesisOptions{}, &plain);
   ASSERT_TRUE(r60.ok());
   EXPECT_EQ(r60.penetration_tolerance, RefinementOptions{}.penetration_tolerance);

@@ -59,7 +59,9 @@ inline JointTrajectory HandThroughTable() {
   X0.linear() = R;
   X0.translation() = path.front().p_WH;
   const std::optional<Vector7d> q0 = SolveWristPose(robot, X0, ArmBranch{}, 0.0, Vector7d::Zero());
-  return ToJointTrajectory(robot, path, q0.value(), 60.0).trajectory;
+  JointTrajectory trajectory = ToJointTrajectory(robot, path, q0.value()).trajectory;
+  trajectory.theta_deg = 60.0;
+  return trajectory;
 }
 
 /// Fewer cases under the sanitizers (GRASPSYNTH_SANITIZED): they slow our code down.
