@@ -123,9 +123,8 @@ ScriptedGraspResult BuildScriptedGrasp(const RobotModel& robot, const SceneModel
   if (!options.IsValid(&why)) throw InputError("invalid scripted grasp option: " + why);
   ScriptedGraspResult result;
   const Eigen::Isometry3d X_grasp = GraspWristPose(scene, options);
-  const Vector7d rest = options.rest.allFinite()
-                            ? options.rest
-                            : DefaultRestConfiguration(robot, scene, X_grasp.linear());
+  const Vector7d rest =
+      options.rest ? *options.rest : DefaultRestConfiguration(robot, scene, X_grasp.linear());
   const Eigen::Isometry3d X_rest = ArmFlangePose(robot.arm, rest) * robot.X_FH;
   Eigen::Isometry3d X_pre = X_grasp;
   X_pre.translation() += options.pregrasp_up * Eigen::Vector3d::UnitZ() -

@@ -12,6 +12,7 @@
 /// The wrist is placed from where the handle should sit in the hand: GraspWristPose puts the
 /// point `bar_in_hand` of frame H on the handle's axis, `grasp_radius` from the object centre.
 
+#include <optional>
 #include <string>
 
 #include "kinematics/rest_pose.hpp"
@@ -55,8 +56,8 @@ struct ScriptedGraspOptions {
   double lift_height = 0.10;
   double end_duration = 0.2;    ///< held at the top (the trial's own hold comes after)
   double sample_period = 0.02;  ///< spacing of the trajectory samples
-  /// Arm configuration at the start (rad); empty (all NaN) picks DefaultRestConfiguration.
-  Vector7d rest = Vector7d::Constant(NAN);
+  /// Arm configuration at the start (rad); unset picks DefaultRestConfiguration.
+  std::optional<Vector7d> rest;
 
   /// The open hand: fingers straight, the index spread 20 deg toward the thumb side and the
   /// ring and little fingers 20 deg the other way; the thumb opposed (thumb_j1 90 deg) and

@@ -59,8 +59,8 @@ bool SynthesisOptions::IsValid(std::string* why) const {
     return false;
   }
   if (!r.joint.IsValid(why)) return false;
-  if (!start.allFinite() && !start.array().isNaN().all()) {
-    if (why) *why = "start must be all finite or all NaN";
+  if (start && !start->allFinite()) {
+    if (why) *why = "start must be finite when given";
     return false;
   }
   return true;
@@ -69,13 +69,13 @@ bool SynthesisOptions::IsValid(std::string* why) const {
 MotionGenerationOptions SynthesisOptions::Generation() const {
   MotionGenerationOptions o = generation;
   o.min_psi_width = refinement.min_psi_width;
-  o.branch = start.allFinite() ? BranchOf(start) : ArmBranch{};
+  o.branch = start ? BranchOf(*start) : ArmBranch{};
   return o;
 }
 
 ReachPlanOptions SynthesisOptions::Reach() const {
   ReachPlanOptions o = reach;
-  o.start_given = start.allFinite();
+  o.start_given = start.has_value();
   return o;
 }
 
@@ -84,18 +84,20 @@ StartCheckResult CheckStart(const SynthesisModel& model, const SynthesisTask& ta
                             CollisionData* data) {
   const RobotModel& robot = model.robot();
   StartCheckResult r;
-  if (options.start.allFinite()) {
+  if (options.start) {
+    const Vector7d& q = *options.start;
     for (int j = 0; j < kArmDof; ++j) {
-      if (options.start[j] < robot.arm.lower()[j] || options.start[j] > robot.arm.upper()[j]) {
+      // written so that a NaN joint is outside its limits too
+      if (!(q[j] >= robot.arm.lower()[j] && q[j] <= robot.arm.upper()[j])) {
         std::ostringstream s;
-        s << "start configuration: joint " << j + 1 << " = " << options.start[j]
+        s << "start configuration: joint " << j + 1 << " = " << q[j]
           << " rad is outside its limits [" << robot.arm.lower()[j] << ", " << robot.arm.upper()[j]
           << "]";
         r.message = s.str();
         return r;
       }
     }
-    r.start = options.start;
+    r.start = q;
   } else {
     r.start =
         DefaultRestConfiguration(robot, model.scene(), motion.grasp().q_WH.toRotationMatrix());

@@ -56,10 +56,10 @@ struct SynthesisOptions {
   /// 1. The grasping motion: method, bracket and blend (its resampling). Its min_psi_width is
   /// the refinement's and its branch the start's (set by SynthesizeGrasp).
   MotionGenerationOptions generation;
-  /// 2. The start: arm configuration at the start, rad; all NaN: DefaultRestConfiguration for
+  /// 2. The start: arm configuration at the start, rad; unset: DefaultRestConfiguration for
   /// the grasp orientation. With the spline reach, the rest pose on another branch (the wrist
   /// flip first) when the motion cannot be played from the elbow-up one.
-  Vector7d start = Vector7d::Constant(NAN);
+  std::optional<Vector7d> start;
   /// 3a. The thresholds stage: loosen the refinement's thresholds to what the source
   /// demonstrations did themselves (see SourceThresholdsOptions); std::nullopt: the
   /// refinement's own thresholds whatever the sources did. Without a refinement stage it
@@ -129,9 +129,9 @@ struct SynthesisResult {
 
 /// Options of CheckStart.
 struct StartCheckOptions {
-  /// Arm configuration at the start, rad; all NaN: DefaultRestConfiguration for the grasp
+  /// Arm configuration at the start, rad; unset: DefaultRestConfiguration for the grasp
   /// orientation of the motion.
-  Vector7d start = Vector7d::Constant(NAN);
+  std::optional<Vector7d> start;
 };
 
 /// The start configuration and whether it can be used.

@@ -167,8 +167,9 @@ TEST(CheckStart, TheRestPoseIsFreeAndAStartBeyondTheLimitsIsNamed) {
   EXPECT_TRUE(rest.start.isApprox(DefaultRestConfiguration(
       model.robot(), model.scene(), motion.grasp().q_WH.toRotationMatrix())));
   StartCheckOptions beyond;
-  beyond.start = rest.start;
-  beyond.start[0] = model.robot().arm.upper()[0] + 0.1;
+  Vector7d q = rest.start;
+  q[0] = model.robot().arm.upper()[0] + 0.1;
+  beyond.start = q;
   const StartCheckResult bad = CheckStart(model, task, motion, beyond, &data);
   EXPECT_FALSE(bad.ok);
   EXPECT_NE(bad.message.find("joint 1"), std::string::npos) << bad.message;

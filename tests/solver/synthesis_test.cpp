@@ -133,8 +133,9 @@ TEST(Synthesis, AReusedWorkspaceGivesTheResultsOfAFreshOne) {
 
 TEST(Synthesis, BadStartIsAResult) {
   SynthesisOptions o;
-  o.start = Vector7d::Zero();
-  o.start[3] = 10.0;  // E1 far beyond its limit
+  Vector7d start = Vector7d::Zero();
+  start[3] = 10.0;  // E1 far beyond its limit
+  o.start = start;
   SynthesisData data(Model406080());
   const SynthesisResult r = SynthesizeGrasp(Model406080(), 50.0, o, &data);
   EXPECT_EQ(r.status, SynthesisStatus::kBadStart);
@@ -184,7 +185,7 @@ Vector7d StartAcrossTheRobot(double theta_deg) {
 }
 
 SynthesisResult WithReach(double theta_deg, ReachMethod reach,
-                          const Vector7d& start = Vector7d::Constant(NAN)) {
+                          const std::optional<Vector7d>& start = std::nullopt) {
   SynthesisOptions o;
   o.reach.method = reach;
   o.start = start;
