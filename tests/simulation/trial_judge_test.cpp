@@ -39,7 +39,8 @@ SimulationData RestWorld() {
 // The same world with the hand pushed into the table beside the object (the last sample of
 // testing::HandThroughTable).
 SimulationData FingersInTheTable() {
-  const TrajectorySample& at = testing::HandThroughTable().samples.back();
+  const JointTrajectory through_table = testing::HandThroughTable();
+  const TrajectorySample& at = through_table.samples.back();
   return SimulationData(ShippedSimulationModel(), Options(), at.arm, at.hand);
 }
 
