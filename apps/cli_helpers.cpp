@@ -2,10 +2,72 @@
 
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
 
+#include "common/errors.hpp"
+#include "common/format.hpp"
+
 namespace graspsynth::apps {
+
+void AddPhysicsPerturbationFlags(CLI::App* app, PhysicsPerturbationOptions* o) {
+  const std::string group = "Physics perturbation (each perturbed replay draws its physics)";
+  app->add_option_function<std::string>(
+         "--physics",
+         [o](const std::string& v) {
+           if (v != "on" && v != "off") {
+             throw CLI::ValidationError("--physics", "'" + v + "' is neither on nor off");
+           }
+           o->enabled = v == "on";
+         },
+         "on: every perturbed replay also draws friction, contact stiffness and damping, the "
+         "object's mass and centre of mass, the finger servos' force and the step; off: the "
+         "modelled physics only")
+      ->default_str(o->enabled ? "on" : "off")
+      ->group(group);
+  app->add_option("--friction-spread", o->friction,
+                  "Relative half-range of the object-hand and object-table friction")
+      ->capture_default_str()
+      ->group(group);
+  const auto add_range = [&](const char* flag, double* lo, double* hi, const char* what) {
+    app->add_option_function<std::vector<double>>(
+           flag,
+           [lo, hi](const std::vector<double>& v) {
+             *lo = v[0];
+             *hi = v[1];
+           },
+           std::string("Factor range of the contact ") + what + " (log-uniform), MIN MAX")
+        ->expected(2)
+        ->default_str(Format("%g %g", *lo, *hi))
+        ->group(group);
+  };
+  add_range("--stiffness-range", &o->stiffness_min, &o->stiffness_max, "stiffness");
+  add_range("--damping-range", &o->damping_min, &o->damping_max, "damping");
+  app->add_option("--mass-spread", o->mass, "Relative half-range of the object's mass")
+      ->capture_default_str()
+      ->group(group);
+  app->add_option("--com-offset", o->com_offset,
+                  "Half-range of the object's centre of mass per axis, m")
+      ->capture_default_str()
+      ->group(group);
+  app->add_option("--servo-force-spread", o->servo_force,
+                  "Relative half-range of the finger servos' force caps")
+      ->capture_default_str()
+      ->group(group);
+  app->add_option("--fine-step", o->fine_step, "The alternative physics step, s")
+      ->capture_default_str()
+      ->group(group);
+  app->add_option("--fine-step-probability", o->fine_step_probability,
+                  "Chance that a replay runs at --fine-step instead of the trial's step")
+      ->capture_default_str()
+      ->group(group);
+}
+
+void CheckPhysicsFlags(const PhysicsPerturbationOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError("bad physics perturbation flag: " + why);
+}
 
 ProgressBar::ProgressBar() : tty_(::isatty(STDERR_FILENO) != 0) {}
 

@@ -1,16 +1,31 @@
 #pragma once
 
 /// @file
-/// Pieces shared by the long-running commands (run, generalize): a list of orientations from the
-/// command line (ParseOrientationList, common/orientation_list.hpp), and a progress bar on stderr.
+/// Pieces shared by the commands: a list of orientations from the command line
+/// (ParseOrientationList, common/orientation_list.hpp), the physics perturbation's flags, and a
+/// progress bar on stderr.
 
 #include <mutex>
 #include <string>
 #include <vector>
 
 #include "common/orientation_list.hpp"
+#include "simulation/physics_perturbation.hpp"
+
+namespace CLI {
+class App;
+}
 
 namespace graspsynth::apps {
+
+/// The flags of the physics perturbation (--physics, --friction-spread, --stiffness-range,
+/// --damping-range, --mass-spread, --com-offset, --servo-force-spread, --fine-step,
+/// --fine-step-probability), read into `options`; their defaults are those in `options`.
+/// Call CheckPhysicsFlags after parsing.
+void AddPhysicsPerturbationFlags(CLI::App* app, PhysicsPerturbationOptions* options);
+
+/// Throws InputError naming the flag when the physics perturbation's flags are not valid.
+void CheckPhysicsFlags(const PhysicsPerturbationOptions& options);
 
 /// A progress bar per named stage on stderr, redrawn in place on a terminal; elsewhere (logs,
 /// pipes) a line "NAME: DONE/TOTAL (WHAT)" at every tenth of the stage. Thread-safe.

@@ -33,6 +33,7 @@ struct GeneralizeOptions {
   std::string methods = "nearest,interp,interp+refine,line+refine";
   bool leave_one_out = false;
   int perturb = 10;
+  int sensitivity = 0;
   double noise_scale = 1.0;
   uint64_t seed = 1;
   int threads = 0;
@@ -40,6 +41,7 @@ struct GeneralizeOptions {
   std::string out;
   std::string robot;
   std::string scene;
+  PhysicsPerturbationOptions physics = SynthesisTableOptions{}.perturbation.physics;
 };
 
 std::vector<StudyMethod> ParseMethods(const std::string& text) {
@@ -83,11 +85,14 @@ int RunGeneralize(const GeneralizeOptions& o) {
   SynthesisTableOptions table;
   table.methods = ParseMethods(o.methods);
   table.gate_perturbations = o.perturb;
+  table.sensitivity_trials = o.sensitivity;
   table.seed = o.seed;
   table.threads = o.threads;
   table.perturbation.position_sigma *= o.noise_scale;
   table.perturbation.orientation_sigma *= o.noise_scale;
   table.perturbation.finger_sigma *= o.noise_scale;
+  CheckPhysicsFlags(o.physics);
+  table.perturbation.physics = o.physics;
   std::string why;
   if (!table.perturbation.IsValid(&why)) throw InputError("--noise-scale: " + why);
 
@@ -122,7 +127,8 @@ int RunGeneralize(const GeneralizeOptions& o) {
      << "## Summary\n\n"
      << SummaryMarkdown(rows) << "\n## Where a method falls short\n\n"
      << ShortfallMarkdown(rows) << "\n## Every grasp\n\n"
-     << SynthesisTableMarkdown(rows);
+     << SynthesisTableMarkdown(rows) << "## Hold quality and sensitivity to the physics\n\n"
+     << HoldAndSensitivityMarkdown(rows);
   const fs::path out = o.out;
   WriteFileAtomically(out / (o.name + ".csv"), StudySynthesisCsv(rows));
   WriteFileAtomically(out / (o.name + ".md"), md.str());
@@ -169,6 +175,11 @@ void AddGeneralizeCommand(CLI::App& app, int* exit_code) {
                 "(--orientations is not used)");
   cmd->add_option("--perturb", opts->perturb, "Perturbed replays per grasp (0: nominal only)")
       ->capture_default_str();
+  cmd->add_option("--sensitivity", opts->sensitivity,
+                  "Replays per end of each physics factor's range in each grasp's sensitivity "
+                  "table (0: none)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--noise-scale", opts->noise_scale,
                   "Factor on the replays' wrist position, orientation and finger noise "
                   "(5 mm, 2 deg, 2 deg)")
@@ -179,6 +190,7 @@ void AddGeneralizeCommand(CLI::App& app, int* exit_code) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--name", opts->name, "Stem of the output files")->capture_default_str();
   cmd->add_option("--out", opts->out, "Output folder")->required();
+  AddPhysicsPerturbationFlags(cmd, &opts->physics);
   cmd->add_option("--robot", opts->robot, "Robot description (URDF); default: the shipped one");
   cmd->add_option("--scene", opts->scene, "Scene description (JSON); default: models/scene.json");
   cmd->callback([opts, exit_code] { *exit_code = RunGeneralize(*opts); });

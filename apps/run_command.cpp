@@ -40,16 +40,19 @@ struct RunOptions {
   bool quick = false;
   int perturb = -1;         // -1: the study's default (or --quick's)
   int select_perturb = -1;  // -1: the study's default (or --quick's)
+  int sensitivity = -1;     // -1: the study's default (or --quick's)
   std::string orientations;
   std::string gnuplot = "gnuplot";
   std::string robot;
   std::string scene;
+  PhysicsPerturbationOptions physics = StudyOptions{}.perturbation.physics;
 };
 
 // The reduced study of --quick (tests, a first look).
 const std::vector<double> kQuickOrientations = {40, 45, 60, 85};
 constexpr int kQuickGatePerturbations = 3;
 constexpr int kQuickSelectionPerturbations = 2;
+constexpr int kQuickSensitivityTrials = 0;
 
 // The study's options from the command's flags; throws InputError for invalid ones.
 StudyOptions StudyOptionsOf(const RunOptions& o, const SceneModel& scene) {
@@ -58,11 +61,15 @@ StudyOptions StudyOptionsOf(const RunOptions& o, const SceneModel& scene) {
   options.seed = o.seed;
   options.threads = o.threads;
   options.analysis.segmentation.region = scene.grasp_region;
+  CheckPhysicsFlags(o.physics);
+  options.perturbation.physics = o.physics;
   if (o.quick) {
     options.orientations = kQuickOrientations;
     options.gate_perturbations = kQuickGatePerturbations;
     options.selection_perturbations = kQuickSelectionPerturbations;
+    options.sensitivity_trials = kQuickSensitivityTrials;
   }
+  if (o.sensitivity >= 0) options.sensitivity_trials = o.sensitivity;
   if (o.perturb >= 0) options.gate_perturbations = o.perturb;
   if (o.select_perturb >= 0) options.selection_perturbations = o.select_perturb;
   if (!o.orientations.empty())
@@ -203,6 +210,12 @@ void AddRunCommand(CLI::App& app, int* exit_code) {
                       std::to_string(defaults.selection_perturbations) + ", --quick " +
                       std::to_string(kQuickSelectionPerturbations) + ")")
       ->check(CLI::PositiveNumber);
+  run->add_option("--sensitivity", opts->sensitivity,
+                  "Replays per end of each physics factor's range in each synthesized grasp's "
+                  "sensitivity table (default " +
+                      std::to_string(defaults.sensitivity_trials) + ", --quick " +
+                      std::to_string(kQuickSensitivityTrials) + "; 0: none)")
+      ->check(CLI::NonNegativeNumber);
   run->add_option("--orientations", opts->orientations,
                   "Comma-separated object orientations to synthesize, deg, each a number or a "
                   "range FROM:TO:STEP (default 20:100:5)");
@@ -210,6 +223,7 @@ void AddRunCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str();
   run->add_option("--robot", opts->robot, "Robot description (URDF); default: the shipped one");
   run->add_option("--scene", opts->scene, "Scene description (JSON); default: models/scene.json");
+  AddPhysicsPerturbationFlags(run, &opts->physics);
   run->callback([opts, exit_code] { *exit_code = RunStudyCommand(*opts); });
 }
 

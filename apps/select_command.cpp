@@ -29,6 +29,7 @@ struct SelectCommandOptions {
   int threads = SelectionOptions{}.threads;
   std::string robot;
   std::string scene;
+  PhysicsPerturbationOptions physics = SelectionOptions{}.perturbation.physics;
 };
 
 int RunSelect(const SelectCommandOptions& o) {
@@ -42,6 +43,8 @@ int RunSelect(const SelectCommandOptions& o) {
   options.seed = o.seed;
   options.threads = o.threads;
   options.segmentation.region = scene.grasp_region;
+  CheckPhysicsFlags(o.physics);
+  options.perturbation.physics = o.physics;
   std::string why;
   if (!options.IsValid(&why)) throw InputError("select: " + why);
 
@@ -141,6 +144,7 @@ void AddSelectCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   select->add_option("--robot", opts->robot, "Robot description (URDF); default: the shipped one");
+  AddPhysicsPerturbationFlags(select, &opts->physics);
   select->add_option("--scene", opts->scene,
                      "Scene description (JSON); default: models/scene.json");
   select->callback([opts, exit_code] { *exit_code = RunSelect(*opts); });

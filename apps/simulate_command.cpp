@@ -21,6 +21,7 @@
 #include "simulation/scripted_grasp.hpp"
 #include "simulation/trial.hpp"
 #include "solver/grasp_file.hpp"
+#include "solver/trial_json.hpp"
 
 namespace graspsynth::apps {
 namespace {
@@ -35,6 +36,7 @@ struct SimulateOptions {
   std::string record;
   double record_interval = 0.01;
   int perturb = 0;
+  int sensitivity = 0;
   // the defaults are the library's, so that the command and the library cannot drift apart.
   uint64_t seed = RobustnessOptions{}.seed;
   int threads = RobustnessOptions{}.threads;
@@ -48,6 +50,7 @@ struct SimulateOptions {
   double finger_noise_deg = PerturbationOptions{}.finger_sigma / kDeg;
   std::string robot;
   std::string scene;
+  PhysicsPerturbationOptions physics = PerturbationOptions{}.physics;
 };
 
 struct ScriptedOptions {
@@ -61,10 +64,7 @@ struct ScriptedOptions {
 
 // Rounds for the report: the figures are physical, 1e-9 is far below their accuracy, and
 // short numbers keep the file readable.
-double Round(double x) {
-  const double r = std::round(x * 1e9) / 1e9;
-  return r == 0.0 ? 0.0 : r;
-}
+double Round(double x) { return RoundForReport(x); }
 
 json PoseJson(const Eigen::Isometry3d& X) {
   const Eigen::Quaterniond q = Canonical(Eigen::Quaterniond(X.linear()));
@@ -114,6 +114,8 @@ RobustnessOptions RobustnessOptionsOf(const SimulateOptions& o, const TrialOptio
   ro.perturbation.position_sigma = o.position_noise;
   ro.perturbation.orientation_sigma = o.orientation_noise_deg * kDeg;
   ro.perturbation.finger_sigma = o.finger_noise_deg * kDeg;
+  CheckPhysicsFlags(o.physics);
+  ro.perturbation.physics = o.physics;
   std::string why;
   if (!ro.IsValid(&why)) throw InputError("bad perturbation option: " + why);
 
@@ -140,14 +142,17 @@ void AddPerturbedTrials(const SimulationModel& model, const JointTrajectory& tra
                             {"time_scale_range", {o.time_scale_min, o.time_scale_max}},
                             {"position_sigma_m", o.position_noise},
                             {"orientation_sigma_deg", o.orientation_noise_deg},
-                            {"finger_sigma_deg", o.finger_noise_deg}};
+                            {"finger_sigma_deg", o.finger_noise_deg},
+                            {"physics", o.physics.enabled ? "on" : "off"}};
     for (const RobustnessTrial& t : r.trials) {
       trials.push_back({{"index", t.index},
                         {"time_scale", Round(t.time_scale)},
                         {"success", t.success()},
                         {"outcome", ToString(t.outcome)},
                         {"reason", t.reason},
-                        {"lift_m", Round(t.lift)}});
+                        {"lift_m", Round(t.lift)},
+                        {"physics", PhysicsDrawJson<json>(t.physics, ro.trial.step())},
+                        {"hold", HoldQualityJson<json>(t.hold)}});
     }
     std::fprintf(stderr,
                  "robustness: %d of %d trials succeeded, score %.3f, 95%% interval [%.3f, %.3f] "
@@ -161,9 +166,30 @@ void AddPerturbedTrials(const SimulationModel& model, const JointTrajectory& tra
   report["trials"] = trials;
 }
 
+// Runs the sensitivity table (when --sensitivity > 0), adds it to the report and prints it.
+void AddSensitivity(const SimulationModel& model, const JointTrajectory& trajectory,
+                    RobustnessOptions ro, const SimulateOptions& o, json* report) {
+  if (o.sensitivity <= 0) return;
+  ro.trials = o.sensitivity;
+  ProgressBar bar;
+  const SensitivityResult s = EvaluateSensitivity(model, trajectory, ro, [&](int done, int total) {
+    bar.Update("sensitivity", done, total, "one factor at a time");
+  });
+  bar.Finish();
+  std::fprintf(stderr, "sensitivity (%d replays per end; success at the low end / high end):\n",
+               s.trials_per_cell);
+  for (size_t c = 0; c + 1 < s.cells.size(); c += 2) {
+    const SensitivityCell& lo = s.cells[c];
+    const SensitivityCell& hi = s.cells[c + 1];
+    std::fprintf(stderr, "  %-18s %d/%d  %d/%d\n", std::string(ToString(lo.factor)).c_str(),
+                 lo.successes, lo.trials, hi.successes, hi.trials);
+  }
+  (*report)["sensitivity"] = SensitivityJson<json>(s, ro.trial.step());
+}
+
 int RunSimulate(const SimulateOptions& o) {
-  if (o.fidelity != "fast" && o.fidelity != "full") {
-    throw InputError("--fidelity must be 'fast' or 'full', not '" + o.fidelity + "'");
+  if (o.fidelity != "fast" && o.fidelity != "full" && o.fidelity != "fast-wrist") {
+    throw InputError("--fidelity must be 'fast', 'fast-wrist' or 'full', not '" + o.fidelity + "'");
   }
   const SimulationModel model = LoadModel(o.robot, o.scene);
   // a graspsynth-trajectory/1 file, or the "trajectory" member of a graspsynth-grasp/1 file.
@@ -171,7 +197,9 @@ int RunSimulate(const SimulateOptions& o) {
       LoadTrajectoryOrGraspFile(o.trajectory, model.robot().arm, model.robot().hand);
 
   TrialOptions trial;
-  trial.fidelity = o.fidelity == "full" ? Fidelity::kFull : Fidelity::kFast;
+  trial.fidelity = o.fidelity == "full"         ? Fidelity::kFull
+                   : o.fidelity == "fast-wrist" ? Fidelity::kFastWristDynamic
+                                                : Fidelity::kFast;
   trial.time_step = o.time_step;
   trial.hold = o.hold;
   std::string why;
@@ -198,8 +226,10 @@ int RunSimulate(const SimulateOptions& o) {
                        {"max_lift_m", Round(nominal.max_lift)},
                        {"max_penetration_m", Round(nominal.max_penetration)},
                        {"simulated_s", Round(nominal.simulated_time)},
-                       {"final_object_pose", PoseJson(nominal.final_object_pose)}};
+                       {"final_object_pose", PoseJson(nominal.final_object_pose)},
+                       {"hold", HoldQualityJson<json>(nominal.hold)}};
   AddPerturbedTrials(model, trajectory, ro, o, &report);
+  AddSensitivity(model, trajectory, ro, o, &report);
   WriteFileAtomically(o.out, report.dump(2) + "\n");
   if (!o.record.empty()) WriteFileAtomically(o.record, StatesCsv(nominal.states));
   return nominal.success() ? 0 : 1;
@@ -249,6 +279,11 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
   sim->add_option("--perturb", opts->perturb, "Number of perturbed replays (0: nominal only)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  sim->add_option("--sensitivity", opts->sensitivity,
+                  "Replays per end of each physics factor's range, that factor alone varied "
+                  "(0: no sensitivity table)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   sim->add_option("--seed", opts->seed, "Seed of the perturbations")->capture_default_str();
   sim->add_option("--threads", opts->threads, "Worker threads for the replays (0: all cores)")
       ->capture_default_str()
@@ -261,7 +296,9 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
       ->check(CLI::PositiveNumber);
   sim->add_option("--fidelity", opts->fidelity,
                   "fast: kinematic arm, free space without contact detail, 4 ms steps, early "
-                  "stop; full: dynamic motor-driven arm, every step simulated at 1 ms")
+                  "stop; fast-wrist: fast with the wrist joints (E2, W1, W2) dynamic, so that "
+                  "their 10-15 N m motors yield; full: dynamic motor-driven arm, every step "
+                  "simulated at 1 ms")
       ->capture_default_str();
   sim->add_option("--time-step", opts->time_step, "Physics step in s (0: the fidelity's default)")
       ->capture_default_str();
@@ -282,6 +319,7 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str();
   sim->add_option("--robot", opts->robot, "Robot description (URDF); default: the shipped one");
   sim->add_option("--scene", opts->scene, "Scene description (JSON); default: models/scene.json");
+  AddPhysicsPerturbationFlags(sim, &opts->physics);
   sim->callback([opts, exit_code] { *exit_code = RunSimulate(*opts); });
 
   auto sopts = std::make_shared<ScriptedOptions>();

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "apps/cli_helpers.hpp"
 #include "common/errors.hpp"
 #include "learning_data/grasp_library.hpp"
 #include "simulation/simulation_model.hpp"
@@ -37,6 +38,7 @@ struct SynthesizeOptions {
   std::string out;
   std::string robot;
   std::string scene;
+  PhysicsPerturbationOptions physics = PhysicsGateOptions{}.perturbation.physics;
 };
 
 Vector7d ParseStart(const std::string& text) {
@@ -105,6 +107,8 @@ int RunSynthesize(const SynthesizeOptions& o) {
   go.seed = o.seed;
   go.threads = o.threads;
   go.min_robustness = o.min_robustness;
+  CheckPhysicsFlags(o.physics);
+  go.perturbation.physics = o.physics;
   std::string why;
   if (!go.IsValid(&why)) throw InputError("bad physics gate option: " + why);
   const PhysicsGateResult gate = RunPhysicsGate(sim, s.trajectory, go);
@@ -175,6 +179,7 @@ void AddSynthesizeCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--out", opts->out, "Output grasp file")->required();
   cmd->add_option("--robot", opts->robot, "Robot description (default: the shipped URDF)");
   cmd->add_option("--scene", opts->scene, "Scene description (default: models/scene.json)");
+  AddPhysicsPerturbationFlags(cmd, &opts->physics);
   cmd->callback([opts, exit_code] { *exit_code = RunSynthesize(*opts); });
 }
 

@@ -61,7 +61,7 @@ bool PerturbationOptions::IsValid(std::string* why) const {
   if (!(std::isfinite(knot_interval) && knot_interval > 0.0)) {
     return fail("knot_interval must be positive (s)");
   }
-  return true;
+  return physics.IsValid(why);
 }
 
 PerturbedTrajectory PerturbTrajectory(const RobotModel& robot, const JointTrajectory& nominal,

@@ -26,6 +26,7 @@
 
 #include "kinematics/robot_description.hpp"
 #include "motion/joint_trajectory.hpp"
+#include "simulation/physics_perturbation.hpp"
 
 namespace graspsynth {
 
@@ -39,6 +40,9 @@ struct PerturbationOptions {
   double orientation_sigma = 2.0 * M_PI / 180.0;  ///< rad, per world axis (rotation vector)
   double finger_sigma = 2.0 * M_PI / 180.0;       ///< rad, per actuated finger joint
   double knot_interval = 0.5;                     ///< s, noise knots without waypoints
+  /// Ranges of the physics each replay draws after the motion's noise
+  /// (simulation/physics_perturbation.hpp); PerturbTrajectory itself does not read them.
+  PhysicsPerturbationOptions physics;
 
   bool IsValid(std::string* why) const;
 };

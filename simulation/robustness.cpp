@@ -1,13 +1,11 @@
 #include "simulation/robustness.hpp"
 
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <map>
-#include <mutex>
-#include <thread>
 
 #include "common/errors.hpp"
+#include "common/parallel.hpp"
 #include "simulation/random.hpp"
 
 namespace graspsynth {
@@ -34,8 +32,12 @@ Interval WilsonInterval(int successes, int n, double z) {
   return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
 }
 
-RobustnessTrial RunRobustnessTrial(const SimulationModel& model, const JointTrajectory& nominal,
-                                   const RobustnessOptions& options, int index) {
+namespace {
+
+// Replay `index`: its motion from the stream (seed, index), then its physics, drawn from the
+// same stream after the motion (or `fixed`).
+RobustnessTrial RunReplay(const SimulationModel& model, const JointTrajectory& nominal,
+                          const RobustnessOptions& options, int index, const PhysicsDraw* fixed) {
   SplitMix64 rng = SplitMix64::ForStream(options.seed, static_cast<uint64_t>(index));
   const PerturbedTrajectory p =
       PerturbTrajectory(model.robot(), nominal, options.perturbation, rng);
@@ -48,11 +50,16 @@ RobustnessTrial RunRobustnessTrial(const SimulationModel& model, const JointTraj
     t.final_object_pose = model.scene().ObjectPose(nominal.theta_deg * M_PI / 180.0);
     return t;
   }
-  const TrialResult r = RunTrial(model, p.trajectory, options.trial);
+  t.physics = fixed ? *fixed : DrawPhysics(options.perturbation.physics, rng);
+  TrialOptions trial = options.trial;
+  trial.physics = t.physics.variation;
+  if (t.physics.time_step > 0.0) trial.time_step = t.physics.time_step;
+  const TrialResult r = RunTrial(model, p.trajectory, trial);
   t.outcome = r.outcome;
   t.reason = r.reason;
   t.lift = r.lift;
   t.final_object_pose = r.final_object_pose;
+  t.hold = r.hold;
   t.simulated_time = r.simulated_time;
   t.wall_time = r.wall_time;
   t.cpu_time = r.cpu_time;
@@ -61,46 +68,46 @@ RobustnessTrial RunRobustnessTrial(const SimulationModel& model, const JointTraj
   return t;
 }
 
+void Validate(const RobustnessOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError("invalid robustness option: " + why);
+}
+
+// Runs `count` replays on options.threads workers, reporting progress per finished replay.
+void RunReplays(int count, const RobustnessOptions& options, const std::function<void(int)>& job,
+                const ProgressCallback& progress) {
+  ParallelFor(count, options.threads, job, [&](int finished) {
+    if (progress) progress(finished, count);
+  });
+}
+
+}  // namespace
+
+RobustnessTrial RunRobustnessTrial(const SimulationModel& model, const JointTrajectory& nominal,
+                                   const RobustnessOptions& options, int index) {
+  return RunReplay(model, nominal, options, index, nullptr);
+}
+
+RobustnessTrial RunReplayWithPhysics(const SimulationModel& model, const JointTrajectory& nominal,
+                                     const RobustnessOptions& options, int index,
+                                     const PhysicsDraw& physics) {
+  return RunReplay(model, nominal, options, index, &physics);
+}
+
 RobustnessResult EvaluateRobustness(const SimulationModel& model, const JointTrajectory& nominal,
                                     const RobustnessOptions& options,
                                     const ProgressCallback& progress) {
-  std::string why;
-  if (!options.IsValid(&why)) throw InputError("invalid robustness option: " + why);
+  Validate(options);
   const auto start = std::chrono::steady_clock::now();
   RobustnessResult result;
   result.trials.resize(static_cast<size_t>(options.trials));
-  int threads =
-      options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency());
-  threads = std::clamp(threads, 1, options.trials);
-  result.threads = threads;
-
-  std::atomic<int> next{0};
-  std::mutex progress_mutex;
-  int done = 0;
-  std::exception_ptr error;
-  auto worker = [&] {
-    try {
-      EnsureOdeThread();
-      for (int i = next++; i < options.trials; i = next++) {
+  result.threads = WorkerCount(options.threads, options.trials);
+  RunReplays(
+      options.trials, options,
+      [&](int i) {
         result.trials[static_cast<size_t>(i)] = RunRobustnessTrial(model, nominal, options, i);
-        std::lock_guard<std::mutex> lock(progress_mutex);
-        ++done;
-        if (progress) progress(done, options.trials);
-      }
-    } catch (...) {
-      std::lock_guard<std::mutex> lock(progress_mutex);
-      if (!error) error = std::current_exception();
-      next = options.trials;  // the others stop after their current trial
-    }
-  };
-  if (threads == 1) {
-    worker();
-  } else {
-    std::vector<std::thread> pool;
-    for (int k = 0; k < threads; ++k) pool.emplace_back(worker);
-    for (std::thread& t : pool) t.join();
-  }
-  if (error) std::rethrow_exception(error);
+      },
+      progress);
 
   for (const RobustnessTrial& t : result.trials) {
     result.successes += t.success();
@@ -109,6 +116,44 @@ RobustnessResult EvaluateRobustness(const SimulationModel& model, const JointTra
   }
   result.score = static_cast<double>(result.successes) / options.trials;
   result.ci95 = WilsonInterval(result.successes, options.trials);
+  result.wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+SensitivityResult EvaluateSensitivity(const SimulationModel& model, const JointTrajectory& nominal,
+                                      const RobustnessOptions& options,
+                                      const ProgressCallback& progress) {
+  Validate(options);
+  const auto start = std::chrono::steady_clock::now();
+  const Eigen::Vector3d com_direction = SensitivityComDirection(model);
+  SensitivityResult result;
+  result.trials_per_cell = options.trials;
+  for (PhysicsFactor factor : AllPhysicsFactors()) {
+    for (bool high : {false, true}) {
+      SensitivityCell cell;
+      cell.factor = factor;
+      cell.high = high;
+      cell.physics = PhysicsAtEnd(options.perturbation.physics, factor, high, com_direction);
+      cell.trials = options.trials;
+      result.cells.push_back(cell);
+    }
+  }
+  const int n = options.trials;
+  std::vector<RobustnessResult> replays(result.cells.size());
+  for (RobustnessResult& r : replays) r.trials.resize(static_cast<size_t>(n));
+  RunReplays(
+      static_cast<int>(result.cells.size()) * n, options,
+      [&](int job) {
+        const size_t c = static_cast<size_t>(job / n);
+        replays[c].trials[static_cast<size_t>(job % n)] =
+            RunReplayWithPhysics(model, nominal, options, job % n, result.cells[c].physics);
+      },
+      progress);
+  for (size_t c = 0; c < result.cells.size(); ++c) {
+    for (const RobustnessTrial& t : replays[c].trials) result.cells[c].successes += t.success();
+    result.cells[c].failures = FailureSummary(replays[c]);
+  }
   result.wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -2,8 +2,12 @@
 
 /// @file
 /// Robustness of a grasp trajectory (paper IV-B): N perturbed replays (time scaling and
-/// waypoint noise, simulation/perturbation.hpp), each a full grasp-and-lift trial; the score is
-/// the success fraction with its 95% Wilson interval.
+/// waypoint noise, simulation/perturbation.hpp; with the physics perturbation enabled, also
+/// friction, contact stiffness and damping, the object's mass and centre of mass, the finger
+/// servos' force and the step, simulation/physics_perturbation.hpp), each a full grasp-and-lift
+/// trial; the score is the success fraction with its 95% Wilson interval. The sensitivity of a
+/// grasp (EvaluateSensitivity) replays it with one physics factor at a time at an end of its
+/// range.
 ///
 /// Trials run in parallel, one ODE world per trial on a worker thread (each world has its own
 /// threading implementation: simulation_data.hpp). Trial i draws its perturbation from the
@@ -35,10 +39,12 @@ struct RobustnessOptions {
 struct RobustnessTrial {
   int index = 0;
   double time_scale = 1.0;
+  PhysicsDraw physics;  ///< the replay's physics (all nominal without the physics perturbation)
   TrialOutcome outcome = TrialOutcome::kUnstable;
   std::string reason;
   double lift = 0.0;  ///< m
   Eigen::Isometry3d final_object_pose = Eigen::Isometry3d::Identity();
+  HoldQuality hold;             ///< how the object sat in the hand at the end
   double simulated_time = 0.0;  ///< s
   double wall_time = 0.0;       ///< s
   double cpu_time = 0.0;        ///< s
@@ -81,5 +87,39 @@ std::string FailureSummary(const RobustnessResult& result);
 /// Runs trial `index` of an evaluation alone (what EvaluateRobustness runs for it).
 RobustnessTrial RunRobustnessTrial(const SimulationModel& model, const JointTrajectory& nominal,
                                    const RobustnessOptions& options, int index);
+
+/// Replay `index`'s motion (the same time scale and noise as RunRobustnessTrial's) with the
+/// given physics instead of a drawn one.
+RobustnessTrial RunReplayWithPhysics(const SimulationModel& model, const JointTrajectory& nominal,
+                                     const RobustnessOptions& options, int index,
+                                     const PhysicsDraw& physics);
+
+/// The success rate of a grasp with one physics factor at one end of its range.
+struct SensitivityCell {
+  PhysicsFactor factor = PhysicsFactor::kHandFriction;
+  bool high = false;  ///< the high end of the range (else the low end)
+  PhysicsDraw physics;
+  int trials = 0;
+  int successes = 0;
+  std::string failures;  ///< FailureSummary of the cell's replays
+
+  double rate() const { return trials > 0 ? static_cast<double>(successes) / trials : 0.0; }
+};
+
+/// What a grasp depends on: for every factor (AllPhysicsFactors), its low and its high end.
+struct SensitivityResult {
+  int trials_per_cell = 0;
+  std::vector<SensitivityCell> cells;  ///< by factor, low end first
+  double wall_time = 0.0;              ///< s
+};
+
+/// Replays `nominal` options.trials times in each cell: the motion perturbations are those of
+/// the robustness evaluation's first options.trials replays (the same seed and streams), the
+/// physics that of the cell (PhysicsAtEnd with options.perturbation.physics's ranges, whether
+/// or not it is enabled; the centre of mass moves along SensitivityComDirection). Progress
+/// counts replays over all cells. Throws InputError for invalid options.
+SensitivityResult EvaluateSensitivity(const SimulationModel& model, const JointTrajectory& nominal,
+                                      const RobustnessOptions& options,
+                                      const ProgressCallback& progress = {});
 
 }  // namespace graspsynth

@@ -180,7 +180,7 @@ bool WorldOptions::IsValid(std::string* why) const {
   if (!(std::isfinite(proximity_margin) && proximity_margin >= 0.0 && proximity_margin < 0.5)) {
     return fail("proximity_margin (m)", proximity_margin);
   }
-  return true;
+  return physics.IsValid(why);
 }
 
 struct SimulationData::Impl {
@@ -226,6 +226,10 @@ struct SimulationData::Impl {
   bool detect_only = false;
   ContactReport report;
   std::vector<HandObjectContact> hand_object;  // points of the last pass, object-hand pairs
+  // force feedback of the object-hand contact joints: slots reused from pass to pass (a deque
+  // keeps their addresses when it grows), and which hand_object entry each slot belongs to.
+  std::deque<dJointFeedback> feedback;
+  std::vector<size_t> feedback_contact;
   StepStatistics stats;
   bool near_object = false;
   bool broken = false;  // ODE raised an error inside a step of this world
@@ -254,6 +258,16 @@ struct SimulationData::Impl {
 
   const RobotModel& robot() const { return model->robot(); }
   bool arm_kinematic() const { return options.arm_mode == ArmMode::kKinematic; }
+  // whether arm joint i (0-based) is a motor-driven hinge of a dynamic link.
+  bool joint_dynamic(int i) const {
+    return options.arm_mode == ArmMode::kDynamic ||
+           (options.arm_mode == ArmMode::kWristDynamic && i >= kFirstWristJoint);
+  }
+  int dynamic_arm_joints() const {
+    int n = 0;
+    for (int i = 0; i < kArmDof; ++i) n += joint_dynamic(i);
+    return n;
+  }
 
   dGeomID AddGeom(dSpaceID into, const CollisionShape& shape, Role role, const std::string& link,
                   double inflate = 0.0, unsigned long category = kCatHandle) {
@@ -396,7 +410,7 @@ struct SimulationData::Impl {
         sum.Add(r.hand.palm().inertia, r.X_FH * r.hand.X_HP());
       }
       arm[i - 1] = MakeBody(sum);
-      if (arm_kinematic()) dBodySetKinematic(arm[i - 1].body);
+      if (!joint_dynamic(i - 1)) dBodySetKinematic(arm[i - 1].body);
       AttachShapes(arm[i - 1], r.arm.link(i), Eigen::Isometry3d::Identity(), Role::kArm);
       if (i == kArmDof) {
         AttachShapes(arm[i - 1], r.hand.mount(), r.X_FH, Role::kPalm, kHandJoints);
@@ -417,8 +431,9 @@ struct SimulationData::Impl {
     const ObjectModel& o = model->scene().object;
     const ObjectInertia& oi = model->object_inertia();
     object.body = dBodyCreate(world);
-    object.p_LC = oi.p_OC;
-    SetMass(object.body, oi.mass, oi.I_C);
+    const PhysicsVariation& pv = options.physics;
+    object.p_LC = oi.p_OC + pv.object_com_offset;
+    SetMass(object.body, oi.mass * pv.object_mass, oi.I_C * pv.object_mass);
     const CollisionShape pan = o.BodyShape();
     const CollisionShape handle = o.HandleShape();
     // ODE's cylinder-box contact rocks (3-4 contacts that jump around the rim; measured: the
@@ -440,7 +455,7 @@ struct SimulationData::Impl {
             proxy ? AddGeom(proxy_space, *shape, Role::kProxy, o.name, options.proximity_margin)
                   : AddGeom(space, *shape, Role::kObject, o.name, 0.0, category);
         dGeomSetBody(g, object.body);
-        const Eigen::Vector3d off = shape->X_LG.translation() - oi.p_OC;
+        const Eigen::Vector3d off = shape->X_LG.translation() - object.p_LC;
         dGeomSetOffsetPosition(g, off.x(), off.y(), off.z());
         dMatrix3 R;
         ToOde(shape->X_LG.linear(), R);
@@ -465,7 +480,7 @@ struct SimulationData::Impl {
       arm_upper[i] = am.upper()[i];
       arm_vmax[i] = am.max_velocity()[i];
       arm_fmax[i] = am.max_effort()[i];
-      if (arm_kinematic()) continue;
+      if (!joint_dynamic(i)) continue;
       const Eigen::Isometry3d X_WJ = arm_frames.X_WL[i] * am.joint(i).X_PJ;
       arm_joints[i] =
           MakeHinge(arm[i].body, i == 0 ? nullptr : arm[i - 1].body, X_WJ, am.joint(i).axis_J);
@@ -495,7 +510,7 @@ struct SimulationData::Impl {
       dJointSetHingeParam(finger_joints[j], dParamLoStop, hj.joint.lower - kStopMargin);
       dJointSetHingeParam(finger_joints[j], dParamHiStop, hj.joint.upper + kStopMargin);
       hand_vmax[j] = hj.joint.max_velocity;
-      hand_fmax[j] = hj.joint.max_effort * so.hand_effort_scale;
+      hand_fmax[j] = hj.joint.max_effort * so.hand_effort_scale * options.physics.hand_effort;
     }
   }
 
@@ -603,11 +618,10 @@ struct SimulationData::Impl {
   }
 
   void ReadJoints() {
-    if (!arm_kinematic()) {
-      for (int i = 0; i < kArmDof; ++i) {
-        const double raw = dJointGetHingeAngle(arm_joints[i]);
-        q_arm[i] += Wrap(raw - q_arm[i]);
-      }
+    for (int i = 0; i < kArmDof; ++i) {
+      if (!joint_dynamic(i)) continue;
+      const double raw = dJointGetHingeAngle(arm_joints[i]);
+      q_arm[i] += Wrap(raw - q_arm[i]);
     }
     if (hand_dynamic) {
       for (int j = 0; j < kHandJoints; ++j) q_hand[j] = dJointGetHingeAngle(finger_joints[j]);
@@ -618,6 +632,7 @@ struct SimulationData::Impl {
     detect_only = only_detect;
     report = ContactReport{};
     hand_object.clear();
+    feedback_contact.clear();
     dSpaceCollide(space, this, &Impl::NearCallback);
   }
 
@@ -645,7 +660,7 @@ struct SimulationData::Impl {
     }
     if (ra == Role::kTable && rb == Role::kObject) {
       report.object_table += n;
-      mu = model->scene().table.friction;
+      mu = model->scene().table.friction * options.physics.object_table_friction;
     } else if (ra == Role::kTable && rb == Role::kFinger) {
       report.finger_table += n;
       mu = so.hand_table_friction;
@@ -655,7 +670,7 @@ struct SimulationData::Impl {
     } else if (ra == Role::kObject && (rb == Role::kPalm || rb == Role::kFinger)) {
       report.object_hand += n;
       report.hand_links_on_object |= 1ul << ib->hand_index;
-      mu = model->scene().object.friction;
+      mu = model->scene().object.friction * options.physics.object_hand_friction;
       // geom a is the object: ODE's normal points into body 1, the object.
       for (int i = 0; i < n; ++i) {
         hand_object.push_back({Eigen::Vector3d(cg[i].pos[0], cg[i].pos[1], cg[i].pos[2]),
@@ -671,9 +686,12 @@ struct SimulationData::Impl {
       }
     }
     if (detect_only) return;
-    const double erp = h * so.contact_kp / (h * so.contact_kp + so.contact_kd);
-    const double cfm = 1.0 / (h * so.contact_kp + so.contact_kd);
+    const double kp = so.contact_kp * options.physics.contact_stiffness;
+    const double kd = so.contact_kd * options.physics.contact_damping;
+    const double erp = h * kp / (h * kp + kd);
+    const double cfm = 1.0 / (h * kp + kd);
     dBodyID ba = dGeomGetBody(a), bb = dGeomGetBody(b);
+    const bool hand_pair = ra == Role::kObject && (rb == Role::kPalm || rb == Role::kFinger);
     for (int i = 0; i < n; ++i) {
       dContact c{};
       c.surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM;
@@ -683,6 +701,14 @@ struct SimulationData::Impl {
       c.geom = cg[i];
       dJointID j = dJointCreateContact(world, contact_group, &c);
       dJointAttach(j, ba, bb);
+      if (hand_pair) {
+        // body 1 is the object: the feedback's f1 is the force on it.
+        const size_t slot = feedback_contact.size();
+        if (slot == feedback.size()) feedback.emplace_back();
+        dJointSetFeedback(j, &feedback[slot]);
+        feedback_contact.push_back(hand_object.size() - static_cast<size_t>(n) +
+                                   static_cast<size_t>(i));
+      }
       ++report.total;
     }
   }
@@ -703,9 +729,23 @@ struct SimulationData::Impl {
       arm_frames = next;
       q_arm = q_next;
     } else {
+      // the kinematic joints (none in kDynamic) move their links to the next state; the
+      // motors of the dynamic ones get their velocity.
+      Vector7d q_next = q_arm;
       for (int i = 0; i < kArmDof; ++i) {
-        dJointSetHingeParam(arm_joints[i], dParamVel, va[i]);
-        dJointSetHingeParam(arm_joints[i], dParamFMax, arm_fmax[i]);
+        if (!joint_dynamic(i)) q_next[i] = q_arm[i] + h * va[i];
+      }
+      ArmFrames next;
+      if (options.arm_mode == ArmMode::kWristDynamic) ArmLinkFrames(robot().arm, q_next, &next);
+      for (int i = 0; i < kArmDof; ++i) {
+        if (joint_dynamic(i)) {
+          dJointSetHingeParam(arm_joints[i], dParamVel, va[i]);
+          dJointSetHingeParam(arm_joints[i], dParamFMax, arm_fmax[i]);
+        } else {
+          PlaceBody(arm[i], arm_frames.X_WL[i + 1]);
+          SetBodyVelocity(arm[i], arm_frames.X_WL[i + 1], next.X_WL[i + 1], h);
+          q_arm[i] = q_next[i];
+        }
       }
     }
     const HandJointVector vh = HandVelocity(q_hand);
@@ -724,6 +764,10 @@ struct SimulationData::Impl {
     current_world_broken = &broken;
     dWorldStep(world, h);
     current_world_broken = nullptr;
+    for (size_t k = 0; k < feedback_contact.size(); ++k) {
+      const dReal* f = feedback[k].f1;
+      hand_object[feedback_contact[k]].f_W = Eigen::Vector3d(f[0], f[1], f[2]);
+    }
     dJointGroupEmpty(contact_group);
     const auto t3 = Clock::now();
     ReadJoints();
@@ -933,8 +977,8 @@ double SimulationData::MaxDynamicAngularSpeed() const {
 WorldCounts SimulationData::counts() const {
   WorldCounts c;
   c.bodies = kArmDof + kHandJoints + 1;
-  c.dynamic_bodies = kHandJoints + 1 + (impl_->arm_kinematic() ? 0 : kArmDof);
-  c.joints = kHandJoints + (impl_->arm_kinematic() ? 0 : kArmDof);
+  c.dynamic_bodies = kHandJoints + 1 + impl_->dynamic_arm_joints();
+  c.joints = kHandJoints + impl_->dynamic_arm_joints();
   c.geoms = impl_->geom_count;
   return c;
 }

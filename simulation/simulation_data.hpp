@@ -47,7 +47,13 @@ class OdeError : public std::runtime_error {
 enum class ArmMode {
   kKinematic,  ///< kinematic bodies follow the controller model (infinitely strong arm)
   kDynamic,    ///< dynamic links on motor-driven hinges, in the same solve as the hand
+  /// S1..E1 (80-200 N m motors, which do not yield to a grasp) kinematic as in kKinematic; the
+  /// wrist joints E2, W1 and W2 (10-15 N m, which do) dynamic as in kDynamic.
+  kWristDynamic,
 };
+
+/// The first arm joint (0-based: E2) that ArmMode::kWristDynamic simulates dynamically.
+inline constexpr int kFirstWristJoint = 4;
 
 /// How a joint target is read.
 enum class ServoMode {
@@ -63,6 +69,9 @@ struct WorldOptions {
   /// Free-space test (HandNearObject): how far from the object hand and arm geometry count as
   /// "near", m.
   double proximity_margin = 0.02;
+  /// Changes of the physics for this world (friction, contact stiffness and damping, the
+  /// object's mass and centre of mass, the finger servos' force caps).
+  PhysicsVariation physics;
 
   /// True when the values are finite and in range; otherwise false with the reason.
   bool IsValid(std::string* why) const;
@@ -90,6 +99,9 @@ struct HandObjectContact {
   Eigen::Vector3d n_W = Eigen::Vector3d::UnitZ();  ///< unit normal, world, pointing into the object
   double depth = 0.0;                              ///< penetration depth, m
   int hand_link = -1;  ///< HandJointVector index of the finger link, 20 for the palm or mount
+  /// Force this contact put on the object in the step that followed the pass (world, N); zero
+  /// after a detection-only pass (StepKinematically).
+  Eigen::Vector3d f_W = Eigen::Vector3d::Zero();
 };
 
 /// Size of the world (the figures a benchmark reports).

@@ -54,6 +54,24 @@ ObjectInertia ComputeObjectInertia(const ObjectModel& o) {
 
 }  // namespace
 
+bool PhysicsVariation::IsValid(std::string* why) const {
+  return Check(Positive(object_hand_friction), "object_hand_friction", object_hand_friction, why) &&
+         Check(Positive(object_table_friction), "object_table_friction", object_table_friction,
+               why) &&
+         Check(Positive(contact_stiffness), "contact_stiffness", contact_stiffness, why) &&
+         Check(Positive(contact_damping), "contact_damping", contact_damping, why) &&
+         Check(Positive(object_mass), "object_mass", object_mass, why) &&
+         Check(object_com_offset.allFinite() && object_com_offset.norm() <= 0.05,
+               "object_com_offset (m, |offset| <= 0.05)", object_com_offset.norm(), why) &&
+         Check(Positive(hand_effort), "hand_effort", hand_effort, why);
+}
+
+bool PhysicsVariation::IsNominal() const {
+  return object_hand_friction == 1.0 && object_table_friction == 1.0 && contact_stiffness == 1.0 &&
+         contact_damping == 1.0 && object_mass == 1.0 && object_com_offset.isZero(0.0) &&
+         hand_effort == 1.0;
+}
+
 bool SimulationOptions::IsValid(std::string* why) const {
   return Check(Positive(erp) && erp <= 1.0, "erp", erp, why) &&
          Check(NonNegative(cfm) && cfm < 1.0, "cfm", cfm, why) &&

@@ -41,6 +41,27 @@ struct SimulationOptions {
   bool IsValid(std::string* why) const;
 };
 
+/// Changes of the physics in one world relative to the model's (SimulationOptions and the
+/// scene), for robustness evaluation (simulation/physics_perturbation.hpp draws them). Every
+/// factor 1 and a zero offset leave the world exactly as modelled.
+struct PhysicsVariation {
+  double object_hand_friction = 1.0;   ///< factor on the object's coefficient with the hand
+  double object_table_friction = 1.0;  ///< factor on the object-table coefficient
+  double contact_stiffness = 1.0;      ///< factor on contact_kp (every contact)
+  double contact_damping = 1.0;        ///< factor on contact_kd (every contact)
+  double object_mass = 1.0;            ///< factor on the object's mass and inertia
+  /// Shift of the object's centre of mass from the modelled one, object frame O, m (the
+  /// inertia about the centre of mass is kept).
+  Eigen::Vector3d object_com_offset = Eigen::Vector3d::Zero();
+  double hand_effort = 1.0;  ///< factor on every finger servo's force (torque) cap
+
+  /// True when every factor is finite and positive and the offset finite (and under 5 cm, so
+  /// that the centre of mass stays inside the object); otherwise false with the reason.
+  bool IsValid(std::string* why) const;
+  /// True when the variation changes nothing.
+  bool IsNominal() const;
+};
+
 /// Mass properties of the object, derived from the scene (uniform density per part).
 struct ObjectInertia {
   double mass = 0.0;                               ///< kg

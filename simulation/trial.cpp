@@ -38,12 +38,12 @@ bool TrialOptions::IsValid(std::string* why) const {
   if (!(std::isfinite(record_interval) && record_interval >= 0.0)) {
     return fail("record_interval (s)", record_interval);
   }
-  return true;
+  return physics.IsValid(why);
 }
 
 double TrialOptions::step() const {
   if (time_step > 0.0) return time_step;
-  return fidelity == Fidelity::kFast ? 0.004 : 0.001;
+  return fidelity == Fidelity::kFull ? 0.001 : 0.004;
 }
 
 std::string TrialResult::BriefReport() const {
@@ -61,10 +61,12 @@ SimulationData MakeTrialWorld(const SimulationModel& model, const JointTrajector
                               const TrialOptions& options) {
   WorldOptions world_options;
   world_options.time_step = options.step();
-  world_options.arm_mode =
-      options.fidelity == Fidelity::kFast ? ArmMode::kKinematic : ArmMode::kDynamic;
+  world_options.arm_mode = options.fidelity == Fidelity::kFast   ? ArmMode::kKinematic
+                           : options.fidelity == Fidelity::kFull ? ArmMode::kDynamic
+                                                                 : ArmMode::kWristDynamic;
   world_options.theta = trajectory.theta_deg * M_PI / 180.0;
   world_options.proximity_margin = options.proximity_margin;
+  world_options.physics = options.physics;
   return SimulationData(model, world_options, trajectory.samples.front().arm,
                         trajectory.samples.front().hand);
 }
@@ -85,7 +87,7 @@ std::optional<TrialVerdict> PlayTrial(const SimulationModel& model,
                                       const TrialOptions& options, const StepObserver& observer,
                                       SimulationData* data, TrialWatch* watch,
                                       TrialResult* result) {
-  const bool fast = options.fidelity == Fidelity::kFast;
+  const bool fast = options.fidelity != Fidelity::kFull;
   const double h = options.step();
   const double t_motion = trajectory.duration();
   const long steps = std::lround(result->planned_time / h);
@@ -145,6 +147,7 @@ TrialResult RunTrial(const SimulationModel& model, const JointTrajectory& trajec
   result.final_object_pose = data.object_pose();
   result.lift = result.final_object_pose.translation().z() - X_WO_rest.translation().z();
   result.statistics = data.statistics();
+  result.hold = MeasureHold(data, watch);
   const TrialVerdict verdict =
       early ? *early : JudgeTrial(data, watch, result.simulated_time - t_motion, options);
   result.outcome = verdict.outcome;

@@ -11,7 +11,9 @@
 /// - kFull: the arm is a chain of dynamic, motor-driven links in the same solve as the hand
 ///   and the object, every step simulated at 1 ms, no early stop;
 /// - kFast: the arm follows the controller kinematically (it is 35 kg against a 0.4 kg
-///   object and 200 N m motors: it does not yield), steps of 4 ms, free space is not
+///   object, and its shoulder and elbow motors of 80-200 N m do not yield; its wrist's of
+///   10-15 N m can, which kFastWristDynamic models: README.md, "Robustness under the contact
+///   model", measures what that changes), steps of 4 ms, free space is not
 ///   simulated in contact detail (the controller model moves arm and fingers and collisions
 ///   are checked until anything touches), and the trial stops as soon as its outcome is
 ///   decided. Known defect: the 2 cm proximity test (SimulationData::HandNearObject) never
@@ -31,7 +33,13 @@
 namespace graspsynth {
 
 /// Simulation detail of a trial (see the file comment).
-enum class Fidelity { kFast, kFull };
+enum class Fidelity {
+  kFast,
+  kFull,
+  /// kFast with the wrist joints E2, W1 and W2 as motor-driven dynamic links
+  /// (ArmMode::kWristDynamic): their 10-15 N m motors yield to a grasp as they do in kFull.
+  kFastWristDynamic,
+};
 
 /// Options of one trial; the judgement's thresholds are those of the base (TrialJudgeOptions).
 struct TrialOptions : TrialJudgeOptions {
@@ -44,6 +52,8 @@ struct TrialOptions : TrialJudgeOptions {
   double proximity_margin = 0.02;
   /// Record the state every this many seconds (0: no record).
   double record_interval = 0.0;
+  /// Changes of the physics in this trial's world (WorldOptions::physics; none by default).
+  PhysicsVariation physics;
 
   /// True when every value is finite and in range; otherwise false with the reason.
   bool IsValid(std::string* why) const;
@@ -72,6 +82,7 @@ struct TrialResult {
   double wall_time = 0.0;        ///< s
   double cpu_time = 0.0;         ///< s of the calling thread's CPU time
   Eigen::Isometry3d final_object_pose = Eigen::Isometry3d::Identity();
+  HoldQuality hold;                ///< how the object sits in the hand at the end
   StepStatistics statistics;       ///< steps and where their time went
   WorldCounts counts;              ///< bodies, joints, geoms of the world
   std::vector<TrialState> states;  ///< when recording

@@ -26,6 +26,8 @@ std::string_view ToString(TrialOutcome outcome) {
       return "knocked_over";
     case TrialOutcome::kTouchesOther:
       return "touches_other";
+    case TrialOutcome::kTilted:
+      return "tilted";
     case TrialOutcome::kCollision:
       return "collision";
     case TrialOutcome::kJointLimit:
@@ -48,6 +50,9 @@ bool TrialJudgeOptions::IsValid(std::string* why) const {
   }
   if (!positive(knocked_tilt)) return fail("knocked_tilt (rad)", knocked_tilt);
   if (!positive(knocked_shift)) return fail("knocked_shift (m)", knocked_shift);
+  if (!(positive(max_hold_tilt) && max_hold_tilt <= M_PI)) {
+    return fail("max_hold_tilt (rad, in (0, pi])", max_hold_tilt);
+  }
   if (!positive(max_speed)) return fail("max_speed (m/s)", max_speed);
   if (!positive(max_angular_speed)) return fail("max_angular_speed (rad/s)", max_angular_speed);
   if (!positive(max_kinetic_energy)) return fail("max_kinetic_energy (J)", max_kinetic_energy);
@@ -71,7 +76,10 @@ void WatchStep(const SimulationData& data, const TrialJudgeOptions& options, Tri
   watch->max_shift = std::max(
       watch->max_shift, (X_WO.translation() - watch->X_WO_rest.translation()).head<2>().norm());
   if (c.object_table == 0 && lift >= options.lifted_min) {
-    if (watch->airborne_since < 0.0) watch->airborne_since = time;
+    if (watch->airborne_since < 0.0) {
+      watch->airborne_since = time;
+      watch->X_HO_lifted = data.wrist_pose().inverse() * X_WO;
+    }
     if (time - watch->airborne_since >= 0.1) watch->was_lifted = true;
   } else {
     watch->airborne_since = -1.0;
@@ -115,6 +123,13 @@ TrialVerdict JudgeTrial(const SimulationData& data, const TrialWatch& watch, dou
   const double lift = data.object_pose().translation().z() - watch.X_WO_rest.translation().z();
   if (lift >= options.lift_threshold && c.object_hand > 0 && c.object_table == 0 &&
       c.object_arm == 0) {
+    const double tilt = Tilt(data.object_pose());
+    if (tilt > options.max_hold_tilt) {
+      return {TrialOutcome::kTilted,
+              Format("lifted %.1f mm and held %.2f s by the hand alone, but tilted %.1f deg "
+                     "(limit %.1f deg)",
+                     lift * 1e3, held, tilt * 180.0 / M_PI, options.max_hold_tilt * 180.0 / M_PI)};
+    }
     return {TrialOutcome::kSuccess,
             Format("lifted %.1f mm and held %.2f s, touching only the hand", lift * 1e3, held)};
   }
@@ -138,6 +153,44 @@ TrialVerdict JudgeTrial(const SimulationData& data, const TrialWatch& watch, dou
   return {TrialOutcome::kNotLifted,
           Format("object not lifted: its centre rose at most %.1f mm (needs %.0f mm)",
                  watch.max_lift * 1e3, options.lift_threshold * 1e3)};
+}
+
+std::string HoldQuality::LoadBearers(double min_share) const {
+  std::string text;
+  for (int k = 0; k <= kFingers; ++k) {
+    if (load_share[static_cast<size_t>(k)] < min_share ||
+        load_share[static_cast<size_t>(k)] == 0.0) {
+      continue;
+    }
+    if (!text.empty()) text += "+";
+    text += k < kFingers ? std::string(kFingerNames[static_cast<size_t>(k)]) : "palm";
+  }
+  return text.empty() ? "none" : text;
+}
+
+HoldQuality MeasureHold(const SimulationData& data, const TrialWatch& watch) {
+  HoldQuality q;
+  const Eigen::Isometry3d X_WO = data.object_pose();
+  q.end_tilt = Tilt(X_WO);
+  q.max_tilt = watch.max_tilt;
+  if (watch.airborne_since >= 0.0) {
+    const Eigen::Isometry3d X_HO = data.wrist_pose().inverse() * X_WO;
+    q.slip = (X_HO.translation() - watch.X_HO_lifted.translation()).norm();
+    q.slip_angle =
+        Eigen::AngleAxisd(watch.X_HO_lifted.linear().transpose() * X_HO.linear()).angle();
+  }
+  double total = 0.0;
+  for (const HandObjectContact& c : data.hand_object_contacts()) {
+    ++q.contacts;
+    const int group = c.hand_link >= kHandJoints ? kFingers : c.hand_link / kFingerJoints;
+    const double f = c.f_W.norm();
+    q.load_share[static_cast<size_t>(group)] += f;
+    total += f;
+  }
+  if (total > 0.0) {
+    for (double& s : q.load_share) s /= total;
+  }
+  return q;
 }
 
 void StepTrialWorld(SimulationData* data, bool* free_space) {

@@ -11,8 +11,10 @@
 ///    the joint limits, the arm or the palm on the table, a numerical instability;
 /// 2. otherwise WatchStep updates the figures the judgement needs (TrialWatch: lift, highest
 ///    lift, time off the table, tilt, shift on the table, deepest penetration);
-/// 3. at the end, JudgeTrial turns the world's last contacts and the watch into the outcome.
+/// 3. at the end, JudgeTrial turns the world's last contacts and the watch into the outcome,
+///    and MeasureHold describes how the object sits in the hand (HoldQuality).
 
+#include <array>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -30,6 +32,7 @@ enum class TrialOutcome {
   kDropped,       ///< the object had been lifted, then slipped or dropped
   kKnockedOver,   ///< the object was knocked over or pushed away without being lifted
   kTouchesOther,  ///< lifted, but resting on something other than the hand (the arm)
+  kTilted,        ///< lifted and held by the hand alone, but hanging tilted beyond the limit
   kCollision,     ///< the arm, the hand mount or the palm hit the table
   kJointLimit,    ///< an arm command outside the joint limits (the controller stops there)
   kUnstable,      ///< numerical instability: non-finite state or runaway energy
@@ -48,6 +51,12 @@ struct TrialJudgeOptions {
   /// counts as knocked over or pushed away.
   double knocked_tilt = 20.0 * M_PI / 180.0;
   double knocked_shift = 0.03;
+  /// A held object may be tilted at most this much at the end of the hold, rad (the angle of
+  /// its up axis from vertical); beyond it the trial is kTilted. 30 deg: the demonstrations
+  /// lift the pan level (a few degrees), a pan at 30 deg still keeps what lies in it and its
+  /// load still acts mostly along the fingers' grip, while one hanging at 60 deg from a
+  /// sideways pinch is held by friction at its limit (README.md, "Robustness").
+  double max_hold_tilt = 30.0 * M_PI / 180.0;
   /// Instability: a finger or the object faster than this (m/s, rad/s) or with more kinetic
   /// energy (J; the hand moves at well under 1 m/s) is a numerical failure.
   double max_speed = 5.0;
@@ -73,6 +82,28 @@ struct TrialWatch {
   double max_shift = 0.0;        ///< largest horizontal distance from its rest position, m
   double airborne_since = -1.0;  ///< time (s) the object last left the table, or -1
   bool was_lifted = false;       ///< off the table, >= lifted_min up, for 0.1 s or more
+  /// The object's pose in the hand-mount frame H when it last left the table (valid while
+  /// airborne_since >= 0): where slip is measured from.
+  Eigen::Isometry3d X_HO_lifted = Eigen::Isometry3d::Identity();
+};
+
+/// How the object sits in the hand at the end of a trial (reported for every trial).
+struct HoldQuality {
+  double end_tilt = 0.0;  ///< angle of the object's up axis from vertical at the end, rad
+  double max_tilt = 0.0;  ///< the largest such angle during the trial, rad
+  /// Motion of the object relative to the hand from when it last left the table to the end:
+  /// its frame's displacement (m) and rotation (rad) in the hand-mount frame; 0 when it is
+  /// not off the table at the end.
+  double slip = 0.0;
+  double slip_angle = 0.0;
+  int contacts = 0;  ///< object-hand contact points at the end
+  /// Share of the object-hand contact force at the end carried by each finger
+  /// (kFingerNames order) and the palm (last), summing to 1; all 0 without contact force.
+  std::array<double, kFingers + 1> load_share{};
+
+  /// The fingers (and "palm") that carry at least `min_share` of the load, e.g.
+  /// "thumb+index"; "none" without load.
+  std::string LoadBearers(double min_share = 0.1) const;
 };
 
 /// A watch of a trial whose object rests at X_WO_rest.
@@ -97,11 +128,15 @@ TrialVerdict OdeFailureVerdict(double t, const char* what);
 TrialVerdict JudgeTrial(const SimulationData& data, const TrialWatch& watch, double held,
                         const TrialJudgeOptions& options);
 
+/// How the object sits in the hand at the end of a trial: the world's object pose and last
+/// object-hand contacts (with their forces) and the watch.
+HoldQuality MeasureHold(const SimulationData& data, const TrialWatch& watch);
+
 /// One physics step of a trial whose arm follows its controller kinematically: while
 /// `*free_space`, a kinematic step without contact detail (SimulationData::StepKinematically),
 /// until some robot geometry comes near the object (SimulationData::HandNearObject, which never
-/// fires today: see simulation/trial.hpp) or anything touches; from then on (`*free_space` turns false) full steps. Throws what the steps throw
-/// (OdeError).
+/// fires today: see simulation/trial.hpp) or anything touches; from then on (`*free_space` turns
+/// false) full steps. Throws what the steps throw (OdeError).
 void StepTrialWorld(SimulationData* data, bool* free_space);
 
 }  // namespace graspsynth

@@ -21,6 +21,10 @@ bool PhysicsGateOptions::IsValid(std::string* why) const {
     if (why) *why = "threads must be >= 0";
     return false;
   }
+  if (sensitivity_trials < 0) {
+    if (why) *why = "sensitivity_trials must be >= 0";
+    return false;
+  }
   return trial.IsValid(why) && perturbation.IsValid(why) && quality.IsValid(why);
 }
 
@@ -55,6 +59,10 @@ PhysicsGateResult RunPhysicsGate(const SimulationModel& model, const JointTrajec
     ro.trial = options.trial;
     r.robustness = EvaluateRobustness(model, trajectory, ro, progress);
     r.robustness_run = true;
+    if (options.sensitivity_trials > 0) {
+      ro.trials = options.sensitivity_trials;
+      r.sensitivity = EvaluateSensitivity(model, trajectory, ro);
+    }
   }
   if (!nominal_ok) {
     s << "the nominal trial failed: " << ToString(r.nominal.outcome) << " (" << r.nominal.reason

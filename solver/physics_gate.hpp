@@ -8,6 +8,7 @@
 /// contacts of the nominal trial's last step that had any (the hold at the top, for a grasp
 /// that lifts), about the object's centre of mass.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,7 +19,10 @@ namespace graspsynth {
 
 /// Options of RunPhysicsGate.
 struct PhysicsGateOptions {
-  int perturbations = 30;       ///< perturbed replays, >= 0 (0: nominal only)
+  int perturbations = 30;  ///< perturbed replays, >= 0 (0: nominal only)
+  /// Replays per end of each physics factor's range for the sensitivity table, >= 0 (0: no
+  /// table); run when the robustness replays run.
+  int sensitivity_trials = 0;
   double min_robustness = 0.8;  ///< success fraction needed, [0, 1]
   bool require_nominal = true;  ///< the nominal trial must succeed
   uint64_t seed = 1;
@@ -37,7 +41,8 @@ struct PhysicsGateResult {
   TrialResult nominal;
   bool robustness_run = false;
   RobustnessResult robustness;
-  std::vector<GraspContact> contacts;  ///< the contacts the quality was computed from
+  std::optional<SensitivityResult> sensitivity;  ///< with options.sensitivity_trials > 0
+  std::vector<GraspContact> contacts;            ///< the contacts the quality was computed from
   GraspQuality quality;
   double time_s = 0.0;  ///< wall time of the gate
 };

@@ -77,6 +77,9 @@ bool StudyOptions::IsValid(std::string* why) const {
   if (gate_perturbations < 0) {
     return fail("gate_perturbations: " + std::to_string(gate_perturbations) + " (needs >= 0)");
   }
+  if (sensitivity_trials < 0) {
+    return fail("sensitivity_trials: " + std::to_string(sensitivity_trials) + " (needs >= 0)");
+  }
   if (!(min_robustness >= 0.0 && min_robustness <= 1.0)) {
     return fail("min_robustness: " + Num17(min_robustness) + " (needs [0, 1])");
   }
@@ -103,6 +106,7 @@ bool StudyOptions::IsValid(std::string* why) const {
     }
   }
   std::string nested;
+  if (!perturbation.IsValid(&nested)) return fail("perturbation: " + nested);
   if (!analysis.IsValid(&nested)) return fail("analysis: " + nested);
   if (!comparison.IsValid(&nested)) return fail("comparison: " + nested);
   return true;
@@ -186,6 +190,7 @@ std::vector<StudyRow> SynthesisTable(const SimulationModel& model, const GraspLi
         go.perturbations = options.gate_perturbations;
         go.min_robustness = options.min_robustness;
         go.perturbation = options.perturbation;
+        go.sensitivity_trials = options.sensitivity_trials;
         go.seed = row.seed;
         go.threads = options.threads;
         const PhysicsGateResult gate = RunPhysicsGate(
@@ -195,6 +200,8 @@ std::vector<StudyRow> SynthesisTable(const SimulationModel& model, const GraspLi
         row.nominal_success = gate.nominal.success();
         row.nominal_outcome = gate.nominal.outcome;
         row.nominal_reason = gate.nominal.reason;
+        row.nominal_hold = gate.nominal.hold;
+        row.sensitivity = gate.sensitivity;
         if (gate.robustness_run) {
           row.trials = static_cast<int>(gate.robustness.trials.size());
           row.successes = gate.robustness.successes;
@@ -253,6 +260,8 @@ std::vector<StudyRow> SynthesisStage(const SimulationModel& model, const StudyOp
   table.methods = options.methods;
   table.gate_perturbations = options.gate_perturbations;
   table.min_robustness = options.min_robustness;
+  table.perturbation = options.perturbation;
+  table.sensitivity_trials = options.sensitivity_trials;
   table.seed = options.seed;
   table.threads = options.threads;
   const auto table_progress = [&](int done, int total, const std::string& what) {
@@ -312,6 +321,7 @@ StudyResult RunStudy(const SimulationModel& model, const StudyOptions& options,
   start = std::chrono::steady_clock::now();
   SelectionOptions selection;
   selection.perturbations = options.selection_perturbations;
+  selection.perturbation = options.perturbation;
   selection.seed = options.seed;
   selection.threads = options.threads;
   selection.segmentation = options.analysis.segmentation;

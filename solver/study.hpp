@@ -26,6 +26,7 @@
 
 #include "learning_data/representative_selection.hpp"
 #include "simulation/perturbation.hpp"
+#include "simulation/robustness.hpp"
 #include "simulation/simulation_model.hpp"
 #include "simulation/trial.hpp"
 #include "solver/analysis_report.hpp"
@@ -64,8 +65,15 @@ struct StudyOptions {
   int selection_perturbations = 20;
   /// Perturbed replays of each synthesized grasp's physics gate, >= 0 (0: nominal only).
   int gate_perturbations = 10;
+  /// Replays per end of each physics factor's range in each synthesized grasp's sensitivity
+  /// table, >= 0 (0: none). 2: 32 replays per grasp, a coarse but complete picture of what
+  /// each grasp depends on (simulate --sensitivity gives a finer one).
+  int sensitivity_trials = 2;
   /// Success fraction the gate needs under perturbation, [0, 1].
   double min_robustness = 0.8;
+  /// The perturbation of every replay, in the selection and the gates: the motion's noise and
+  /// time scaling and the physics' ranges.
+  PerturbationOptions perturbation;
   /// Object orientations to synthesize, deg, each finite (the study's: 20, 25, ..., 100).
   std::vector<double> orientations = DefaultStudyOrientations();
   /// The methods, each run at every orientation (default: interp with refinement, the line
@@ -124,6 +132,9 @@ struct StudyRow {
   double epsilon = 0.0;                ///< Ferrari-Canny epsilon of the nominal hold
   bool force_closure = false;
   std::string failures;      ///< perturbed failures by outcome, e.g. "dropped 2, not_lifted 1"
+  HoldQuality nominal_hold;  ///< how the object sat in the hand at the end of the nominal trial
+  /// The gate's sensitivity table (when the study asks for one and the replays ran).
+  std::optional<SensitivityResult> sensitivity;
   uint64_t seed = 0;         ///< seed of the gate's perturbations
   double synthesis_s = 0.0;  ///< wall time of the synthesis (not in the deterministic files)
   double gate_s = 0.0;       ///< wall time of the gate (not in the deterministic files)
@@ -175,6 +186,8 @@ struct SynthesisTableOptions {
   std::vector<double> orientations;  ///< deg
   std::vector<StudyMethod> methods;
   int gate_perturbations = 10;  ///< perturbed replays per row (0: nominal only)
+  /// Replays per end of each physics factor's range in each row's sensitivity table (0: none).
+  int sensitivity_trials = 0;
   double min_robustness = 0.8;
   PerturbationOptions perturbation;  ///< of the gate's replays
   uint64_t seed = 1;                 ///< rows are seeded by StudyRowSeed(seed, theta, label)

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "solver/analysis_report.hpp"
+#include "solver/trial_json.hpp"
 
 namespace graspsynth {
 
@@ -69,6 +70,9 @@ json RowJson(const StudyRow& r) {
   j["passed"] = r.passed;
   j["gate_reason"] = r.gate_reason;
   j["quality"] = {{"epsilon", r.epsilon}, {"force_closure", r.force_closure}};
+  j["hold"] = r.gate_run ? HoldQualityJson<json>(r.nominal_hold) : json();
+  j["sensitivity"] =
+      r.sensitivity ? SensitivityJson<json>(*r.sensitivity, TrialOptions{}.step()) : json();
   return j;
 }
 
@@ -213,6 +217,34 @@ std::string SynthesisTableMarkdown(const std::vector<StudyRow>& rows) {
     md << "\n";
   }
 
+  return md.str();
+}
+
+std::string HoldAndSensitivityMarkdown(const std::vector<StudyRow>& rows) {
+  std::ostringstream md;
+  md << "| theta (deg) | method | end tilt (deg) | max tilt (deg) | slip (mm) | load on |";
+  for (PhysicsFactor f : AllPhysicsFactors()) md << " " << ToString(f) << " |";
+  md << "\n|---|---|---|---|---|---|";
+  for (size_t k = 0; k < AllPhysicsFactors().size(); ++k) md << "---|";
+  md << "\n";
+  for (const StudyRow& r : rows) {
+    if (!r.gate_run) continue;
+    const HoldQuality& h = r.nominal_hold;
+    md << "| " << Deg(r.theta_deg) << " | " << r.method << " | "
+       << Format("%.1f", h.end_tilt / kDeg) << " | " << Format("%.1f", h.max_tilt / kDeg) << " | "
+       << Format("%.1f", h.slip * 1e3) << " | " << h.LoadBearers() << " |";
+    for (size_t c = 0; c < AllPhysicsFactors().size(); ++c) {
+      if (!r.sensitivity) {
+        md << " - |";
+        continue;
+      }
+      const SensitivityCell& lo = r.sensitivity->cells[2 * c];
+      const SensitivityCell& hi = r.sensitivity->cells[2 * c + 1];
+      md << " " << lo.successes << "/" << lo.trials << " · " << hi.successes << "/" << hi.trials
+         << " |";
+    }
+    md << "\n";
+  }
   return md.str();
 }
 
@@ -435,6 +467,12 @@ std::string StudyReportMarkdown(const StudyResult& result) {
   LibrarySection(result.selection, md);
   md << "## Synthesis and physics validation\n\n";
   md << SynthesisTableMarkdown(result.rows);
+  md << "## Hold quality and sensitivity to the physics\n\n"
+     << "The nominal trial's hold (tilt of the pan at the end of the hold and its largest, its "
+        "slip in the hand since it left the table, the fingers carrying at least 10% of the "
+        "contact force) and, per physics factor, the successes with that factor alone at the "
+        "low · high end of its range (README.md, \"Robustness under the contact model\").\n\n"
+     << HoldAndSensitivityMarkdown(result.rows) << "\n";
   md << "## Where a method falls short\n\n";
   md << ShortfallMarkdown(result.rows);
   return md.str();

@@ -51,6 +51,11 @@ std::string SynthesisTableMarkdown(const std::vector<StudyRow>& rows);
 /// robustness, gate passes, fallbacks.
 std::string SummaryMarkdown(const std::vector<StudyRow>& rows);
 
+/// The nominal trial's hold quality (end and largest tilt, slip, load-bearing fingers) and the
+/// sensitivity table (successes at the low · high end of each physics factor's range) of every
+/// row whose gate ran, as a Markdown table.
+std::string HoldAndSensitivityMarkdown(const std::vector<StudyRow>& rows);
+
 /// "Where a method falls short": every row that did not pass the gate with its reason from the
 /// simulator.
 std::string ShortfallMarkdown(const std::vector<StudyRow>& rows);

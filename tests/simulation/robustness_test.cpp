@@ -46,6 +46,7 @@ TEST(EvaluateRobustness, TheThreadCountChangesNoBitOfAnyTrial) {
   o.trials = testing::Scaled(12, 4);
   o.seed = 42;
   o.threads = 1;
+  o.perturbation.physics.enabled = false;  // the motion's noise alone (see below for both)
   std::vector<int> reported;
   const RobustnessResult one = EvaluateRobustness(ShippedSimulationModel(), ExampleTrajectory(), o,
                                                   [&](int done, int total) {
@@ -99,6 +100,15 @@ TEST(FailureSummary, CountsFailedReplaysByOutcomeInEnumOrder) {
   EXPECT_EQ(FailureSummary(result), "");
 }
 
+void ExpectTheSameSuccesses(const RobustnessResult& fast, const RobustnessResult& full) {
+  ASSERT_EQ(fast.trials.size(), full.trials.size());
+  for (size_t i = 0; i < fast.trials.size(); ++i) {
+    EXPECT_EQ(fast.trials[i].success(), full.trials[i].success())
+        << "trial " << i << ": fast " << fast.trials[i].reason << " | full "
+        << full.trials[i].reason;
+  }
+}
+
 // A small version of benchmarks/simulation_benchmark.cpp's agreement study: the fast path
 // (kinematic arm, kinematic free space, 4 ms, early stop) and the full-detail simulation
 // (dynamic arm, 1 ms, everything simulated) agree on the success of every replay, which is what
@@ -114,16 +124,84 @@ TEST(EvaluateRobustness, FastAndFullDetailAgreeOnEveryOutcome) {
   o.perturbation.position_sigma *= 2.0;
   o.perturbation.orientation_sigma *= 2.0;
   o.perturbation.finger_sigma *= 2.0;
+  o.perturbation.physics.enabled = false;  // the motion's noise alone (see below for both)
   const RobustnessResult fast =
       EvaluateRobustness(ShippedSimulationModel(), ExampleTrajectory(), o);
   o.trial.fidelity = Fidelity::kFull;
   const RobustnessResult full =
       EvaluateRobustness(ShippedSimulationModel(), ExampleTrajectory(), o);
-  for (int i = 0; i < o.trials; ++i) {
-    EXPECT_EQ(fast.trials[i].success(), full.trials[i].success())
-        << "trial " << i << ": fast " << fast.trials[i].reason << " | full "
-        << full.trials[i].reason;
+  ExpectTheSameSuccesses(fast, full);
+}
+
+// The physics perturbation draws per replay from the replay's own stream: the thread count
+// changes none of its draws and none of its results.
+TEST(EvaluateRobustness, PhysicsPerturbedReplaysAreTheSameOnAnyThreadCount) {
+  RobustnessOptions o;
+  o.trials = testing::Scaled(6, 3);
+  o.seed = 9;
+  o.threads = 1;
+  ASSERT_TRUE(o.perturbation.physics.enabled);  // the default
+  const RobustnessResult one = EvaluateRobustness(ShippedSimulationModel(), ExampleTrajectory(), o);
+  o.threads = 2;
+  const RobustnessResult two = EvaluateRobustness(ShippedSimulationModel(), ExampleTrajectory(), o);
+  bool varied = false;
+  for (size_t i = 0; i < one.trials.size(); ++i) {
+    const RobustnessTrial& a = one.trials[i];
+    const RobustnessTrial& b = two.trials[i];
+    EXPECT_EQ(a.outcome, b.outcome) << i;
+    EXPECT_EQ(a.physics.variation.object_hand_friction, b.physics.variation.object_hand_friction);
+    EXPECT_EQ(a.physics.time_step, b.physics.time_step);
+    EXPECT_EQ(a.hold.end_tilt, b.hold.end_tilt) << i;
+    EXPECT_TRUE(a.final_object_pose.matrix() == b.final_object_pose.matrix()) << i;
+    varied = varied || !a.physics.variation.IsNominal();
   }
+  EXPECT_TRUE(varied);
+  // the motion's draws come first: the time scales are those of the motion-only replays.
+  o.perturbation.physics.enabled = false;
+  EXPECT_EQ(RunRobustnessTrial(ShippedSimulationModel(), ExampleTrajectory(), o, 1).time_scale,
+            one.trials[1].time_scale);
+}
+
+TEST(EvaluateSensitivity, OneCellPerFactorEndWithItsOwnPhysics) {
+  RobustnessOptions o;
+  o.trials = 1;
+  o.seed = 3;
+  o.threads = 2;
+  int last = 0;
+  const SensitivityResult s = EvaluateSensitivity(ShippedSimulationModel(), ExampleTrajectory(), o,
+                                                  [&](int done, int) { last = done; });
+  ASSERT_EQ(s.cells.size(), 2 * AllPhysicsFactors().size());
+  EXPECT_EQ(last, static_cast<int>(s.cells.size()));
+  for (size_t c = 0; c < s.cells.size(); ++c) {
+    EXPECT_EQ(s.cells[c].factor, AllPhysicsFactors()[c / 2]);
+    EXPECT_EQ(s.cells[c].high, c % 2 == 1);
+    EXPECT_EQ(s.cells[c].trials, 1);
+    EXPECT_LE(s.cells[c].successes, 1);
+    EXPECT_EQ(s.cells[c].failures.empty(), s.cells[c].successes == 1);
+  }
+  // a cell's replay is the robustness replay of the same index with the cell's physics.
+  const SensitivityCell& fine = s.cells[2 * static_cast<size_t>(PhysicsFactor::kStep) + 1];
+  EXPECT_EQ(fine.physics.time_step, o.perturbation.physics.fine_step);
+  const RobustnessTrial same =
+      RunReplayWithPhysics(ShippedSimulationModel(), ExampleTrajectory(), o, 0, fine.physics);
+  EXPECT_EQ(same.success() ? 1 : 0, fine.successes);
+}
+
+// The fidelities also agree under the physics perturbation (a full trial runs at 1 ms, so a
+// replay drawn at the fine step differs from its fast twin only in the arm model).
+TEST(EvaluateRobustness, FastAndFullDetailAgreeUnderThePhysicsPerturbation) {
+  RobustnessOptions o;
+  o.trials = testing::Scaled(6, 2);
+  o.seed = 13;
+  o.threads = 2;
+  ASSERT_TRUE(o.perturbation.physics.enabled);
+  const RobustnessResult fast =
+      EvaluateRobustness(ShippedSimulationModel(), ExampleTrajectory(), o);
+  o.trial.fidelity = Fidelity::kFull;
+  o.perturbation.physics.fine_step_probability = 0.0;  // full detail is at 1 ms throughout
+  const RobustnessResult full =
+      EvaluateRobustness(ShippedSimulationModel(), ExampleTrajectory(), o);
+  ExpectTheSameSuccesses(fast, full);
 }
 
 }  // namespace

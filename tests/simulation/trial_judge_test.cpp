@@ -54,6 +54,7 @@ TEST(TrialOutcome, NamesAreTheReportNames) {
   EXPECT_EQ(ToString(TrialOutcome::kDropped), "dropped");
   EXPECT_EQ(ToString(TrialOutcome::kKnockedOver), "knocked_over");
   EXPECT_EQ(ToString(TrialOutcome::kTouchesOther), "touches_other");
+  EXPECT_EQ(ToString(TrialOutcome::kTilted), "tilted");
   EXPECT_EQ(ToString(TrialOutcome::kCollision), "collision");
   EXPECT_EQ(ToString(TrialOutcome::kJointLimit), "joint_limit");
   EXPECT_EQ(ToString(TrialOutcome::kUnstable), "unstable");

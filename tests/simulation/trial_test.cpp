@@ -62,6 +62,25 @@ TEST(RunTrial, FullFidelityAgreesOnTheExample) {
               0.0, 0.01);
 }
 
+// The fast path with a dynamic wrist: E2, W1 and W2 are motor-driven hinges (their 10-15 N m
+// motors can yield to the grasp), the rest of the arm kinematic; at 1 ms it lifts the example as
+// full detail does.
+TEST(RunTrial, TheDynamicWristFastPathAgreesWithFullDetail) {
+  TrialOptions wrist;
+  wrist.fidelity = Fidelity::kFastWristDynamic;
+  EXPECT_DOUBLE_EQ(wrist.step(), 0.004);
+  wrist.time_step = 0.001;
+  const TrialResult r = RunTrial(ShippedSimulationModel(), ExampleTrajectory(), wrist);
+  EXPECT_EQ(r.outcome, TrialOutcome::kSuccess) << r.BriefReport();
+  EXPECT_EQ(r.counts.joints, 20 + 3);
+  EXPECT_EQ(r.counts.dynamic_bodies, 21 + 3);
+  EXPECT_GT(r.statistics.kinematic_steps, 0);  // free space is still skipped
+  TrialOptions full;
+  full.fidelity = Fidelity::kFull;
+  const TrialResult f = RunTrial(ShippedSimulationModel(), ExampleTrajectory(), full);
+  EXPECT_NEAR(r.lift, f.lift, 0.002);
+}
+
 TEST(RunTrial, TheHandKeptOpenDoesNotLift) {
   for (Fidelity fidelity : {Fidelity::kFast, Fidelity::kFull}) {
     TrialOptions o;
