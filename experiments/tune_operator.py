@@ -6,7 +6,9 @@ hand takes there (GraspStyle: hook reach and depth, pitch, yaw, roll, open and c
 searched to make the operator's noise-free trial robust: it is generated with `graspsynth demos
 generate` (the trial-to-trial variability off, one trial) and scored with `graspsynth select`
 (the nominal replay and --perturb perturbed replays under the physics gate's noise: time scale
-0.7-1.3, wrist 5 mm and 2 deg, fingers 2 deg). The fitness is the success fraction plus 0.05
+0.7-1.3, wrist 5 mm and 2 deg, fingers 2 deg, and with --physics on, select's default, the
+physics perturbation: friction, contact stiffness and damping, the pan's mass and centre of
+mass, the finger servos' force and the step; README.md, "Robustness under the contact model"). The fitness is the success fraction plus 0.05
 for a successful nominal replay; a trial that does not lift the pan scores 0.
 
 The search is a (1+1) evolution strategy: each step changes one to three grip values by
@@ -95,8 +97,9 @@ def grip_of(config, strategy):
 class Evaluator:
     """Scores one strategy's grip: a steady trial, then its robustness replays."""
 
-    def __init__(self, graspsynth, config, theta, k, perturb, work):
+    def __init__(self, graspsynth, config, theta, k, perturb, work, physics="on"):
         self.graspsynth, self.perturb, self.work = graspsynth, perturb, work
+        self.physics = physics
         self.config = json.loads(json.dumps(config))
         for key in ("timing_spread", "position_noise", "height_noise", "yaw_noise_deg",
                     "path_noise", "finger_noise_deg", "sloppy_fraction"):
@@ -123,7 +126,7 @@ class Evaluator:
         if os.path.exists(library):
             os.remove(library)
         run(["select", demos, "--out", library, "--perturb", str(self.perturb), "--seed",
-             str(seed)])
+             str(seed), "--physics", self.physics])
         if not os.path.exists(library):
             return 0.0
         with open(library) as f:
@@ -167,6 +170,8 @@ def main():
     parser.add_argument("--iterations", type=int, default=60)
     parser.add_argument("--perturb", type=int, default=30)
     parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--physics", choices=["on", "off"], default="on",
+                        help="perturb the physics in the scoring replays (select --physics)")
     parser.add_argument("--graspsynth", default=os.path.join(
         os.path.dirname(os.path.abspath(__file__)), "..", "build", "apps", "graspsynth"))
     args = parser.parse_args()
@@ -181,7 +186,8 @@ def main():
             sys.exit("tune_operator: no strategy %s in %s" % (item, args.config))
         strategy = plans[0]["strategies"][k]
         with tempfile.TemporaryDirectory() as work:
-            evaluate = Evaluator(args.graspsynth, config, theta, k, args.perturb, work)
+            evaluate = Evaluator(args.graspsynth, config, theta, k, args.perturb, work,
+                                 args.physics)
             log = lambda text: print("%s: %s" % (item, text), file=sys.stderr, flush=True)
             x, fx = tune(evaluate, style_to_values(grip_of(config, strategy)), rng,
                          args.iterations, log)

@@ -3,8 +3,9 @@
 /// @file
 /// Robust representative selection (paper III-C): every successful demonstration is replayed
 /// as the operator made it - reach, grasping motion and lift, through the arm's IK
-/// (demo_replay.hpp) - once unperturbed and options.perturbations times under time scaling and
-/// waypoint noise (simulation/robustness.hpp); its score is the success fraction. The most
+/// (demo_replay.hpp) - once unperturbed and options.perturbations times under time scaling,
+/// waypoint noise and perturbed physics (simulation/robustness.hpp); its score is the success
+/// fraction. The most
 /// robust demonstration of each orientation becomes that orientation's library entry
 /// (grasp_library.hpp).
 ///
@@ -44,9 +45,9 @@ inline constexpr std::string_view kTieRule =
 struct SelectionOptions {
   /// Perturbed replays per demonstration, >= 1. 20 replays under the evaluator's default
   /// perturbation (time scale U[0.7, 1.3], wrist noise 5 mm and 2 deg, finger noise 2 deg per
-  /// knot) separate a robust grasp from a fragile one (Wilson 95% interval [0.30, 0.70] at 10 of
-  /// 20, [0.84, 1] at 20 of 20) for about 21 kFast trials (a few CPU seconds) per demonstration;
-  /// raise it for a finer ranking.
+  /// knot, and the physics perturbation) separate a robust grasp from a fragile one (Wilson 95%
+  /// interval [0.30, 0.70] at 10 of 20, [0.84, 1] at 20 of 20) for 21 kFast trials per
+  /// demonstration; raise it for a finer ranking.
   int perturbations = 20;
   /// Seed of the whole selection; each demonstration's stream is DemoSeed(seed, file name).
   uint64_t seed = 1;
@@ -56,7 +57,7 @@ struct SelectionOptions {
   SegmentationOptions segmentation;
   /// The nominal and the perturbed replays' trial settings.
   TrialOptions trial;
-  /// Time scaling and waypoint noise of the perturbed replays.
+  /// Time scaling, waypoint noise and physics ranges of the perturbed replays.
   PerturbationOptions perturbation;
   /// An orientation gets a library entry only when its best demonstration scores above this
   /// (strictly), in [0, 1): by default at least one perturbed replay must succeed.

@@ -60,8 +60,7 @@ struct StudyOptions {
   int threads = 0;
   /// Perturbed replays per demonstration in the representative selection, >= 1. 20, as the
   /// shipped library (with 10, more demonstrations tie at 10 of 10 and the tie rule picks
-  /// others at 40, 60, 80 and 90 deg: a weaker study); the default study stays within 10
-  /// minutes on 2 cores.
+  /// others at 40, 60, 80 and 90 deg: a weaker study).
   int selection_perturbations = 20;
   /// Perturbed replays of each synthesized grasp's physics gate, >= 0 (0: nominal only).
   int gate_perturbations = 10;

@@ -146,7 +146,19 @@ std::string StudySynthesisJson(const StudyResult& result) {
   for (const StudyMethod& m : o.methods) methods.push_back(m.Label());
   j["methods"] = methods;
   j["selection_perturbations"] = o.selection_perturbations;
-  j["gate"] = {{"perturbations", o.gate_perturbations}, {"min_robustness", o.min_robustness}};
+  j["gate"] = {{"perturbations", o.gate_perturbations},
+               {"min_robustness", o.min_robustness},
+               {"sensitivity_trials", o.sensitivity_trials}};
+  const PhysicsPerturbationOptions& p = o.perturbation.physics;
+  j["physics_perturbation"] = {{"enabled", p.enabled},
+                               {"friction_spread", p.friction},
+                               {"stiffness_range", {p.stiffness_min, p.stiffness_max}},
+                               {"damping_range", {p.damping_min, p.damping_max}},
+                               {"mass_spread", p.mass},
+                               {"com_offset_m", p.com_offset},
+                               {"servo_force_spread", p.servo_force},
+                               {"fine_step_s", p.fine_step},
+                               {"fine_step_probability", p.fine_step_probability}};
   json summary = json::array();
   for (const StudyMethodSummary& s : SummarizeStudy(result.rows)) {
     summary.push_back({{"method", s.method},
@@ -298,7 +310,10 @@ void OptionsSection(const StudyResult& result, std::ostringstream& md) {
   md << "Demonstrations `" << o.demos.string() << "`, seed " << o.seed << ", "
      << o.selection_perturbations << " perturbed replays per demonstration in the selection, "
      << o.gate_perturbations << " perturbed replays per synthesized grasp (gate: nominal success "
-     << "and robustness >= " << Format("%.2f", o.min_robustness) << "). Orientations (deg):";
+     << "and robustness >= " << Format("%.2f", o.min_robustness) << "), the physics "
+     << (o.perturbation.physics.enabled ? "perturbed" : "as modelled") << " in every replay, "
+     << o.sensitivity_trials << " replays per end of each physics factor's range in the "
+     << "sensitivity tables. Orientations (deg):";
   for (size_t i = 0; i < o.orientations.size(); ++i) {
     md << (i ? ", " : " ") << Deg(o.orientations[i]);
   }

@@ -1,24 +1,26 @@
 // The README's headline results, guarded (Release suite, label "headline"; skipped under the
 // sanitizers, which make the physics ten times slower).
 //
-// The default study (`graspsynth run`, about 6 minutes on 2 idle cores, most of it the
-// representative selection) is split in two checks that fit the suite's budget:
+// The default study (`graspsynth run`, about half an hour on 2 cores with the physics
+// perturbation, most of it the representative selection) is split in two checks that fit the
+// suite's budget:
 // - the committed study files (experiments/results/study_summary.txt, written by
 //   `graspsynth run` with the defaults) state the README's figures: Table I 9 of 9 within 5 mm /
-//   2 deg; interp+refine 17/17 nominal successes, 17/17 gate passes, mean robustness 0.95;
-//   line+refine 16/17, 16/17, 0.90;
+//   2 deg; interp+refine 16/17 nominal successes, 15/17 gate passes, mean robustness 0.86;
+//   line+refine 15/17, 13/17, 0.79 (the physics perturbation and the 30 deg tilt limit on);
 // - a fresh run of the study's stages 1 and 3 on the shipped data (`graspsynth analyze` for
 //   Table I, `graspsynth generalize` with the study's orientations, methods, 10 gate replays
 //   and seed on the shipped library, which is what the default selection makes: same seed, 20
-//   replays per demonstration) reaches those figures within the tolerance below. About 90 s on
-//   2 cores.
+//   replays per demonstration) reaches those figures within the tolerance below. About 6 min
+//   on 2 cores.
 //
 // Tolerance. Table I and the nominal trials are deterministic (no perturbation), so they must
 // match exactly. The gate's 10 perturbed replays per grasp are seeded, so the same code gives
 // the same figures; the tolerance admits a change that draws other perturbations (a seed
 // derivation, the order of random draws) but not a real loss. Over 17 x 10 = 170 replays at
-// p = 0.95 the standard deviation of the mean robustness is sqrt(0.95 * 0.05 / 170) = 0.017:
-// we allow 0.04 below the README's two-digit figure (0.005 of rounding, 2 standard deviations).
+// p = 0.86 the standard deviation of the mean robustness is sqrt(0.86 * 0.14 / 170) = 0.027:
+// we allow 0.04 below the README's two-digit figure (0.005 of rounding, 1.3 standard
+// deviations).
 // A grasp at robustness 0.9 or 1.0 loses the gate (>= 0.8) only by two unlucky replays more, so
 // at most one gate pass fewer per method.
 
@@ -50,8 +52,8 @@ struct Headline {
   int passed = 0;
   double mean_robustness = 0.0;
 };
-const std::map<std::string, Headline> kReadme = {{"interp+refine", {17, 17, 17, 0.95}},
-                                                 {"line+refine", {17, 16, 16, 0.90}}};
+const std::map<std::string, Headline> kReadme = {{"interp+refine", {17, 16, 15, 0.86}},
+                                                 {"line+refine", {17, 15, 13, 0.79}}};
 constexpr int kTableIWithin = 9;
 constexpr int kTableIRows = 9;
 constexpr double kRobustnessTolerance = 0.04;  // see the file comment
