@@ -1,14 +1,11 @@
 #include "learning_data/synthetic_operator.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdio>
-#include <exception>
-#include <mutex>
-#include <thread>
 
 #include "common/errors.hpp"
+#include "common/parallel.hpp"
 #include "kinematics/hand_model.hpp"
 #include "kinematics/pose_math.hpp"
 #include "learning_data/demo_replay.hpp"
@@ -290,35 +287,16 @@ std::vector<OperatorTrial> GenerateDemonstrations(const SimulationModel& model,
     for (int i = 1; i <= n; ++i) jobs.emplace_back(p, i);
   }
   std::vector<OperatorTrial> trials(jobs.size());
-  const int workers =
-      std::max(1, std::min<int>(threads > 0 ? threads : std::thread::hardware_concurrency(),
-                                static_cast<int>(jobs.size())));
-  std::atomic<size_t> next{0};
-  std::atomic<int> done{0};
-  std::mutex progress_mutex;
-  std::exception_ptr error;
-  auto work = [&] {
-    for (size_t j = next++; j < jobs.size(); j = next++) {
-      try {
-        trials[j] = MakeTrial(model, options, options.plans[jobs[j].first], jobs[j].second);
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(progress_mutex);
-        if (!error) error = std::current_exception();
-        next = jobs.size();
-        return;
-      }
-      const int d = ++done;
-      if (progress) {
-        std::lock_guard<std::mutex> lock(progress_mutex);
-        progress(d, static_cast<int>(jobs.size()));
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int w = 1; w < workers; ++w) pool.emplace_back(work);
-  work();
-  for (std::thread& t : pool) t.join();
-  if (error) std::rethrow_exception(error);
+  const int total = static_cast<int>(jobs.size());
+  ParallelFor(
+      total, threads,
+      [&](int j) {
+        const auto& [plan, trial] = jobs[static_cast<size_t>(j)];
+        trials[static_cast<size_t>(j)] = MakeTrial(model, options, options.plans[plan], trial);
+      },
+      [&](int finished) {
+        if (progress) progress(finished, total);
+      });
   return trials;
 }
 
