@@ -47,6 +47,45 @@ class SimulateCommand : public ::testing::Test {
   fs::path dir_;
 };
 
+// The physics perturbation, the hold quality and the sensitivity table reach the report.
+TEST_F(SimulateCommand, ReportsPhysicsHoldAndSensitivity) {
+  const auto r =
+      RunGraspsynth("simulate " + Example() + " --perturb 2 --sensitivity 1 --threads 2 --out " +
+                    Path("report.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json report = json::parse(ReadFileText(Path("report.json")));
+  EXPECT_EQ(report["robustness"]["physics"], "on");
+  const json& hold = report["nominal"]["hold"];
+  EXPECT_LT(hold["end_tilt_deg"].get<double>(), 5.0);  // the example holds the pan level
+  EXPECT_GT(hold["contacts"].get<int>(), 0);
+  EXPECT_THAT(hold["load_bearers"].get<std::string>(), HasSubstr("thumb"));
+  for (const json& t : report["trials"]) {
+    const double mu = t["physics"]["hand_friction"];
+    EXPECT_GE(mu, 0.75);
+    EXPECT_LE(mu, 1.25);
+    EXPECT_TRUE(t["hold"]["slip_m"].is_number());
+  }
+  const json& sensitivity = report["sensitivity"];
+  EXPECT_EQ(sensitivity["trials_per_end"], 1);
+  ASSERT_EQ(sensitivity["factors"].size(), 8u);
+  EXPECT_EQ(sensitivity["factors"][0]["factor"], "hand_friction");
+  EXPECT_EQ(sensitivity["factors"][0]["low"]["physics"]["hand_friction"], 0.75);
+  EXPECT_EQ(sensitivity["factors"][7]["high"]["physics"]["time_step_s"], 0.001);
+  EXPECT_THAT(r.err, HasSubstr("sensitivity (1 replays per end"));
+
+  // and --physics off leaves every replay's physics as modelled.
+  ASSERT_EQ(RunGraspsynth("simulate " + Example() + " --perturb 1 --physics off --out " +
+                          Path("off.json"))
+                .exit_code,
+            0);
+  const json off = json::parse(ReadFileText(Path("off.json")));
+  EXPECT_EQ(off["trials"][0]["physics"]["hand_friction"], 1.0);
+  EXPECT_EQ(off["trials"][0]["physics"]["time_step_s"], 0.004);
+  EXPECT_NE(
+      RunGraspsynth("simulate " + Example() + " --physics maybe --out " + Path("x.json")).exit_code,
+      0);
+}
+
 TEST_F(SimulateCommand, SimulatesTheExampleAndWritesReportAndRecord) {
   const auto r = RunGraspsynth("simulate " + Example() + " --perturb 3 --threads 2 --out " +
                                Path("report.json") + " --record " + Path("states.csv"));
