@@ -26,10 +26,9 @@ void AddPhysicsPerturbationFlags(CLI::App* app, PhysicsPerturbationOptions* o) {
          "modelled physics only")
       ->default_str(o->enabled ? "on" : "off")
       ->group(group);
-  app->add_option("--friction-spread", o->friction,
-                  "Relative half-range of the object-hand and object-table friction")
-      ->capture_default_str()
-      ->group(group);
+  const auto add_number = [&](const char* flag, double* value, const char* help) {
+    app->add_option(flag, *value, help)->capture_default_str()->group(group);
+  };
   const auto add_range = [&](const char* flag, double* lo, double* hi, const char* what) {
     app->add_option_function<std::vector<double>>(
            flag,
@@ -42,26 +41,18 @@ void AddPhysicsPerturbationFlags(CLI::App* app, PhysicsPerturbationOptions* o) {
         ->default_str(Format("%g %g", *lo, *hi))
         ->group(group);
   };
+  add_number("--friction-spread", &o->friction,
+             "Relative half-range of the object-hand and object-table friction");
   add_range("--stiffness-range", &o->stiffness_min, &o->stiffness_max, "stiffness");
   add_range("--damping-range", &o->damping_min, &o->damping_max, "damping");
-  app->add_option("--mass-spread", o->mass, "Relative half-range of the object's mass")
-      ->capture_default_str()
-      ->group(group);
-  app->add_option("--com-offset", o->com_offset,
-                  "Half-range of the object's centre of mass per axis, m")
-      ->capture_default_str()
-      ->group(group);
-  app->add_option("--servo-force-spread", o->servo_force,
-                  "Relative half-range of the finger servos' force caps")
-      ->capture_default_str()
-      ->group(group);
-  app->add_option("--fine-step", o->fine_step, "The alternative physics step, s")
-      ->capture_default_str()
-      ->group(group);
-  app->add_option("--fine-step-probability", o->fine_step_probability,
-                  "Chance that a replay runs at --fine-step instead of the trial's step")
-      ->capture_default_str()
-      ->group(group);
+  add_number("--mass-spread", &o->mass, "Relative half-range of the object's mass");
+  add_number("--com-offset", &o->com_offset,
+             "Half-range of the object's centre of mass per axis, m");
+  add_number("--servo-force-spread", &o->servo_force,
+             "Relative half-range of the finger servos' force caps");
+  add_number("--fine-step", &o->fine_step, "The alternative physics step, s");
+  add_number("--fine-step-probability", &o->fine_step_probability,
+             "Chance that a replay runs at --fine-step instead of the trial's step");
 }
 
 void CheckPhysicsFlags(const PhysicsPerturbationOptions& options) {
