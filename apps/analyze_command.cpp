@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/cli_helpers.hpp"
 #include "apps/figure8.hpp"
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
@@ -165,11 +166,11 @@ void AddAnalyzeCommand(CLI::App& app, int* exit_code) {
       ->check(CLI::IsMember({"cylinder", "sphere"}));
   cmd->add_option("--region-radius", opts->region_radius,
                   "Grasp region radius in metres (default: the scene's, 0.41)")
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveValue());
   cmd->add_option("--region-height", opts->region_height,
                   "Cylinder height in metres, centred on the object centre (default: the "
                   "scene's, 1.0)")
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveValue());
   cmd->add_option("--success-lift", opts->success_lift,
                   "Lift in metres that makes a trial successful")
       ->capture_default_str()
@@ -180,7 +181,7 @@ void AddAnalyzeCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--loss-scale", opts->loss_scale,
                   "Scale of the robust loss in metres (residual where it turns over)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveValue());
   cmd->add_option("--line-points", opts->line_points,
                   "Fit the wrist line and the radial model to the mean grasp position of each "
                   "orientation (means, as the paper's Fig. 8) or to every trial's (trials)")

@@ -55,8 +55,58 @@ void AddPhysicsPerturbationFlags(CLI::App* app, PhysicsPerturbationOptions* o) {
              "Chance that a replay runs at --fine-step instead of the trial's step");
 }
 
+CLI::Validator PositiveValue() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        double v = 0.0;
+        try {
+          size_t used = 0;
+          v = std::stod(text, &used);
+          if (used != text.size()) return "must be a number (got '" + text + "')";
+        } catch (const std::exception&) {
+          return "must be a number (got '" + text + "')";
+        }
+        if (!(v > 0.0)) return "must be > 0 (got " + text + ")";
+        return "";
+      },
+      "POSITIVE");
+}
+
+void AddPhysicsFallbackFlag(CLI::App* app, bool* no_physics_fallback) {
+  app->add_flag("--no-physics-fallback", *no_physics_fallback,
+                "Keep an interp blend whose nominal trial fails in physics (default: the blend "
+                "gives way to the fallbacks of a bracket that cannot be blended, the nearer "
+                "demonstration turned with the object first)");
+}
+
 void CheckPhysicsFlags(const PhysicsPerturbationOptions& options) {
+  // each flag's fields alone on the defaults, so that the error names the flag.
+  using O = PhysicsPerturbationOptions;
+  const std::vector<std::pair<const char*, void (*)(const O&, O*)>> flags = {
+      {"--friction-spread", [](const O& from, O* to) { to->friction = from.friction; }},
+      {"--stiffness-range",
+       [](const O& from, O* to) {
+         to->stiffness_min = from.stiffness_min;
+         to->stiffness_max = from.stiffness_max;
+       }},
+      {"--damping-range",
+       [](const O& from, O* to) {
+         to->damping_min = from.damping_min;
+         to->damping_max = from.damping_max;
+       }},
+      {"--mass-spread", [](const O& from, O* to) { to->mass = from.mass; }},
+      {"--com-offset", [](const O& from, O* to) { to->com_offset = from.com_offset; }},
+      {"--servo-force-spread", [](const O& from, O* to) { to->servo_force = from.servo_force; }},
+      {"--fine-step", [](const O& from, O* to) { to->fine_step = from.fine_step; }},
+      {"--fine-step-probability",
+       [](const O& from, O* to) { to->fine_step_probability = from.fine_step_probability; }},
+  };
   std::string why;
+  for (const auto& [flag, copy] : flags) {
+    O alone;
+    copy(options, &alone);
+    if (!alone.IsValid(&why)) throw InputError(std::string(flag) + ": " + why);
+  }
   if (!options.IsValid(&why)) throw InputError("bad physics perturbation flag: " + why);
 }
 

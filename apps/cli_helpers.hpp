@@ -14,7 +14,8 @@
 
 namespace CLI {
 class App;
-}
+class Validator;
+}  // namespace CLI
 
 namespace graspsynth::apps {
 
@@ -26,6 +27,13 @@ void AddPhysicsPerturbationFlags(CLI::App* app, PhysicsPerturbationOptions* opti
 
 /// Throws InputError naming the flag when the physics perturbation's flags are not valid.
 void CheckPhysicsFlags(const PhysicsPerturbationOptions& options);
+
+/// A check for an option that must be a number > 0: "must be > 0 (got VALUE)" (CLI11's
+/// PositiveNumber prints the whole double range instead).
+CLI::Validator PositiveValue();
+
+/// Adds --no-physics-fallback (ValidatedSynthesisOptions::physics_fallback off) to `app`.
+void AddPhysicsFallbackFlag(CLI::App* app, bool* no_physics_fallback);
 
 /// A progress bar per named stage on stderr, redrawn in place on a terminal; elsewhere (logs,
 /// pipes) a line "NAME: DONE/TOTAL (WHAT)" at every tenth of the stage. Thread-safe.

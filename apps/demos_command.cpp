@@ -198,7 +198,7 @@ void AddCommonOptions(CLI::App* cmd, DemosOptions* o) {
   cmd->add_option(
          "--trials-per-orientation", o->trials,
          "Trials at every orientation (default: the config's, which may differ per orientation)")
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveValue());
   cmd->add_option("--threads", o->threads,
                   "Worker threads (0: all cores); the output does not "
                   "depend on it")
@@ -236,7 +236,7 @@ void AddDemosCommand(CLI::App& app, int* exit_code) {
       "and write the calibrated operator file.");
   calibrate->add_option("--out", o->out, "Calibrated operator file to write")->required();
   calibrate->add_option("--iterations", o->iterations, "Generate-and-correct rounds")
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveValue());
   calibrate->add_option("--damping", o->damping, "Fraction of the difference corrected per round")
       ->check(CLI::Range(0.05, 1.0));
   AddCommonOptions(calibrate, o.get());

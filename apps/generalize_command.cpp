@@ -42,6 +42,7 @@ struct GeneralizeOptions {
   std::string robot;
   std::string scene;
   PhysicsPerturbationOptions physics = SynthesisTableOptions{}.perturbation.physics;
+  bool no_physics_fallback = false;
 };
 
 std::vector<StudyMethod> ParseMethods(const std::string& text) {
@@ -88,6 +89,7 @@ int RunGeneralize(const GeneralizeOptions& o) {
   table.sensitivity_trials = o.sensitivity;
   table.seed = o.seed;
   table.threads = o.threads;
+  table.physics_fallback = !o.no_physics_fallback;
   table.perturbation.position_sigma *= o.noise_scale;
   table.perturbation.orientation_sigma *= o.noise_scale;
   table.perturbation.finger_sigma *= o.noise_scale;
@@ -190,6 +192,7 @@ void AddGeneralizeCommand(CLI::App& app, int* exit_code) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--name", opts->name, "Stem of the output files")->capture_default_str();
   cmd->add_option("--out", opts->out, "Output folder")->required();
+  AddPhysicsFallbackFlag(cmd, &opts->no_physics_fallback);
   AddPhysicsPerturbationFlags(cmd, &opts->physics);
   cmd->add_option("--robot", opts->robot, "Robot description (URDF); default: the shipped one");
   cmd->add_option("--scene", opts->scene, "Scene description (JSON); default: models/scene.json");

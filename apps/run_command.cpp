@@ -46,6 +46,7 @@ struct RunOptions {
   std::string robot;
   std::string scene;
   PhysicsPerturbationOptions physics = StudyOptions{}.perturbation.physics;
+  bool no_physics_fallback = false;
 };
 
 // The reduced study of --quick (tests, a first look).
@@ -63,6 +64,7 @@ StudyOptions StudyOptionsOf(const RunOptions& o, const SceneModel& scene) {
   options.analysis.segmentation.region = scene.grasp_region;
   CheckPhysicsFlags(o.physics);
   options.perturbation.physics = o.physics;
+  options.physics_fallback = !o.no_physics_fallback;
   if (o.quick) {
     options.orientations = kQuickOrientations;
     options.gate_perturbations = kQuickGatePerturbations;
@@ -210,7 +212,7 @@ void AddRunCommand(CLI::App& app, int* exit_code) {
                   "Perturbed replays per demonstration in the selection (default " +
                       std::to_string(defaults.selection_perturbations) + ", --quick " +
                       std::to_string(kQuickSelectionPerturbations) + ")")
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveValue());
   run->add_option("--sensitivity", opts->sensitivity,
                   "Replays per end of each physics factor's range in each synthesized grasp's "
                   "sensitivity table (default " +
@@ -224,6 +226,7 @@ void AddRunCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str();
   run->add_option("--robot", opts->robot, "Robot description (URDF); default: the shipped one");
   run->add_option("--scene", opts->scene, "Scene description (JSON); default: models/scene.json");
+  AddPhysicsFallbackFlag(run, &opts->no_physics_fallback);
   AddPhysicsPerturbationFlags(run, &opts->physics);
   run->callback([opts, exit_code] { *exit_code = RunStudyCommand(*opts); });
 }

@@ -138,7 +138,7 @@ void AddSelectCommand(CLI::App& app, int* exit_code) {
   select->add_option("--out", opts->out, "Library file to write (JSON)")->required();
   select->add_option("--perturb", opts->perturb, "Perturbed replays per demonstration (>= 1)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveValue());
   select->add_option("--seed", opts->seed, "Seed of the perturbations")->capture_default_str();
   select->add_option("--threads", opts->threads, "Worker threads for the replays (0: all cores)")
       ->capture_default_str()

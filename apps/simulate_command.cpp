@@ -204,12 +204,11 @@ int RunSimulate(const SimulateOptions& o) {
   trial.hold = o.hold;
   std::string why;
   if (!trial.IsValid(&why)) throw InputError("bad simulation option: " + why);
+  const RobustnessOptions ro = RobustnessOptionsOf(o, trial);  // every flag checked first
   TrialOptions nominal_options = trial;
   if (!o.record.empty()) nominal_options.record_interval = o.record_interval;
   const TrialResult nominal = RunTrial(model, trajectory, nominal_options);
   std::cerr << "nominal trial: " << nominal.BriefReport() << "\n";
-
-  const RobustnessOptions ro = RobustnessOptionsOf(o, trial);
 
   json report;
   report["format"] = kReportFormat;
@@ -299,7 +298,7 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
                   "f0..f15 (rad), object and wrist pose (m, quaternion w first)");
   sim->add_option("--record-interval", opts->record_interval, "Seconds between recorded states")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveValue());
   sim->add_option("--fidelity", opts->fidelity,
                   "fast: kinematic arm, free space without contact detail, 4 ms steps, early "
                   "stop; fast-wrist: fast with the wrist joints (E2, W1, W2) dynamic, so that "

@@ -17,6 +17,7 @@
 #include "solver/grasp_file.hpp"
 #include "solver/physics_gate.hpp"
 #include "solver/synthesis.hpp"
+#include "solver/validated_synthesis.hpp"
 
 namespace graspsynth::apps {
 namespace {
@@ -35,6 +36,7 @@ struct SynthesizeOptions {
   int threads = PhysicsGateOptions{}.threads;
   double min_robustness = PhysicsGateOptions{}.min_robustness;
   bool force = false;
+  bool no_physics_fallback = false;
   std::string out;
   std::string robot;
   std::string scene;
@@ -82,8 +84,20 @@ int RunSynthesize(const SynthesizeOptions& o) {
   so.refinement.clearance_margin = o.clearance_margin;
   if (o.strict_thresholds) so.source_thresholds.reset();
   if (!o.start.empty()) so.start = ParseStart(o.start);
+  ValidatedSynthesisOptions vo;
+  vo.synthesis = so;
+  vo.physics_fallback = !o.no_physics_fallback;
+  vo.gate.perturbations = o.perturb;
+  vo.gate.seed = o.seed;
+  vo.gate.threads = o.threads;
+  vo.gate.min_robustness = o.min_robustness;
+  CheckPhysicsFlags(o.physics);
+  vo.gate.perturbation.physics = o.physics;
+  std::string why;
+  if (!vo.gate.IsValid(&why)) throw InputError("bad physics gate option: " + why);
   SynthesisData data(model);
-  const SynthesisResult s = SynthesizeGrasp(model, o.theta, so, &data);
+  const ValidatedSynthesis v = SynthesizeAndValidate(sim, model, o.theta, vo, &data);
+  const SynthesisResult& s = v.synthesis;
   switch (s.status) {
     case SynthesisStatus::kOk:
       break;
@@ -95,6 +109,9 @@ int RunSynthesize(const SynthesizeOptions& o) {
       std::cerr << "graspsynth synthesize: no grasp: " << s.message << " (nothing written)\n";
       return 1;
   }
+  if (!v.rejected_blend.empty()) {
+    std::cerr << "the blend failed its nominal trial in physics: " << v.rejected_blend << "\n";
+  }
   std::cerr << "synthesized theta " << o.theta << " deg by " << ToString(s.used)
             << (s.fallback ? " (fallback: " + s.fallback_reason.Text() + ")" : std::string())
             << ": " << s.trajectory.samples.size() << " samples, " << s.trajectory.duration()
@@ -102,16 +119,7 @@ int RunSynthesize(const SynthesizeOptions& o) {
             << "generate " << s.generate_s * 1e3 << " ms, refine " << s.refine_s * 1e3
             << " ms, joints " << s.joints_s * 1e3 << " ms\n";
   if (s.refined) std::cerr << "refinement: " << s.refinement.BriefReport() << "\n";
-  PhysicsGateOptions go;
-  go.perturbations = o.perturb;
-  go.seed = o.seed;
-  go.threads = o.threads;
-  go.min_robustness = o.min_robustness;
-  CheckPhysicsFlags(o.physics);
-  go.perturbation.physics = o.physics;
-  std::string why;
-  if (!go.IsValid(&why)) throw InputError("bad physics gate option: " + why);
-  const PhysicsGateResult gate = RunPhysicsGate(sim, s.trajectory, go);
+  const PhysicsGateResult& gate = v.gate;
   std::cerr << "physics gate: " << (gate.passed ? "passed" : "FAILED") << ": " << gate.reason
             << "; quality: epsilon " << gate.quality.epsilon << ", volume " << gate.quality.volume
             << " (" << gate.contacts.size() << " contacts)\n";
@@ -141,7 +149,8 @@ void AddSynthesizeCommand(CLI::App& app, int* exit_code) {
       "graspsynth-trajectory/1 document; `graspsynth simulate grasp.json` plays it).\n"
       "Methods: interp (the paper's blend of the two nearest demonstrations; a bracket that\n"
       "cannot be blended falls back to the nearer demonstration turned with the object, then\n"
-      "the line principle), line (the line principle, also outside the library's range),\n"
+      "the line principle; a blend whose nominal trial fails in physics falls back the same\n"
+      "way), line (the line principle, also outside the library's range),\n"
       "nearest (the nearest demonstration turned with the object).");
   cmd->add_option("--library", opts->library, "Grasp library (graspsynth-library/1)");
   cmd->add_option("--theta", opts->theta, "Object orientation, degrees")->required();
@@ -179,6 +188,7 @@ void AddSynthesizeCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--out", opts->out, "Output grasp file")->required();
   cmd->add_option("--robot", opts->robot, "Robot description (default: the shipped URDF)");
   cmd->add_option("--scene", opts->scene, "Scene description (default: models/scene.json)");
+  AddPhysicsFallbackFlag(cmd, &opts->no_physics_fallback);
   AddPhysicsPerturbationFlags(cmd, &opts->physics);
   cmd->callback([opts, exit_code] { *exit_code = RunSynthesize(*opts); });
 }

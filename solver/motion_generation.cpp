@@ -51,13 +51,15 @@ void UseBlend(const SynthesisModel& model, const SynthesisTask& task,
 }
 
 // The hard case (a bracket that cannot be blended): the documented fallback order.
+// `why`: why the bracket cannot be blended.
 void UseFallback(const SynthesisModel& model, const SynthesisTask& task,
-                 const MotionGenerationOptions& options, MotionGenerationResult* r) {
+                 const MotionGenerationOptions& options, const std::string& why,
+                 MotionGenerationResult* r) {
   const GraspLibrary& library = model.library();
   const LinePrincipleModel& line = model.line();
   const Bracket& b = r->bracket;
   FallbackReason& f = r->fallback;
-  f.bracket_reason = b.reason;
+  f.bracket_reason = why;
   f.lower_deg = library.entries[b.lower].theta_deg;
   f.upper_deg = library.entries[b.upper].theta_deg;
   // the robust end when exactly one is weak, else the nearer one.
@@ -109,10 +111,13 @@ void GenerateInterp(const SynthesisModel& model, const SynthesisTask& task,
     r->fallback.used_deg = model.library().entries[b.substitute].theta_deg;
   } else if (b.kind == BracketKind::kExact) {
     UseNearest(model, task, b.lower, r);
-  } else if (b.blendable) {
+  } else if (b.blendable && !options.reject_blend) {
     UseBlend(model, task, options, r);
+  } else if (b.blendable) {
+    r->fallback.blend_failed = true;
+    UseFallback(model, task, options, "its blend failed its nominal trial in physics", r);
   } else {
-    UseFallback(model, task, options, r);
+    UseFallback(model, task, options, b.reason, r);
   }
 }
 

@@ -14,7 +14,9 @@
 ///   about its vertical axis (the hand keeps the demonstrated hold of the handle; accepted when
 ///   its grasp and pre-grasp are reachable on the start branch with min_psi_width to spare);
 ///   (2) the line principle on that demonstration's side of the handle; (3) the plain blend,
-///   left to the refinement. The result says which and why (FallbackReason).
+///   left to the refinement. The result says which and why (FallbackReason). A blendable
+///   bracket whose blend failed its nominal trial in physics (MotionGenerationOptions::
+///   reject_blend, set by SynthesizeAndValidate) takes the same fallbacks.
 /// - nearest: the nearest demonstration turned with the object (any theta).
 /// - line: the line principle (line_principle.hpp) on the nearest demonstration's side (any
 ///   theta).
@@ -66,6 +68,9 @@ struct FallbackReason {
   double min_psi_width = 0.0;     ///< rad, the arm-angle spare the turned end lacked
   bool line_unreachable = false;  ///< kPlainBlend: the line principle's grasp was tried too
   int side = 0;                   ///< kLinePrinciple: the side of the handle
+  /// The bracket was blendable, but its blend failed its nominal trial in physics
+  /// (bracket_reason says how).
+  bool blend_failed = false;
 
   /// The reason in words ("" for kNone): what could not be used, then what was.
   std::string Text() const;
@@ -80,6 +85,10 @@ struct MotionGenerationOptions {
   double min_psi_width = 10.0 * M_PI / 180.0;
   /// The start configuration's branch, on which the fallbacks' reachability is judged.
   ArmBranch branch;
+  /// The blend of this task's bracket failed its nominal trial in physics: the interp method
+  /// takes the unblendable bracket's fallbacks (SynthesizeAndValidate sets it, and adds the
+  /// trial's outcome to FallbackReason::bracket_reason).
+  bool reject_blend = false;
 
   bool IsValid(std::string* why) const;
 };

@@ -8,8 +8,8 @@
 #include "kinematics/arm_ik.hpp"
 #include "kinematics/pose_math.hpp"
 #include "solver/analysis_report.hpp"
-#include "solver/physics_gate.hpp"
 #include "solver/study_report.hpp"
+#include "solver/validated_synthesis.hpp"
 
 namespace graspsynth {
 namespace {
@@ -175,28 +175,31 @@ std::vector<StudyRow> SynthesisTable(const SimulationModel& model, const GraspLi
       StudyRow row = NewRow(theta, method, options.seed);
       const std::string what = "theta " + Deg(theta) + " " + row.method;
       report(base, total, what);
-      const auto t0 = std::chrono::steady_clock::now();
-      const SynthesisResult s = SynthesizeGrasp(synthesis, theta, method.Options(), &data);
-      row.synthesis_s = SecondsSince(t0);
+      ValidatedSynthesisOptions vo;
+      vo.synthesis = method.Options();
+      vo.physics_fallback = options.physics_fallback;
+      vo.gate.perturbations = options.gate_perturbations;
+      vo.gate.min_robustness = options.min_robustness;
+      vo.gate.perturbation = options.perturbation;
+      vo.gate.sensitivity_trials = options.sensitivity_trials;
+      vo.gate.seed = row.seed;
+      vo.gate.threads = options.threads;
+      const ValidatedSynthesis v =
+          SynthesizeAndValidate(model, synthesis, theta, vo, &data,
+                                [&](int done, int) { report(base + 1 + done, total, what); });
+      const SynthesisResult& s = v.synthesis;
+      const PhysicsGateResult& gate = v.gate;
+      row.synthesis_s = v.synthesis_s;
       row.status = s.status;
       row.message = s.message;
-      if (s.ok()) {
+      if (v.gate_run) {
         row.used = s.used;
         row.fallback = s.fallback;
         row.fallback_reason = s.fallback_reason;
         row.refined = s.refined;
         for (const SourceDemo& d : s.sources) row.source_thetas_deg.push_back(d.theta_deg);
-        PhysicsGateOptions go;
-        go.perturbations = options.gate_perturbations;
-        go.min_robustness = options.min_robustness;
-        go.perturbation = options.perturbation;
-        go.sensitivity_trials = options.sensitivity_trials;
-        go.seed = row.seed;
-        go.threads = options.threads;
-        const PhysicsGateResult gate = RunPhysicsGate(
-            model, s.trajectory, go, [&](int done, int) { report(base + 1 + done, total, what); });
         row.gate_run = true;
-        row.gate_s = gate.time_s;
+        row.gate_s = v.gate_s;
         row.nominal_success = gate.nominal.success();
         row.nominal_outcome = gate.nominal.outcome;
         row.nominal_reason = gate.nominal.reason;
@@ -262,6 +265,7 @@ std::vector<StudyRow> SynthesisStage(const SimulationModel& model, const StudyOp
   table.min_robustness = options.min_robustness;
   table.perturbation = options.perturbation;
   table.sensitivity_trials = options.sensitivity_trials;
+  table.physics_fallback = options.physics_fallback;
   table.seed = options.seed;
   table.threads = options.threads;
   const auto table_progress = [&](int done, int total, const std::string& what) {

@@ -73,6 +73,9 @@ struct StudyOptions {
   /// The perturbation of every replay, in the selection and the gates: the motion's noise and
   /// time scaling and the physics' ranges.
   PerturbationOptions perturbation;
+  /// An interp blend whose nominal trial fails gives way to the unblendable bracket's
+  /// fallbacks (solver/validated_synthesis.hpp).
+  bool physics_fallback = true;
   /// Object orientations to synthesize, deg, each finite (the study's: 20, 25, ..., 100).
   std::vector<double> orientations = DefaultStudyOrientations();
   /// The methods, each run at every orientation (default: interp with refinement, the line
@@ -191,6 +194,9 @@ struct SynthesisTableOptions {
   PerturbationOptions perturbation;  ///< of the gate's replays
   uint64_t seed = 1;                 ///< rows are seeded by StudyRowSeed(seed, theta, label)
   int threads = 0;
+  /// An interp blend whose nominal trial fails gives way to the unblendable bracket's
+  /// fallbacks (solver/validated_synthesis.hpp).
+  bool physics_fallback = true;
 };
 
 /// Progress of the synthesis table: replays done of their total, and the row being worked on.

@@ -148,7 +148,8 @@ std::string StudySynthesisJson(const StudyResult& result) {
   j["selection_perturbations"] = o.selection_perturbations;
   j["gate"] = {{"perturbations", o.gate_perturbations},
                {"min_robustness", o.min_robustness},
-               {"sensitivity_trials", o.sensitivity_trials}};
+               {"sensitivity_trials", o.sensitivity_trials},
+               {"physics_fallback", o.physics_fallback}};
   const PhysicsPerturbationOptions& p = o.perturbation.physics;
   j["physics_perturbation"] = {{"enabled", p.enabled},
                                {"friction_spread", p.friction},
@@ -313,7 +314,11 @@ void OptionsSection(const StudyResult& result, std::ostringstream& md) {
      << "and robustness >= " << Format("%.2f", o.min_robustness) << "), the physics "
      << (o.perturbation.physics.enabled ? "perturbed" : "as modelled") << " in every replay, "
      << o.sensitivity_trials << " replays per end of each physics factor's range in the "
-     << "sensitivity tables. Orientations (deg):";
+     << "sensitivity tables"
+     << (o.physics_fallback ? "; an interp blend whose nominal trial fails gives way to the "
+                              "fallbacks of a bracket that cannot be blended"
+                            : "")
+     << ". Orientations (deg):";
   for (size_t i = 0; i < o.orientations.size(); ++i) {
     md << (i ? ", " : " ") << Deg(o.orientations[i]);
   }

@@ -53,6 +53,24 @@ TEST_F(GeneralizeCommand, WritesOneRowPerOrientationAndMethod) {
   EXPECT_NE(r.out.find("interp: "), std::string::npos) << r.out;
 }
 
+TEST_F(GeneralizeCommand, ABlendThatFailsInPhysicsFallsBackUnlessTold) {
+  // the shipped 60 and 70 deg representatives blend into a grasp that drops the pan at 65 deg.
+  const std::string common = "generalize --orientations 65 --methods interp+refine --perturb 0 ";
+  testing::CommandOutput r = RunGraspsynth(common + "--name on --out " + dir_.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::vector<std::string> lines = CsvLines("on");
+  ASSERT_EQ(lines.size(), 2u);
+  EXPECT_EQ(lines[1].rfind("65,interp+refine,ok,nearest,1,1,1,success,", 0), 0u) << lines[1];
+  EXPECT_NE(ReadFileText(dir_ / "on.md").find("its blend failed its nominal trial in physics"),
+            std::string::npos);
+
+  r = RunGraspsynth(common + "--no-physics-fallback --name off --out " + dir_.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  lines = CsvLines("off");
+  ASSERT_EQ(lines.size(), 2u);
+  EXPECT_EQ(lines[1].rfind("65,interp+refine,ok,interp,0,1,0,", 0), 0u) << lines[1];
+}
+
 TEST_F(GeneralizeCommand, LeaveOneOutSynthesizesEachInnerOrientationWithoutIt) {
   const testing::CommandOutput r = RunGraspsynth(
       "generalize --leave-one-out --methods interp --perturb 0 --name loo --out " + dir_.string());

@@ -18,6 +18,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 using ::testing::HasSubstr;
+using ::testing::Not;
 using testing::ReadFileText;
 using testing::RunGraspsynth;
 
@@ -147,6 +148,20 @@ TEST_F(SimulateCommand, AFailedGraspIsReportedWithItsReason) {
   EXPECT_THAT(report["nominal"]["reason"].get<std::string>(), HasSubstr("not lifted"));
   EXPECT_EQ(report["robustness"]["trials"], 0);
   EXPECT_TRUE(report["trials"].empty());
+}
+
+TEST_F(SimulateCommand, ABadPhysicsFlagIsNamedBeforeAnyTrialRuns) {
+  for (const auto& [flags, named] : std::vector<std::pair<std::string, std::string>>{
+           {"--friction-spread 1.5", "--friction-spread: "},
+           {"--stiffness-range 2 1", "--stiffness-range: "},
+           {"--fine-step-probability 2", "--fine-step-probability: "}}) {
+    const auto r =
+        RunGraspsynth("simulate " + Example() + " " + flags + " --out " + Path("bad.json"));
+    EXPECT_EQ(r.exit_code, 2) << flags;
+    EXPECT_THAT(r.err, HasSubstr(named));
+    EXPECT_THAT(r.err, Not(HasSubstr("nominal trial")));  // nothing simulated first
+    EXPECT_FALSE(fs::exists(Path("bad.json")));
+  }
 }
 
 TEST_F(SimulateCommand, RejectsMalformedTrajectoriesNamingFileSampleAndField) {

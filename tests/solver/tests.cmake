@@ -14,6 +14,7 @@ graspsynth_test(solver/refinement_test.cpp LIBS graspsynth::solver)
 graspsynth_test(solver/physics_gate_test.cpp LIBS graspsynth::solver)
 graspsynth_test(solver/synthesis_test.cpp LIBS graspsynth::solver)
 graspsynth_test(solver/synthesis_stages_test.cpp LIBS graspsynth::solver)
+graspsynth_test(solver/validated_synthesis_test.cpp LIBS graspsynth::solver)
 graspsynth_test(solver/grasp_file_test.cpp LIBS graspsynth::solver nlohmann_json::nlohmann_json)
 graspsynth_test(apps/synthesize_command_test.cpp LIBS graspsynth::solver
                 nlohmann_json::nlohmann_json)

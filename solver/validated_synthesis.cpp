@@ -1,0 +1,49 @@
+#include "solver/validated_synthesis.hpp"
+
+#include <chrono>
+
+namespace graspsynth {
+
+namespace {
+
+double SecondsSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// True for an interp grasp that is the plain blend of a bracket (no fallback taken).
+bool IsBlend(const SynthesisResult& s) {
+  return s.ok() && s.requested == SynthesisMethod::kInterp && !s.fallback &&
+         s.bracket.kind == BracketKind::kInside;
+}
+
+}  // namespace
+
+ValidatedSynthesis SynthesizeAndValidate(const SimulationModel& simulation,
+                                         const SynthesisModel& model, double theta_deg,
+                                         const ValidatedSynthesisOptions& options,
+                                         SynthesisData* data, const ProgressCallback& progress) {
+  ValidatedSynthesis v;
+  auto t0 = std::chrono::steady_clock::now();
+  v.synthesis = SynthesizeGrasp(model, theta_deg, options.synthesis, data);
+  v.synthesis_s = SecondsSince(t0);
+  if (!v.synthesis.ok()) return v;
+  v.gate = RunPhysicsGate(simulation, v.synthesis.trajectory, options.gate, progress);
+  v.gate_run = true;
+  v.gate_s = v.gate.time_s;
+  if (!options.physics_fallback || !IsBlend(v.synthesis) || v.gate.nominal.success()) return v;
+  SynthesisOptions retry = options.synthesis;
+  retry.generation.reject_blend = true;
+  t0 = std::chrono::steady_clock::now();
+  SynthesisResult fallback = SynthesizeGrasp(model, theta_deg, retry, data);
+  v.synthesis_s += SecondsSince(t0);
+  if (!fallback.ok()) return v;  // the blend, with its failed gate, is what there is
+  v.rejected_blend =
+      std::string(ToString(v.gate.nominal.outcome)) + " (" + v.gate.nominal.reason + ")";
+  fallback.fallback_reason.bracket_reason += ": " + v.rejected_blend;
+  v.synthesis = std::move(fallback);
+  v.gate = RunPhysicsGate(simulation, v.synthesis.trajectory, options.gate, progress);
+  v.gate_s += v.gate.time_s;
+  return v;
+}
+
+}  // namespace graspsynth
