@@ -178,11 +178,9 @@ void AddSensitivity(const SimulationModel& model, const JointTrajectory& traject
   bar.Finish();
   std::fprintf(stderr, "sensitivity (%d replays per end; success at the low end / high end):\n",
                s.trials_per_cell);
-  for (size_t c = 0; c + 1 < s.cells.size(); c += 2) {
-    const SensitivityCell& lo = s.cells[c];
-    const SensitivityCell& hi = s.cells[c + 1];
-    std::fprintf(stderr, "  %-18s %d/%d  %d/%d\n", std::string(ToString(lo.factor)).c_str(),
-                 lo.successes, lo.trials, hi.successes, hi.trials);
+  for (const SensitivityRow& row : s.rows) {
+    std::fprintf(stderr, "  %-18s %d/%d  %d/%d\n", std::string(ToString(row.factor)).c_str(),
+                 row.low.successes, row.low.trials, row.high.successes, row.high.trials);
   }
   (*report)["sensitivity"] = SensitivityJson<json>(s, ro.trial.step());
 }

@@ -129,30 +129,31 @@ SensitivityResult EvaluateSensitivity(const SimulationModel& model, const JointT
   const Eigen::Vector3d com_direction = SensitivityComDirection(model);
   SensitivityResult result;
   result.trials_per_cell = options.trials;
+  std::vector<SensitivityCell*> cells;  // by factor, low end first
   for (PhysicsFactor factor : AllPhysicsFactors()) {
+    SensitivityRow& row = result.rows.emplace_back();
+    row.factor = factor;
     for (bool high : {false, true}) {
-      SensitivityCell cell;
-      cell.factor = factor;
-      cell.high = high;
+      SensitivityCell& cell = high ? row.high : row.low;
       cell.physics = PhysicsAtEnd(options.perturbation.physics, factor, high, com_direction);
       cell.trials = options.trials;
-      result.cells.push_back(cell);
     }
   }
+  for (SensitivityRow& row : result.rows) cells.insert(cells.end(), {&row.low, &row.high});
   const int n = options.trials;
-  std::vector<RobustnessResult> replays(result.cells.size());
+  std::vector<RobustnessResult> replays(cells.size());
   for (RobustnessResult& r : replays) r.trials.resize(static_cast<size_t>(n));
   RunReplays(
-      static_cast<int>(result.cells.size()) * n, options,
+      static_cast<int>(cells.size()) * n, options,
       [&](int job) {
         const size_t c = static_cast<size_t>(job / n);
         replays[c].trials[static_cast<size_t>(job % n)] =
-            RunReplayWithPhysics(model, nominal, options, job % n, result.cells[c].physics);
+            RunReplayWithPhysics(model, nominal, options, job % n, cells[c]->physics);
       },
       progress);
-  for (size_t c = 0; c < result.cells.size(); ++c) {
-    for (const RobustnessTrial& t : replays[c].trials) result.cells[c].successes += t.success();
-    result.cells[c].failures = FailureSummary(replays[c]);
+  for (size_t c = 0; c < cells.size(); ++c) {
+    for (const RobustnessTrial& t : replays[c].trials) cells[c]->successes += t.success();
+    cells[c]->failures = FailureSummary(replays[c]);
   }
   result.wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -96,8 +96,6 @@ RobustnessTrial RunReplayWithPhysics(const SimulationModel& model, const JointTr
 
 /// The success rate of a grasp with one physics factor at one end of its range.
 struct SensitivityCell {
-  PhysicsFactor factor = PhysicsFactor::kHandFriction;
-  bool high = false;  ///< the high end of the range (else the low end)
   PhysicsDraw physics;
   int trials = 0;
   int successes = 0;
@@ -106,11 +104,19 @@ struct SensitivityCell {
   double rate() const { return trials > 0 ? static_cast<double>(successes) / trials : 0.0; }
 };
 
-/// What a grasp depends on: for every factor (AllPhysicsFactors), its low and its high end.
+/// One factor's row of the sensitivity table: the grasp at each end of the factor's range.
+struct SensitivityRow {
+  PhysicsFactor factor = PhysicsFactor::kHandFriction;
+  SensitivityCell low;
+  SensitivityCell high;
+};
+
+/// What a grasp depends on: for every factor (AllPhysicsFactors, in that order), its low and
+/// its high end.
 struct SensitivityResult {
   int trials_per_cell = 0;
-  std::vector<SensitivityCell> cells;  ///< by factor, low end first
-  double wall_time = 0.0;              ///< s
+  std::vector<SensitivityRow> rows;
+  double wall_time = 0.0;  ///< s
 };
 
 /// Replays `nominal` options.trials times in each cell: the motion perturbations are those of

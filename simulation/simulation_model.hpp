@@ -60,6 +60,8 @@ struct PhysicsVariation {
   bool IsValid(std::string* why) const;
   /// True when the variation changes nothing.
   bool IsNominal() const;
+
+  bool operator==(const PhysicsVariation&) const = default;
 };
 
 /// Mass properties of the object, derived from the scene (uniform density per part).

@@ -251,8 +251,8 @@ std::string HoldAndSensitivityMarkdown(const std::vector<StudyRow>& rows) {
         md << " - |";
         continue;
       }
-      const SensitivityCell& lo = r.sensitivity->cells[2 * c];
-      const SensitivityCell& hi = r.sensitivity->cells[2 * c + 1];
+      const SensitivityCell& lo = r.sensitivity->rows[c].low;
+      const SensitivityCell& hi = r.sensitivity->rows[c].high;
       md << " " << lo.successes << "/" << lo.trials << " · " << hi.successes << "/" << hi.trials
          << " |";
     }

@@ -59,16 +59,16 @@ Json PhysicsDrawJson(const PhysicsDraw& d, double default_step) {
 template <class Json>
 Json SensitivityJson(const SensitivityResult& s, double default_step) {
   Json factors = Json::array();
-  for (size_t c = 0; c + 1 < s.cells.size(); c += 2) {
+  const auto cell_json = [&](const SensitivityCell& cell) {
+    return Json{{"physics", PhysicsDrawJson<Json>(cell.physics, default_step)},
+                {"successes", cell.successes},
+                {"failures", cell.failures}};
+  };
+  for (const SensitivityRow& row : s.rows) {
     Json f;
-    f["factor"] = std::string(ToString(s.cells[c].factor));
-    for (size_t k : {c, c + 1}) {
-      const SensitivityCell& cell = s.cells[k];
-      f[cell.high ? "high" : "low"] =
-          Json{{"physics", PhysicsDrawJson<Json>(cell.physics, default_step)},
-               {"successes", cell.successes},
-               {"failures", cell.failures}};
-    }
+    f["factor"] = std::string(ToString(row.factor));
+    f["low"] = cell_json(row.low);
+    f["high"] = cell_json(row.high);
     factors.push_back(f);
   }
   return Json{{"trials_per_end", s.trials_per_cell}, {"factors", factors}};

@@ -170,17 +170,24 @@ TEST(EvaluateSensitivity, OneCellPerFactorEndWithItsOwnPhysics) {
   int last = 0;
   const SensitivityResult s = EvaluateSensitivity(ShippedSimulationModel(), ExampleTrajectory(), o,
                                                   [&](int done, int) { last = done; });
-  ASSERT_EQ(s.cells.size(), 2 * AllPhysicsFactors().size());
-  EXPECT_EQ(last, static_cast<int>(s.cells.size()));
-  for (size_t c = 0; c < s.cells.size(); ++c) {
-    EXPECT_EQ(s.cells[c].factor, AllPhysicsFactors()[c / 2]);
-    EXPECT_EQ(s.cells[c].high, c % 2 == 1);
-    EXPECT_EQ(s.cells[c].trials, 1);
-    EXPECT_LE(s.cells[c].successes, 1);
-    EXPECT_EQ(s.cells[c].failures.empty(), s.cells[c].successes == 1);
+  ASSERT_EQ(s.rows.size(), AllPhysicsFactors().size());
+  EXPECT_EQ(last, static_cast<int>(2 * s.rows.size()));
+  for (size_t f = 0; f < s.rows.size(); ++f) {
+    EXPECT_EQ(s.rows[f].factor, AllPhysicsFactors()[f]);
+    for (const SensitivityCell* cell : {&s.rows[f].low, &s.rows[f].high}) {
+      EXPECT_EQ(cell->trials, 1);
+      EXPECT_LE(cell->successes, 1);
+      EXPECT_EQ(cell->failures.empty(), cell->successes == 1);
+    }
+    const PhysicsFactor factor = s.rows[f].factor;
+    const Eigen::Vector3d com = SensitivityComDirection(ShippedSimulationModel());
+    EXPECT_EQ(s.rows[f].low.physics.variation,
+              PhysicsAtEnd(o.perturbation.physics, factor, false, com).variation);
+    EXPECT_EQ(s.rows[f].high.physics.variation,
+              PhysicsAtEnd(o.perturbation.physics, factor, true, com).variation);
   }
   // a cell's replay is the robustness replay of the same index with the cell's physics.
-  const SensitivityCell& fine = s.cells[2 * static_cast<size_t>(PhysicsFactor::kStep) + 1];
+  const SensitivityCell& fine = s.rows[static_cast<size_t>(PhysicsFactor::kStep)].high;
   EXPECT_EQ(fine.physics.time_step, o.perturbation.physics.fine_step);
   const RobustnessTrial same =
       RunReplayWithPhysics(ShippedSimulationModel(), ExampleTrajectory(), o, 0, fine.physics);
