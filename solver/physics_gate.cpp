@@ -61,7 +61,9 @@ PhysicsGateResult RunPhysicsGate(const SimulationModel& model, const JointTrajec
     r.robustness_run = true;
     if (options.sensitivity_trials > 0) {
       ro.trials = options.sensitivity_trials;
-      r.sensitivity = EvaluateSensitivity(model, trajectory, ro);
+      r.sensitivity = EvaluateSensitivity(model, trajectory, ro, [&](int done, int total) {
+        if (progress) progress(options.perturbations + done, options.perturbations + total);
+      });
     }
   }
   if (!nominal_ok) {

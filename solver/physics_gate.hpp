@@ -47,8 +47,8 @@ struct PhysicsGateResult {
   double time_s = 0.0;  ///< wall time of the gate
 };
 
-/// Simulates `trajectory` (limit-checked) in `model` and judges it. Throws InputError for
-/// invalid options.
+/// Simulates `trajectory` (limit-checked) in `model` and judges it. `progress` counts the
+/// perturbed replays, then the sensitivity table's. Throws InputError for invalid options.
 PhysicsGateResult RunPhysicsGate(const SimulationModel& model, const JointTrajectory& trajectory,
                                  const PhysicsGateOptions& options = {},
                                  const ProgressCallback& progress = {});

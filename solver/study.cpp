@@ -166,7 +166,9 @@ std::vector<StudyRow> SynthesisTable(const SimulationModel& model, const GraspLi
     if (progress) progress(done, total, what);
   };
   std::vector<StudyRow> rows;
-  const int per_row = options.gate_perturbations + 1;
+  // the nominal trial, the perturbed replays and the sensitivity table's replays.
+  const int per_row = options.gate_perturbations + 1 +
+                      2 * static_cast<int>(AllPhysicsFactors().size()) * options.sensitivity_trials;
   const int total =
       static_cast<int>(options.orientations.size() * options.methods.size()) * per_row;
   int base = 0;

@@ -65,6 +65,24 @@ TEST(PhysicsGate, RobustnessBelowTheThresholdFails) {
   EXPECT_NE(r.reason.find("below the threshold"), std::string::npos) << r.reason;
 }
 
+TEST(PhysicsGate, ProgressCountsTheReplaysThenTheSensitivityTable) {
+  PhysicsGateOptions o;
+  o.perturbations = 1;
+  o.sensitivity_trials = 1;
+  o.threads = 2;
+  int last_done = 0, last_total = 0;
+  const PhysicsGateResult r =
+      RunPhysicsGate(ShippedSimulationModel(), Scripted(60.0), o, [&](int done, int total) {
+        EXPECT_GE(done, last_done);
+        last_done = done;
+        last_total = total;
+      });
+  ASSERT_TRUE(r.sensitivity.has_value());
+  const int replays = 1 + 2 * static_cast<int>(AllPhysicsFactors().size());
+  EXPECT_EQ(last_total, replays);
+  EXPECT_EQ(last_done, replays);
+}
+
 TEST(PhysicsGate, OptionsAreChecked) {
   PhysicsGateOptions o;
   o.min_robustness = 1.5;
