@@ -89,6 +89,16 @@ void BM_TrialFull(benchmark::State& state) {
 }
 BENCHMARK(BM_TrialFull)->Unit(benchmark::kMillisecond)->Iterations(3);
 
+// The fast path with the wrist's motor-driven links dynamic (--fidelity fast-wrist; arg: step
+// in microseconds).
+void BM_TrialFastWrist(benchmark::State& state) {
+  TrialOptions o;
+  o.fidelity = Fidelity::kFastWristDynamic;
+  o.time_step = state.range(0) * 1e-6;
+  RunTrials(state, o);
+}
+BENCHMARK(BM_TrialFastWrist)->Arg(1000)->Arg(4000)->Unit(benchmark::kMillisecond);
+
 // Fast and full detail on `trials` perturbed replays (seed 1, all cores) at the default
 // noise and at `noise_scale` times it; prints the agreement counts.
 int Agreement(int trials, double noise_scale) {

@@ -6,8 +6,9 @@
 // suite's budget:
 // - the committed study files (experiments/results/study_summary.txt, written by
 //   `graspsynth run` with the defaults) state the README's figures: Table I 9 of 9 within 5 mm /
-//   2 deg; interp+refine 16/17 nominal successes, 15/17 gate passes, mean robustness 0.86;
-//   line+refine 15/17, 13/17, 0.79 (the physics perturbation and the 30 deg tilt limit on);
+//   2 deg; interp+refine 17/17 nominal successes, 16/17 gate passes, mean robustness 0.92;
+//   line+refine 15/17, 13/17, 0.79 (the physics perturbation, the 30 deg tilt limit and the
+//   physics-checked fallback of a failed blend on);
 // - a fresh run of the study's stages 1 and 3 on the shipped data (`graspsynth analyze` for
 //   Table I, `graspsynth generalize` with the study's orientations, methods, 10 gate replays
 //   and seed on the shipped library, which is what the default selection makes: same seed, 20
@@ -18,9 +19,9 @@
 // match exactly. The gate's 10 perturbed replays per grasp are seeded, so the same code gives
 // the same figures; the tolerance admits a change that draws other perturbations (a seed
 // derivation, the order of random draws) but not a real loss. Over 17 x 10 = 170 replays at
-// p = 0.86 the standard deviation of the mean robustness is sqrt(0.86 * 0.14 / 170) = 0.027:
-// we allow 0.04 below the README's two-digit figure (0.005 of rounding, 1.3 standard
-// deviations).
+// p = 0.86 (the lower of the two methods' figures near it) the standard deviation of the mean
+// robustness is sqrt(0.86 * 0.14 / 170) = 0.027: we allow 0.04 below the README's two-digit
+// figure (0.005 of rounding, 1.3 standard deviations; 1.7 at interp+refine's 0.92).
 // A grasp at robustness 0.9 or 1.0 loses the gate (>= 0.8) only by two unlucky replays more, so
 // at most one gate pass fewer per method.
 
@@ -52,7 +53,7 @@ struct Headline {
   int passed = 0;
   double mean_robustness = 0.0;
 };
-const std::map<std::string, Headline> kReadme = {{"interp+refine", {17, 16, 15, 0.86}},
+const std::map<std::string, Headline> kReadme = {{"interp+refine", {17, 17, 16, 0.92}},
                                                  {"line+refine", {17, 15, 13, 0.79}}};
 constexpr int kTableIWithin = 9;
 constexpr int kTableIRows = 9;
