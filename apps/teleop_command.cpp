@@ -22,6 +22,7 @@
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
 #include "common/orientation_list.hpp"
+#include "common/stopwatch.hpp"
 #include "kinematics/pose_math.hpp"
 #include "learning_data/demo_log.hpp"
 #include "simulation/simulation_model.hpp"
@@ -36,10 +37,6 @@ namespace graspsynth::apps {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double SecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 struct ServerOptions {
   int port = 9870;

@@ -17,6 +17,7 @@
 
 #include "apps/stop_signals.hpp"
 #include "common/errors.hpp"
+#include "common/stopwatch.hpp"
 #include "kinematics/robot_description.hpp"
 #include "kinematics/scene_model.hpp"
 #include "learning_data/demo_log.hpp"
@@ -63,10 +64,6 @@ teleop::ViewerReplay LoadReplay(const ViewOptions& opts, const RobotModel& robot
 }
 
 using Clock = std::chrono::steady_clock;
-
-double SecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // How a replay went.
 struct PlayFigures {

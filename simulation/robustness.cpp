@@ -6,6 +6,7 @@
 
 #include "common/errors.hpp"
 #include "common/parallel.hpp"
+#include "common/stopwatch.hpp"
 #include "simulation/random.hpp"
 
 namespace graspsynth {
@@ -116,8 +117,7 @@ RobustnessResult EvaluateRobustness(const SimulationModel& model, const JointTra
   }
   result.score = static_cast<double>(result.successes) / options.trials;
   result.ci95 = WilsonInterval(result.successes, options.trials);
-  result.wall_time =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.wall_time = SecondsSince(start);
   return result;
 }
 
@@ -155,8 +155,7 @@ SensitivityResult EvaluateSensitivity(const SimulationModel& model, const JointT
     for (const RobustnessTrial& t : replays[c].trials) cells[c]->successes += t.success();
     cells[c]->failures = FailureSummary(replays[c]);
   }
-  result.wall_time =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.wall_time = SecondsSince(start);
   return result;
 }
 

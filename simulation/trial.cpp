@@ -10,6 +10,7 @@
 
 #include "common/errors.hpp"
 #include "common/format.hpp"
+#include "common/stopwatch.hpp"
 
 namespace graspsynth {
 namespace {
@@ -152,8 +153,7 @@ TrialResult RunTrial(const SimulationModel& model, const JointTrajectory& trajec
       early ? *early : JudgeTrial(data, watch, result.simulated_time - t_motion, options);
   result.outcome = verdict.outcome;
   result.reason = verdict.reason;
-  result.wall_time =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  result.wall_time = SecondsSince(wall_start);
   result.cpu_time = ThreadCpuSeconds() - cpu_start;
   return result;
 }

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "common/errors.hpp"
+#include "common/stopwatch.hpp"
 
 namespace graspsynth {
 
@@ -81,7 +82,7 @@ PhysicsGateResult RunPhysicsGate(const SimulationModel& model, const JointTrajec
     }
   }
   r.reason = s.str();
-  r.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.time_s = SecondsSince(t0);
   return r;
 }
 

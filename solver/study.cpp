@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "common/errors.hpp"
+#include "common/stopwatch.hpp"
 #include "kinematics/arm_ik.hpp"
 #include "kinematics/pose_math.hpp"
 #include "solver/analysis_report.hpp"
@@ -16,10 +17,6 @@ namespace {
 
 using study_text::Deg;
 using study_text::Num17;
-
-double SecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // wrist height above the table for a grasp of the handle (reference/scene.md: 0.08-0.11 m).
 constexpr double kWristHeight = 0.095;

@@ -1,14 +1,10 @@
 #include "solver/validated_synthesis.hpp"
 
-#include <chrono>
+#include "common/stopwatch.hpp"
 
 namespace graspsynth {
 
 namespace {
-
-double SecondsSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // True for an interp grasp that is the plain blend of a bracket (no fallback taken).
 bool IsBlend(const SynthesisResult& s) {
@@ -23,7 +19,7 @@ ValidatedSynthesis SynthesizeAndValidate(const SimulationModel& simulation,
                                          const ValidatedSynthesisOptions& options,
                                          SynthesisData* data, const ProgressCallback& progress) {
   ValidatedSynthesis v;
-  auto t0 = std::chrono::steady_clock::now();
+  auto t0 = WallClock::now();
   v.synthesis = SynthesizeGrasp(model, theta_deg, options.synthesis, data);
   v.synthesis_s = SecondsSince(t0);
   if (!v.synthesis.ok()) return v;
@@ -33,7 +29,7 @@ ValidatedSynthesis SynthesizeAndValidate(const SimulationModel& simulation,
   if (!options.physics_fallback || !IsBlend(v.synthesis) || v.gate.nominal.success()) return v;
   SynthesisOptions retry = options.synthesis;
   retry.generation.reject_blend = true;
-  t0 = std::chrono::steady_clock::now();
+  t0 = WallClock::now();
   SynthesisResult fallback = SynthesizeGrasp(model, theta_deg, retry, data);
   v.synthesis_s += SecondsSince(t0);
   if (!fallback.ok()) return v;  // the blend, with its failed gate, is what there is
