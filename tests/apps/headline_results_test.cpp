@@ -18,10 +18,10 @@
 // Tolerance. Table I and the nominal trials are deterministic (no perturbation), so they must
 // match exactly. The gate's 10 perturbed replays per grasp are seeded, so the same code gives
 // the same figures; the tolerance admits a change that draws other perturbations (a seed
-// derivation, the order of random draws) but not a real loss. Over 17 x 10 = 170 replays at
-// p = 0.86 (the lower of the two methods' figures near it) the standard deviation of the mean
-// robustness is sqrt(0.86 * 0.14 / 170) = 0.027: we allow 0.04 below the README's two-digit
-// figure (0.005 of rounding, 1.3 standard deviations; 1.7 at interp+refine's 0.92).
+// derivation, the order of random draws) but not a real loss. Over 17 x 10 = 170 replays the
+// standard deviation of the mean robustness is sqrt(p (1 - p) / 170): 0.031 at line+refine's
+// p = 0.79, 0.021 at interp+refine's 0.92. We allow 0.04 below the README's two-digit figure
+// (0.005 of rounding, then 1.1 and 1.7 standard deviations).
 // A grasp at robustness 0.9 or 1.0 loses the gate (>= 0.8) only by two unlucky replays more, so
 // at most one gate pass fewer per method.
 
