@@ -32,7 +32,7 @@ struct GeneralizeOptions {
   std::string orientations = "20:100:1";
   std::string methods = "nearest,interp,interp+refine,line+refine";
   bool leave_one_out = false;
-  int perturb = 10;
+  int perturb = kStudyGatePerturbations;
   int sensitivity = 0;
   double noise_scale = 1.0;
   uint64_t seed = 1;
