@@ -79,6 +79,14 @@ void AddPhysicsFallbackFlag(CLI::App* app, bool* no_physics_fallback) {
                 "demonstration turned with the object first)");
 }
 
+void AddAllReplaysFlag(CLI::App* app, bool* all_replays) {
+  app->add_flag("--all-replays", *all_replays,
+                "Run every selection replay of every demonstration (default: a demonstration "
+                "stops replaying once it has failed too often to win its orientation; the "
+                "representatives and their scores are the same, the losers' scores count fewer "
+                "replays)");
+}
+
 void CheckPhysicsFlags(const PhysicsPerturbationOptions& options) {
   // each flag's fields alone on the defaults, so that the error names the flag.
   using O = PhysicsPerturbationOptions;

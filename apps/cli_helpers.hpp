@@ -35,6 +35,10 @@ CLI::Validator PositiveValue();
 /// Adds --no-physics-fallback (ValidatedSynthesisOptions::physics_fallback off) to `app`.
 void AddPhysicsFallbackFlag(CLI::App* app, bool* no_physics_fallback);
 
+/// --all-replays: every selection replay of every demonstration (SelectionOptions::early_stop
+/// off).
+void AddAllReplaysFlag(CLI::App* app, bool* all_replays);
+
 /// A progress bar per named stage on stderr, redrawn in place on a terminal; elsewhere (logs,
 /// pipes) a line "NAME: DONE/TOTAL (WHAT)" at every tenth of the stage. Thread-safe.
 class ProgressBar {

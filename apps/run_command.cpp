@@ -47,6 +47,7 @@ struct RunOptions {
   std::string scene;
   PhysicsPerturbationOptions physics = StudyOptions{}.perturbation.physics;
   bool no_physics_fallback = false;
+  bool all_replays = false;
 };
 
 // The reduced study of --quick (tests, a first look).
@@ -65,6 +66,7 @@ StudyOptions StudyOptionsOf(const RunOptions& o, const SceneModel& scene) {
   CheckPhysicsFlags(o.physics);
   options.perturbation.physics = o.physics;
   options.physics_fallback = !o.no_physics_fallback;
+  options.selection_early_stop = !o.all_replays;
   if (o.quick) {
     options.orientations = kQuickOrientations;
     options.gate_perturbations = kQuickGatePerturbations;
@@ -227,6 +229,7 @@ void AddRunCommand(CLI::App& app, int* exit_code) {
   run->add_option("--robot", opts->robot, "Robot description (URDF); default: the shipped one");
   run->add_option("--scene", opts->scene, "Scene description (JSON); default: models/scene.json");
   AddPhysicsFallbackFlag(run, &opts->no_physics_fallback);
+  AddAllReplaysFlag(run, &opts->all_replays);
   AddPhysicsPerturbationFlags(run, &opts->physics);
   run->callback([opts, exit_code] { *exit_code = RunStudyCommand(*opts); });
 }

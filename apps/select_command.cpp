@@ -30,6 +30,7 @@ struct SelectCommandOptions {
   std::string robot;
   std::string scene;
   PhysicsPerturbationOptions physics = SelectionOptions{}.perturbation.physics;
+  bool all_replays = false;
 };
 
 int RunSelect(const SelectCommandOptions& o) {
@@ -42,6 +43,7 @@ int RunSelect(const SelectCommandOptions& o) {
   options.perturbations = o.perturb;
   options.seed = o.seed;
   options.threads = o.threads;
+  options.early_stop = !o.all_replays;
   options.segmentation.region = scene.grasp_region;
   CheckPhysicsFlags(o.physics);
   options.perturbation.physics = o.physics;
@@ -66,8 +68,16 @@ int RunSelect(const SelectCommandOptions& o) {
       "read %d demonstration log(s) from %s (%d rejected): %zu successful and scored, %d "
       "unsuccessful (skipped)\n",
       result.logs, o.directory.c_str(), unreadable, library.scores.size(), result.unsuccessful);
-  std::printf("%d perturbed replays per demonstration, seed %llu\n\n", o.perturb,
+  std::printf("%d perturbed replays per demonstration, seed %llu\n", o.perturb,
               static_cast<unsigned long long>(o.seed));
+  const auto [ran, stopped] = CountSelectionReplays(library);
+  if (stopped > 0) {
+    std::printf(
+        "%d of %zu perturbed replays ran: %d demonstration(s) stopped once they could no longer "
+        "win their orientation (--all-replays runs them all)\n",
+        ran, library.scores.size() * static_cast<size_t>(o.perturb), stopped);
+  }
+  std::printf("\n");
 
   // one row per orientation with successful demonstrations.
   std::map<double, int> successful;
@@ -120,12 +130,18 @@ void AddSelectCommand(CLI::App& app, int* exit_code) {
       "success fraction with a 95% Wilson interval. A demonstration the arm cannot play scores\n"
       "0. Per orientation the representative has the highest score; ties go to the higher\n"
       "Wilson lower bound, then a successful nominal replay, then the shorter grasping motion,\n"
-      "then the file name. An orientation whose best score is 0 gets no entry.\n\n"
+      "then the file name. An orientation whose best score is 0 gets no entry.\n"
+      "Replays are spent only where they can change the choice: an orientation's\n"
+      "demonstrations are scored in the tie rule's order, and one stops replaying once it has\n"
+      "failed so often that it cannot win over the best fully scored one (its score then counts\n"
+      "the replays that ran, and `stopped` says why). The representatives and their scores are\n"
+      "those of --all-replays, which runs every replay.\n\n"
       "Each demonstration's perturbations are seeded from --seed and its file name, so the same\n"
       "--seed gives the same library, byte for byte, whatever --threads is.\n\n"
       "The library (--out, graspsynth-library/1 JSON) holds every score (file, trial,\n"
       "theta_deg, trials, successes, score, ci_low, ci_high, nominal_success, seed, failures,\n"
-      "selected) and per orientation the selected grasping motion (pre-grasp to grasp) with the\n"
+      "selected; stopped when its replays stopped early) and per orientation the selected grasping "
+      "motion (pre-grasp to grasp) with the\n"
       "operator's lift. The table on stdout lists per orientation the successful\n"
       "demonstrations (n), the selected file, its score and interval; rejected files are listed\n"
       "with their reasons. Exit status: 0 when at least one orientation was selected, 1 when\n"
@@ -144,6 +160,7 @@ void AddSelectCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   select->add_option("--robot", opts->robot, "Robot description (URDF); default: the shipped one");
+  AddAllReplaysFlag(select, &opts->all_replays);
   AddPhysicsPerturbationFlags(select, &opts->physics);
   select->add_option("--scene", opts->scene,
                      "Scene description (JSON); default: models/scene.json");

@@ -61,6 +61,7 @@ json LibraryJson(const GraspLibrary& library) {
                       {"seed", s.seed},
                       {"failures", s.failures},
                       {"selected", s.selected}});
+    if (!s.stopped.empty()) scores.back()["stopped"] = s.stopped;
   }
   json entries = json::array();
   for (const LibraryEntry& e : library.entries) {
@@ -139,6 +140,7 @@ DemoScore ReadScore(const JsonReader& object) {
   s.seed = object.Unsigned("seed");
   s.failures = object.String("failures");
   s.selected = object.Bool("selected");
+  if (object.Has("stopped")) s.stopped = object.String("stopped");
   return s;
 }
 
@@ -179,6 +181,15 @@ GraspLibrary ReadLibrary(const JsonReader& document) {
 }
 
 }  // namespace
+
+SelectionReplays CountSelectionReplays(const GraspLibrary& library) {
+  SelectionReplays r;
+  for (const DemoScore& s : library.scores) {
+    r.ran += s.trials;
+    r.stopped += !s.stopped.empty();
+  }
+  return r;
+}
 
 void WriteGraspLibrary(const GraspLibrary& library, const std::filesystem::path& path) {
   const std::string text = LibraryJson(library).dump(2) + "\n";

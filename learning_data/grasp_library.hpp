@@ -28,6 +28,11 @@ struct DemoScore {
   uint64_t seed = 0;             ///< seed of this demonstration's perturbation stream
   std::string failures;          ///< failure outcomes and counts, e.g. "dropped 3, not_lifted 1"
   bool selected = false;         ///< the representative of its orientation
+  /// Empty when all the selection's replays ran; otherwise why its replays stopped early (it
+  /// could no longer win its orientation): `trials`, `successes` and `score` then count the
+  /// replays that ran, and the full score would be at most (successes + the replays left) /
+  /// the library's `perturbations`.
+  std::string stopped;
 };
 
 /// The representative (most robust) demonstration of one orientation.
@@ -56,6 +61,14 @@ struct GraspLibrary {
 
 /// Writes `library` as JSON (format graspsynth-library/1) to `path`, atomically.
 void WriteGraspLibrary(const GraspLibrary& library, const std::filesystem::path& path);
+
+/// The selection's perturbed replays that ran (the sum of the scores' `trials`) and the scores
+/// whose replays stopped early (DemoScore::stopped).
+struct SelectionReplays {
+  int ran = 0;
+  int stopped = 0;
+};
+SelectionReplays CountSelectionReplays(const GraspLibrary& library);
 
 /// Reads a library file. Throws InputError naming the file and the field for a missing file,
 /// malformed JSON, another format or version, a missing or ill-typed field, non-finite numbers,

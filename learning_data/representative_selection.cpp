@@ -23,6 +23,7 @@ std::string FileName(const std::string& source) {
 struct Scored {
   const DemoLog* log = nullptr;
   SegmentedTrial segmented;
+  DemoReplay replay;  // the robot's replay of the log (RunNominal)
   SelectionCandidate candidate;
 };
 
@@ -105,11 +106,10 @@ std::vector<Scored> SegmentLogs(const std::vector<DemoLog>& logs, const Selectio
   return scored;
 }
 
-// Scores one demonstration by its nominal replay and `robustness.trials` perturbed ones;
-// `done` counts the replays of the whole selection (of `total`) for `progress`.
-void ScoreDemonstration(const SimulationModel& model, const SelectionOptions& options,
-                        RobustnessOptions robustness, Scored* s, int* done, int total,
-                        const SelectionProgress& progress, SelectionResult* result) {
+// Replays demonstration `s` unperturbed (its nominal trial); `done` counts the replays of the
+// whole selection (of `total`) for `progress`.
+void RunNominal(const SimulationModel& model, const SelectionOptions& options, Scored* s, int* done,
+                int total, const SelectionProgress& progress, SelectionResult* result) {
   const DemoLog& log = *s->log;
   DemoScore& score = s->candidate.score;
   score.file = FileName(log.source);
@@ -118,35 +118,81 @@ void ScoreDemonstration(const SimulationModel& model, const SelectionOptions& op
   score.seed = DemoSeed(options.seed, score.file);
   s->candidate.motion_duration = s->segmented.motion.duration();
 
-  const DemoReplay replay = ReplayDemoLog(model.robot(), log);
-  if (!replay.ok) {
+  s->replay = ReplayDemoLog(model.robot(), log);
+  if (!s->replay.ok) {
     // a demonstration the robot cannot play scores 0; nothing is known about it.
-    score.failures = "not replayable: " + replay.message;
+    score.failures = "not replayable: " + s->replay.message;
     score.ci_low = 0.0;
     score.ci_high = 1.0;
-    result->issues.push_back({score.file, SelectionIssueKind::kNotReplayable, replay.message});
+    result->issues.push_back({score.file, SelectionIssueKind::kNotReplayable, s->replay.message});
     *done += options.perturbations + 1;
     if (progress) progress(*done, total, score.file);
     return;
   }
-  const TrialResult nominal = RunTrial(model, replay.trajectory, options.trial);
-  score.nominal_success = nominal.success();
+  score.nominal_success = RunTrial(model, s->replay.trajectory, options.trial).success();
   ++*done;
   if (progress) progress(*done, total, score.file);
+}
 
-  robustness.seed = score.seed;
+// Scores demonstration `s` by its perturbed replays. With `rival` (a demonstration of the same
+// orientation whose replays have all run and that kTieRule prefers on every tie) the replays
+// stop once `s` has failed so often that it cannot score above the rival.
+void ScorePerturbed(const SimulationModel& model, const SelectionOptions& options,
+                    RobustnessOptions robustness, const DemoScore* rival, Scored* s, int* done,
+                    int total, const SelectionProgress& progress) {
+  DemoScore& score = s->candidate.score;
+  if (!s->replay.ok) return;
+  const int n = options.perturbations;
+  StopRule stop;
+  if (rival) {
+    const int needed = rival->successes + 1;  // ties go to the rival
+    stop = [n, needed](int, int failures) { return n - failures < needed; };
+  }
   const int before = *done;
+  if (rival && rival->successes >= n) {
+    // the rival succeeded in every replay: nothing can win over it.
+    *done = before + n;
+    score.stopped = "no replays: " + rival->file + " succeeded in all " + std::to_string(n) +
+                    " of its replays and wins every tie";
+    if (progress) progress(*done, total, score.file);
+    return;
+  }
+  robustness.seed = score.seed;
   const RobustnessResult r =
-      EvaluateRobustness(model, replay.trajectory, robustness, [&](int k, int) {
+      EvaluateRobustnessUntil(model, s->replay.trajectory, robustness, stop, [&](int k, int) {
         if (progress) progress(before + k, total, score.file);
       });
-  *done = before + options.perturbations;
-  score.trials = options.perturbations;
+  *done = before + n;
+  score.trials = static_cast<int>(r.trials.size());
   score.successes = r.successes;
   score.score = r.score;
   score.ci_low = r.ci95.lo;
   score.ci_high = r.ci95.hi;
   score.failures = FailureSummary(r);
+  if (score.trials < n) {
+    std::ostringstream why;
+    why << "stopped after " << score.trials << " of " << n
+        << " replays: " << score.trials - score.successes << " failed, so at most "
+        << n - (score.trials - score.successes) << " of " << n << ", which cannot win over "
+        << rival->file << " (" << rival->successes << " of " << n << ")";
+    score.stopped = why.str();
+  }
+  if (progress) progress(*done, total, score.file);
+}
+
+// Scores every demonstration of one orientation ([begin, end) of `order`, in the order in which
+// kTieRule breaks ties) and, with options.early_stop, spends replays only while a demonstration
+// can still become the representative.
+void ScoreOrientation(const SimulationModel& model, const SelectionOptions& options,
+                      const RobustnessOptions& robustness, const std::vector<Scored*>& order,
+                      int* done, int total, const SelectionProgress& progress) {
+  const DemoScore* best = nullptr;  // the preferred one of those whose replays all ran
+  for (Scored* s : order) {
+    ScorePerturbed(model, options, robustness, options.early_stop ? best : nullptr, s, done, total,
+                   progress);
+    if (!s->candidate.score.stopped.empty()) continue;
+    if (!best || s->candidate.score.successes > best->successes) best = &s->candidate.score;
+  }
 }
 
 // The library entry of a selected demonstration.
@@ -181,7 +227,11 @@ void PickRepresentatives(const SelectionOptions& options, std::vector<Scored>* s
     Scored* best = &all[begin];
     while (end < all.size() &&
            all[end].candidate.score.theta_deg == all[begin].candidate.score.theta_deg) {
-      if (PreferredRepresentative(all[end].candidate, best->candidate)) best = &all[end];
+      // a demonstration whose replays stopped early cannot win (ScorePerturbed).
+      if (all[end].candidate.score.stopped.empty() &&
+          PreferredRepresentative(all[end].candidate, best->candidate)) {
+        best = &all[end];
+      }
       ++end;
     }
     const DemoScore& b = best->candidate.score;
@@ -227,8 +277,29 @@ SelectionResult SelectRepresentatives(const SimulationModel& model,
   robustness.trial = options.trial;
   const int total = static_cast<int>(scored.size()) * (options.perturbations + 1);
   int done = 0;
-  for (Scored& s : scored) {
-    ScoreDemonstration(model, options, robustness, &s, &done, total, progress, &result);
+  for (Scored& s : scored) RunNominal(model, options, &s, &done, total, progress, &result);
+  // each orientation's demonstrations in kTieRule's order of ties (a successful nominal replay,
+  // the shorter motion, the file name), so that a later one needs more successes to win.
+  std::vector<Scored*> order;
+  for (Scored& s : scored) order.push_back(&s);
+  std::stable_sort(order.begin(), order.end(), [](const Scored* a, const Scored* b) {
+    const SelectionCandidate& x = a->candidate;
+    const SelectionCandidate& y = b->candidate;
+    if (x.score.theta_deg != y.score.theta_deg) return x.score.theta_deg < y.score.theta_deg;
+    if (x.score.nominal_success != y.score.nominal_success) return x.score.nominal_success;
+    if (x.motion_duration != y.motion_duration) return x.motion_duration < y.motion_duration;
+    return x.score.file < y.score.file;
+  });
+  for (size_t begin = 0; begin < order.size();) {
+    size_t end = begin;
+    while (end < order.size() &&
+           order[end]->candidate.score.theta_deg == order[begin]->candidate.score.theta_deg) {
+      ++end;
+    }
+    ScoreOrientation(model, options, robustness,
+                     std::vector<Scored*>(order.begin() + begin, order.begin() + end), &done, total,
+                     progress);
+    begin = end;
   }
 
   PickRepresentatives(options, &scored, &result);

@@ -18,6 +18,12 @@
 /// highest score; on equal scores the higher lower bound of the Wilson interval (it differs
 /// only when the numbers of replays differ), then a successful nominal replay, then the
 /// shorter grasping motion (pre-grasp to grasp, s), then the file name in byte order.
+///
+/// Early stop (SelectionOptions::early_stop, the default): an orientation's demonstrations are
+/// scored one after another in the order in which the tie rule breaks ties, so one scored later
+/// needs strictly more successes than the best one scored in full; its replays stop at the
+/// first failure that makes that impossible. The representatives and every fully scored
+/// demonstration's figures are those of a selection that runs every replay.
 
 #include <cstdint>
 #include <filesystem>
@@ -53,6 +59,12 @@ struct SelectionOptions {
   uint64_t seed = 1;
   /// Worker threads of the perturbed replays (0: one per hardware thread). Changes no result.
   int threads = 0;
+  /// Spend replays only where they can change the selection: the demonstrations of an
+  /// orientation are scored in the tie rule's order of ties, and one stops replaying once it
+  /// has failed so often that it cannot win over the best fully scored one (DemoScore::stopped).
+  /// The representatives and their scores are the same as with every replay run; only the
+  /// losers' scores count fewer replays. False: every replay of every demonstration.
+  bool early_stop = true;
   /// Pre-grasp region and success label (commands take the region from the scene).
   SegmentationOptions segmentation;
   /// The nominal and the perturbed replays' trial settings.

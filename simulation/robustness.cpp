@@ -1,8 +1,11 @@
 #include "simulation/robustness.hpp"
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <mutex>
 
 #include "common/errors.hpp"
 #include "common/parallel.hpp"
@@ -98,25 +101,52 @@ RobustnessTrial RunReplayWithPhysics(const SimulationModel& model, const JointTr
 RobustnessResult EvaluateRobustness(const SimulationModel& model, const JointTrajectory& nominal,
                                     const RobustnessOptions& options,
                                     const ProgressCallback& progress) {
+  return EvaluateRobustnessUntil(model, nominal, options, {}, progress);
+}
+
+RobustnessResult EvaluateRobustnessUntil(const SimulationModel& model,
+                                         const JointTrajectory& nominal,
+                                         const RobustnessOptions& options, const StopRule& stop,
+                                         const ProgressCallback& progress) {
   Validate(options);
   const auto start = std::chrono::steady_clock::now();
+  const int n = options.trials;
   RobustnessResult result;
-  result.trials.resize(static_cast<size_t>(options.trials));
-  result.threads = WorkerCount(options.threads, options.trials);
-  RunReplays(
-      options.trials, options,
-      [&](int i) {
-        result.trials[static_cast<size_t>(i)] = RunRobustnessTrial(model, nominal, options, i);
-      },
-      progress);
+  result.trials.resize(static_cast<size_t>(n));
+  result.threads = WorkerCount(options.threads, n);
+  // The stop rule sees the finished prefix 0..prefix-1 grow in index order; `end` is where the
+  // evaluation ends (n until the rule holds). Replays at or past `end` are not started.
+  std::mutex mutex;
+  std::vector<char> finished(static_cast<size_t>(n), 0);
+  int prefix = 0, successes = 0, end = n;
+  std::atomic<int> end_now{n};
+  RunReplays(n, options,
+             [&](int i) {
+               if (i >= end_now.load()) return;
+               RobustnessTrial t = RunRobustnessTrial(model, nominal, options, i);
+               std::lock_guard<std::mutex> lock(mutex);
+               result.trials[static_cast<size_t>(i)] = std::move(t);
+               finished[static_cast<size_t>(i)] = 1;
+               while (prefix < end && finished[static_cast<size_t>(prefix)]) {
+                 successes += result.trials[static_cast<size_t>(prefix)].success();
+                 ++prefix;
+                 if (stop && stop(successes, prefix - successes)) end = prefix;
+               }
+               end_now = end;
+               if (progress)
+                 progress(static_cast<int>(std::count(finished.begin(), finished.begin() + end, 1)),
+                          end);
+             },
+             {});
+  result.trials.resize(static_cast<size_t>(end));
 
   for (const RobustnessTrial& t : result.trials) {
     result.successes += t.success();
     result.simulated_time += t.simulated_time;
     result.cpu_time += t.cpu_time;
   }
-  result.score = static_cast<double>(result.successes) / options.trials;
-  result.ci95 = WilsonInterval(result.successes, options.trials);
+  result.score = static_cast<double>(result.successes) / end;
+  result.ci95 = WilsonInterval(result.successes, end);
   result.wall_time = SecondsSince(start);
   return result;
 }

@@ -80,6 +80,20 @@ RobustnessResult EvaluateRobustness(const SimulationModel& model, const JointTra
                                     const RobustnessOptions& options,
                                     const ProgressCallback& progress = {});
 
+/// A rule that ends an evaluation early: called with the successes and failures of the
+/// replays 0..k-1 for k = 1, 2, ... in index order; true means the replays from k on cannot
+/// change what the caller wants to know.
+using StopRule = std::function<bool(int successes, int failures)>;
+
+/// EvaluateRobustness() that stops after the first k replays for which `stop` holds (all
+/// options.trials when it never does): `trials` holds replays 0..k-1 and the score and interval
+/// are of those k. Replays run in parallel, so a few beyond k may run and are dropped; k and
+/// every figure are the same whatever the thread count.
+RobustnessResult EvaluateRobustnessUntil(const SimulationModel& model,
+                                         const JointTrajectory& nominal,
+                                         const RobustnessOptions& options, const StopRule& stop,
+                                         const ProgressCallback& progress = {});
+
 /// The failed replays by outcome, in the outcome enum's order, e.g. "dropped 3, not_lifted 1";
 /// empty when every replay succeeded.
 std::string FailureSummary(const RobustnessResult& result);

@@ -327,6 +327,7 @@ StudyResult RunStudy(const SimulationModel& model, const StudyOptions& options,
   selection.perturbation = options.perturbation;
   selection.seed = options.seed;
   selection.threads = options.threads;
+  selection.early_stop = options.selection_early_stop;
   selection.segmentation = options.analysis.segmentation;
   result.selection = SelectRepresentatives(model, demos.logs, options.demos.string(), selection,
                                            [&](int done, int total, const std::string& file) {

@@ -66,6 +66,9 @@ struct StudyOptions {
   /// shipped library (with 10, more demonstrations tie at 10 of 10 and the tie rule picks
   /// others at 40, 60, 80 and 90 deg: a weaker study).
   int selection_perturbations = 20;
+  /// SelectionOptions::early_stop of the selection: the same representatives and scores, the
+  /// losers' scores over the replays that ran.
+  bool selection_early_stop = true;
   /// Perturbed replays of each synthesized grasp's physics gate, >= 0 (0: nominal only). 20,
   /// as the selection: from 10 replays a grasp that holds 9 times in 10 reads 7 of 10 (below
   /// the gate's 0.8) once in 14 draws, and 8 of 10 spans 0.49-0.94 at 95%, too wide to say

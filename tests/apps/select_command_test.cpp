@@ -64,6 +64,45 @@ TEST(SelectCommand, SelectsPerOrientationWritesTheLibraryAndNamesTheBadFile) {
   EXPECT_EQ(ReadFileText(out), ReadFileText(out1));
 }
 
+TEST(SelectCommand, AllReplaysPicksTheSameRepresentativeAndStopsNoDemonstration) {
+  const testing::TestFolder folder;
+  const auto demos = folder.path() / "demos";
+  std::filesystem::create_directories(demos);
+  WriteDemoLog(demos / "demo_040_a.csv",
+               testing::ScriptedDemoLog(ShippedSimulationModel(), 40.0, "demo_040_a.csv"));
+  ScriptedGraspOptions other;
+  other.theta_deg = 40.0;
+  other.grasp_radius = 0.13;
+  WriteDemoLog(demos / "demo_040_b.csv",
+               testing::ScriptedDemoLog(ShippedSimulationModel(), other, "demo_040_b.csv"));
+  const std::string perturb = " --perturb " + std::to_string(testing::Scaled(3, 1));
+  const auto early_out = folder.path() / "early.json";
+  const auto all_out = folder.path() / "all.json";
+  const auto early =
+      RunGraspsynth("select " + demos.string() + " --out " + early_out.string() + perturb);
+  const auto all = RunGraspsynth("select " + demos.string() + " --out " + all_out.string() +
+                                 perturb + " --all-replays");
+  ASSERT_EQ(early.exit_code, 0) << early.err;
+  ASSERT_EQ(all.exit_code, 0) << all.err;
+  const json e = json::parse(ReadFileText(early_out));
+  const json a = json::parse(ReadFileText(all_out));
+  EXPECT_EQ(e.at("entries"), a.at("entries"));
+  int stopped = 0;
+  for (size_t i = 0; i < a.at("scores").size(); ++i) {
+    EXPECT_FALSE(a["scores"][i].contains("stopped"));
+    if (e["scores"][i].contains("stopped")) {
+      ++stopped;
+      EXPECT_FALSE(e["scores"][i].at("selected").get<bool>());
+    } else {
+      EXPECT_EQ(e["scores"][i], a["scores"][i]);
+    }
+  }
+  // the summary says how many replays ran when a demonstration stopped.
+  EXPECT_EQ(stopped > 0, early.out.find("perturbed replays ran") != std::string::npos) << early.out;
+  EXPECT_THAT(all.out, Not(HasSubstr("perturbed replays ran")));
+  EXPECT_THAT(RunGraspsynth("select --help").out, HasSubstr("--all-replays"));
+}
+
 TEST(SelectCommand, FailsWhenNoOrientationCanBeSelected) {
   const testing::TestFolder folder;
   DemoLog log = testing::ScriptedDemoLog(ShippedSimulationModel(), 60.0, "demo_060.csv");

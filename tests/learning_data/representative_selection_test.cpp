@@ -49,11 +49,13 @@ const std::vector<DemoLog>& TestDemos() {
   return demos;
 }
 
-SelectionOptions SmallOptions(int threads) {
+// Every replay of every demonstration (early_stop off), unless `early_stop`.
+SelectionOptions SmallOptions(int threads, bool early_stop = false) {
   SelectionOptions o;
   o.perturbations = testing::Scaled(4, 2);
   o.seed = 11;
   o.threads = threads;
+  o.early_stop = early_stop;
   return o;
 }
 
@@ -248,6 +250,76 @@ TEST(SelectRepresentatives, PicksTheMostRobustPerOrientationWhateverTheThreads) 
   WriteGraspLibrary(one.library, folder.path() / "one.json");
   WriteGraspLibrary(two.library, folder.path() / "two.json");
   EXPECT_EQ(ReadFileText(folder.path() / "one.json"), ReadFileText(folder.path() / "two.json"));
+}
+
+TEST(SelectRepresentatives, EarlyStopKeepsTheRepresentativesAndTheirScores) {
+  // a third 40 deg demonstration, gripping 5 cm further out (its replays fail more often).
+  const SimulationModel& model = ShippedSimulationModel();
+  std::vector<DemoLog> demos = TestDemos();
+  ScriptedGraspOptions off;
+  off.theta_deg = 40.0;
+  off.grasp_radius = 0.18;
+  demos.push_back(ScriptedDemoLog(model, off, "demo_040_off.csv"));
+  const int n = SmallOptions(1).perturbations;
+  const SelectionResult all = SelectRepresentatives(model, demos, "demos", SmallOptions(2));
+  std::vector<std::pair<int, int>> reported;
+  const SelectionResult early = SelectRepresentatives(
+      model, demos, "demos", SmallOptions(1, true),
+      [&](int done, int total, const std::string&) { reported.emplace_back(done, total); });
+
+  // the same entries, the representatives' scores and every nominal replay the same.
+  const TestFolder folder;
+  GraspLibrary entries_only = all.library;
+  entries_only.scores.clear();
+  WriteGraspLibrary(entries_only, folder.path() / "all.json");
+  entries_only.entries = early.library.entries;
+  WriteGraspLibrary(entries_only, folder.path() / "early.json");
+  EXPECT_EQ(ReadFileText(folder.path() / "all.json"), ReadFileText(folder.path() / "early.json"));
+  ASSERT_EQ(all.library.scores.size(), early.library.scores.size());
+  std::map<double, const DemoScore*> selected;
+  for (const DemoScore& s : early.library.scores) {
+    if (s.selected) selected[s.theta_deg] = &s;
+  }
+  int stopped = 0;
+  for (size_t i = 0; i < all.library.scores.size(); ++i) {
+    const DemoScore& a = all.library.scores[i];
+    const DemoScore& e = early.library.scores[i];
+    SCOPED_TRACE(a.file);
+    ASSERT_EQ(a.file, e.file);
+    EXPECT_EQ(a.selected, e.selected);
+    EXPECT_EQ(a.nominal_success, e.nominal_success);
+    EXPECT_TRUE(a.stopped.empty());
+    if (e.stopped.empty()) {
+      // scored in full: the same replays, the same figures.
+      EXPECT_EQ(a.trials, e.trials);
+      EXPECT_EQ(a.successes, e.successes);
+      EXPECT_EQ(a.failures, e.failures);
+      continue;
+    }
+    // stopped: fewer replays, the first ones of the full evaluation (the same stream), and
+    // too many failures among them to win over its orientation's representative.
+    ++stopped;
+    EXPECT_LT(e.trials, n);
+    EXPECT_FALSE(e.selected);
+    EXPECT_LE(e.successes, a.successes);
+    const DemoScore& winner = *selected.at(e.theta_deg);
+    EXPECT_LE(n - (e.trials - e.successes), winner.successes);
+    EXPECT_THAT(e.stopped, ::testing::HasSubstr(winner.file));
+  }
+  EXPECT_GE(stopped, 1) << "the off-handle demonstration should stop early";
+  EXPECT_EQ(reported.back(), std::make_pair(6 * (n + 1), 6 * (n + 1)));
+
+  // the early-stopped library is the same bytes whatever the thread count.
+  const SelectionResult two = SelectRepresentatives(model, demos, "demos", SmallOptions(2, true));
+  WriteGraspLibrary(early.library, folder.path() / "one.json");
+  WriteGraspLibrary(two.library, folder.path() / "two.json");
+  EXPECT_EQ(ReadFileText(folder.path() / "one.json"), ReadFileText(folder.path() / "two.json"));
+  // and reads back with its `stopped` reasons.
+  const GraspLibrary back = ReadGraspLibrary(folder.path() / "one.json");
+  ASSERT_EQ(back.scores.size(), early.library.scores.size());
+  for (size_t i = 0; i < back.scores.size(); ++i) {
+    EXPECT_EQ(back.scores[i].stopped, early.library.scores[i].stopped);
+  }
 }
 
 TEST(SelectRepresentatives, AnOrientationWithoutASuccessfulReplayHasNoEntry) {

@@ -86,6 +86,62 @@ TEST(EvaluateRobustness, TheThreadCountChangesNoBitOfAnyTrial) {
   EXPECT_LT(one.ci95.lo, one.score + 1e-12);
 }
 
+TEST(EvaluateRobustnessUntil, StopsAfterTheFirstPrefixTheRuleAcceptsOnAnyThreadCount) {
+  RobustnessOptions o;
+  o.trials = testing::Scaled(6, 4);
+  o.seed = 7;
+  o.perturbation.physics.enabled = false;
+  o.threads = 1;
+  const RobustnessResult full =
+      EvaluateRobustness(ShippedSimulationModel(), ExampleTrajectory(), o);
+  // the rule: two successes are enough. The expected end is just after the second success.
+  int expected = o.trials;
+  for (int i = 0, s = 0; i < o.trials; ++i) {
+    s += full.trials[static_cast<size_t>(i)].success();
+    if (s == 2) {
+      expected = i + 1;
+      break;
+    }
+  }
+  ASSERT_LT(expected, o.trials) << "the example should succeed at least twice";
+  std::vector<int> seen;  // the prefix lengths the rule was asked about
+  for (int threads : {1, 2, 3}) {
+    SCOPED_TRACE(threads);
+    o.threads = threads;
+    seen.clear();
+    int last_done = -1, last_total = -1;
+    const RobustnessResult r = EvaluateRobustnessUntil(
+        ShippedSimulationModel(), ExampleTrajectory(), o,
+        [&](int successes, int failures) {
+          seen.push_back(successes + failures);
+          return successes >= 2;
+        },
+        [&](int done, int total) {
+          last_done = done;
+          last_total = total;
+        });
+    ASSERT_EQ(static_cast<int>(r.trials.size()), expected);
+    for (int k = 0; k < expected; ++k) {
+      EXPECT_EQ(seen[static_cast<size_t>(k)], k + 1);  // every prefix, in order, once
+      const RobustnessTrial& a = full.trials[static_cast<size_t>(k)];
+      const RobustnessTrial& b = r.trials[static_cast<size_t>(k)];
+      EXPECT_EQ(a.outcome, b.outcome);
+      EXPECT_TRUE(a.final_object_pose.matrix() == b.final_object_pose.matrix());
+    }
+    EXPECT_EQ(static_cast<int>(seen.size()), expected);
+    EXPECT_EQ(r.successes, 2);
+    EXPECT_EQ(r.score, 2.0 / expected);
+    EXPECT_EQ(r.ci95.lo, WilsonInterval(2, expected).lo);
+    EXPECT_EQ(last_done, expected);
+    EXPECT_EQ(last_total, expected);
+  }
+  // a rule that never holds runs them all.
+  const RobustnessResult never = EvaluateRobustnessUntil(
+      ShippedSimulationModel(), ExampleTrajectory(), o, [](int, int) { return false; });
+  EXPECT_EQ(never.trials.size(), full.trials.size());
+  EXPECT_EQ(never.successes, full.successes);
+}
+
 TEST(FailureSummary, CountsFailedReplaysByOutcomeInEnumOrder) {
   RobustnessResult result;
   for (TrialOutcome o : {TrialOutcome::kNotLifted, TrialOutcome::kSuccess, TrialOutcome::kDropped,

@@ -297,6 +297,32 @@ TEST(StudyReportMarkdown, SectionsComeInOrder) {
   }
 }
 
+TEST(StudyReportMarkdown, SaysHowManySelectionReplaysRanWhenSomeStopped) {
+  StudyResult result = HandMadeResult();
+  GraspLibrary& library = result.selection.library;
+  library.perturbations = 20;
+  DemoScore full;
+  full.file = "a.csv";
+  full.theta_deg = 45;
+  full.trials = 20;
+  full.successes = 20;
+  full.selected = true;
+  DemoScore stopped = full;
+  stopped.file = "b.csv";
+  stopped.trials = 0;
+  stopped.successes = 0;
+  stopped.selected = false;
+  stopped.stopped = "no replays: a.csv succeeded in all 20 of its replays and wins every tie";
+  library.scores = {full};
+  EXPECT_THAT(StudyReportMarkdown(result), Not(HasSubstr("stopped replaying")));
+  library.scores = {full, stopped};
+  EXPECT_THAT(StudyReportMarkdown(result),
+              HasSubstr("2 successful demonstrations scored with up to 20 perturbed replays each: "
+                        "1 of them stopped replaying once they could no longer win their "
+                        "orientation (library.json's `stopped`; their scores count the replays "
+                        "that ran), so 20 of 40 perturbed replays ran."));
+}
+
 TEST(StudyRowNames, UnsetStatusIsNoLibraryAndUnsetOutcomeIsEmpty) {
   StudyRow row;
   row.theta_deg = 50;

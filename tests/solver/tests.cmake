@@ -26,12 +26,13 @@ graspsynth_test(apps/generalize_command_test.cpp)
 add_dependencies(apps_generalize_command_test graspsynth)
 graspsynth_test(apps/run_command_test.cpp LIBS nlohmann_json::nlohmann_json)
 add_dependencies(apps_run_command_test graspsynth)
-# The README's headline results (tests/apps/headline_results_test.cpp): Release only, about 90 s
-# on 2 cores; label "headline" (ctest -L headline).
+# The README's headline results (tests/apps/headline_results_test.cpp): Release only, about
+# 8 min on 2 cores alone (20 gate replays of 34 grasps), 14 min measured with a study running
+# beside it, hence the 25 min limit; label "headline" (ctest -L headline).
 if(CMAKE_BUILD_TYPE STREQUAL "Release")
   add_executable(apps_headline_results_test apps/headline_results_test.cpp)
   target_link_libraries(apps_headline_results_test PRIVATE graspsynth_test_utils)
   add_dependencies(apps_headline_results_test graspsynth)
   gtest_discover_tests(apps_headline_results_test DISCOVERY_TIMEOUT 60
-                       PROPERTIES TIMEOUT 900 LABELS headline)
+                       PROPERTIES TIMEOUT 1500 LABELS headline)
 endif()
