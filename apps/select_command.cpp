@@ -70,12 +70,12 @@ int RunSelect(const SelectCommandOptions& o) {
       result.logs, o.directory.c_str(), unreadable, library.scores.size(), result.unsuccessful);
   std::printf("%d perturbed replays per demonstration, seed %llu\n", o.perturb,
               static_cast<unsigned long long>(o.seed));
-  const auto [ran, stopped] = CountSelectionReplays(library);
+  const auto [ran, all, stopped] = CountSelectionReplays(library);
   if (stopped > 0) {
     std::printf(
-        "%d of %zu perturbed replays ran: %d demonstration(s) stopped once they could no longer "
+        "%d of %d perturbed replays ran: %d demonstration(s) stopped once they could no longer "
         "win their orientation (--all-replays runs them all)\n",
-        ran, library.scores.size() * static_cast<size_t>(o.perturb), stopped);
+        ran, all, stopped);
   }
   std::printf("\n");
 
@@ -140,9 +140,9 @@ void AddSelectCommand(CLI::App& app, int* exit_code) {
       "--seed gives the same library, byte for byte, whatever --threads is.\n\n"
       "The library (--out, graspsynth-library/1 JSON) holds every score (file, trial,\n"
       "theta_deg, trials, successes, score, ci_low, ci_high, nominal_success, seed, failures,\n"
-      "selected; stopped when its replays stopped early) and per orientation the selected grasping "
-      "motion (pre-grasp to grasp) with the\n"
-      "operator's lift. The table on stdout lists per orientation the successful\n"
+      "selected; stopped when its replays stopped early) and per orientation the selected\n"
+      "grasping motion (pre-grasp to grasp) with the operator's lift. The table on stdout lists\n"
+      "per orientation the successful\n"
       "demonstrations (n), the selected file, its score and interval; rejected files are listed\n"
       "with their reasons. Exit status: 0 when at least one orientation was selected, 1 when\n"
       "none was (the library is written all the same), 2 on bad input.\n\n"

@@ -186,6 +186,7 @@ SelectionReplays CountSelectionReplays(const GraspLibrary& library) {
   SelectionReplays r;
   for (const DemoScore& s : library.scores) {
     r.ran += s.trials;
+    r.all += library.perturbations;
     r.stopped += !s.stopped.empty();
   }
   return r;

@@ -62,10 +62,12 @@ struct GraspLibrary {
 /// Writes `library` as JSON (format graspsynth-library/1) to `path`, atomically.
 void WriteGraspLibrary(const GraspLibrary& library, const std::filesystem::path& path);
 
-/// The selection's perturbed replays that ran (the sum of the scores' `trials`) and the scores
-/// whose replays stopped early (DemoScore::stopped).
+/// The selection's perturbed replays: those that ran (the sum of the scores' `trials`), those
+/// that every replay would have been (scores x `perturbations`), and the scores whose replays
+/// stopped early (DemoScore::stopped).
 struct SelectionReplays {
   int ran = 0;
+  int all = 0;
   int stopped = 0;
 };
 SelectionReplays CountSelectionReplays(const GraspLibrary& library);

@@ -72,12 +72,22 @@ uint64_t DemoSeed(uint64_t seed, std::string_view file_name) {
   return SplitMix64::ForStream(seed, h).Next();
 }
 
-bool PreferredRepresentative(const SelectionCandidate& a, const SelectionCandidate& b) {
-  if (a.score.score != b.score.score) return a.score.score > b.score.score;
-  if (a.score.ci_low != b.score.ci_low) return a.score.ci_low > b.score.ci_low;
+namespace {
+
+// kTieRule's keys after the score: a successful nominal replay, the shorter motion, the file
+// name. They are known before any perturbed replay runs (the early stop orders by them).
+bool PreferredOnTies(const SelectionCandidate& a, const SelectionCandidate& b) {
   if (a.score.nominal_success != b.score.nominal_success) return a.score.nominal_success;
   if (a.motion_duration != b.motion_duration) return a.motion_duration < b.motion_duration;
   return a.score.file < b.score.file;
+}
+
+}  // namespace
+
+bool PreferredRepresentative(const SelectionCandidate& a, const SelectionCandidate& b) {
+  if (a.score.score != b.score.score) return a.score.score > b.score.score;
+  if (a.score.ci_low != b.score.ci_low) return a.score.ci_low > b.score.ci_low;
+  return PreferredOnTies(a, b);
 }
 
 namespace {
@@ -282,13 +292,11 @@ SelectionResult SelectRepresentatives(const SimulationModel& model,
   // the shorter motion, the file name), so that a later one needs more successes to win.
   std::vector<Scored*> order;
   for (Scored& s : scored) order.push_back(&s);
-  std::stable_sort(order.begin(), order.end(), [](const Scored* a, const Scored* b) {
-    const SelectionCandidate& x = a->candidate;
-    const SelectionCandidate& y = b->candidate;
-    if (x.score.theta_deg != y.score.theta_deg) return x.score.theta_deg < y.score.theta_deg;
-    if (x.score.nominal_success != y.score.nominal_success) return x.score.nominal_success;
-    if (x.motion_duration != y.motion_duration) return x.motion_duration < y.motion_duration;
-    return x.score.file < y.score.file;
+  std::sort(order.begin(), order.end(), [](const Scored* a, const Scored* b) {
+    if (a->candidate.score.theta_deg != b->candidate.score.theta_deg) {
+      return a->candidate.score.theta_deg < b->candidate.score.theta_deg;
+    }
+    return PreferredOnTies(a->candidate, b->candidate);
   });
   for (size_t begin = 0; begin < order.size();) {
     size_t end = begin;

@@ -118,11 +118,11 @@ RobustnessResult EvaluateRobustnessUntil(const SimulationModel& model,
   // evaluation ends (n until the rule holds). Replays at or past `end` are not started.
   std::mutex mutex;
   std::vector<char> finished(static_cast<size_t>(n), 0);
-  int prefix = 0, successes = 0, end = n;
-  std::atomic<int> end_now{n};
+  int prefix = 0, successes = 0;
+  std::atomic<int> end{n};  // written under `mutex`; read without it to skip replays
   RunReplays(n, options,
              [&](int i) {
-               if (i >= end_now.load()) return;
+               if (i >= end) return;
                RobustnessTrial t = RunRobustnessTrial(model, nominal, options, i);
                std::lock_guard<std::mutex> lock(mutex);
                result.trials[static_cast<size_t>(i)] = std::move(t);
@@ -132,13 +132,12 @@ RobustnessResult EvaluateRobustnessUntil(const SimulationModel& model,
                  ++prefix;
                  if (stop && stop(successes, prefix - successes)) end = prefix;
                }
-               end_now = end;
                if (progress)
                  progress(static_cast<int>(std::count(finished.begin(), finished.begin() + end, 1)),
                           end);
              },
              {});
-  result.trials.resize(static_cast<size_t>(end));
+  result.trials.resize(static_cast<size_t>(end.load()));
 
   for (const RobustnessTrial& t : result.trials) {
     result.successes += t.success();

@@ -448,14 +448,14 @@ void KinematicsSection(const std::vector<ReachabilityRow>& reachability, std::os
 void LibrarySection(const SelectionResult& selection, std::ostringstream& md) {
   md << "## Grasp library (representative selection)\n\n";
   const GraspLibrary& lib = selection.library;
-  const auto [ran, stopped] = CountSelectionReplays(lib);
+  const auto [ran, all, stopped] = CountSelectionReplays(lib);
   md << selection.logs << " logs, " << selection.unsuccessful << " unsuccessful (not ranked), "
      << lib.scores.size() << " successful demonstrations scored with "
      << (stopped > 0 ? "up to " : "") << lib.perturbations << " perturbed replays each";
   if (stopped > 0) {
     md << ": " << stopped << " of them stopped replaying once they could no longer win their "
        << "orientation (library.json's `stopped`; their scores count the replays that ran), so "
-       << ran << " of " << lib.scores.size() * lib.perturbations << " perturbed replays ran";
+       << ran << " of " << all << " perturbed replays ran";
   }
   md << ".\n\n";
   md << "| theta (deg) | successful | selected | score | 95% CI | nominal | failures |\n"
