@@ -8,8 +8,11 @@
 #include <atomic>
 #include <exception>
 #include <functional>
+#include <limits>
 #include <mutex>
+#include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 namespace graspsynth {
@@ -19,6 +22,23 @@ namespace graspsynth {
 inline int WorkerCount(int threads, int jobs) {
   const int wanted = threads > 0 ? threads : static_cast<int>(std::thread::hardware_concurrency());
   return std::clamp(wanted, 1, std::max(1, jobs));
+}
+
+/// How `threads` (0: one per hardware thread) are shared between `jobs` independent jobs that
+/// can each use worker threads of their own: `outer` jobs run at once, each on `inner` threads.
+/// Jobs come first (with as many jobs as threads or more, each job runs on one thread and no
+/// thread waits for another's job to end but at the very end); the threads left over when
+/// there are fewer jobs go to each job in equal shares.
+struct ThreadSplit {
+  int outer = 1;
+  int inner = 1;
+};
+
+/// The ThreadSplit of `threads` over `jobs` jobs (see ThreadSplit).
+inline ThreadSplit SplitThreads(int threads, int jobs) {
+  const int total = WorkerCount(threads, std::numeric_limits<int>::max());
+  const int outer = std::clamp(total, 1, std::max(1, jobs));
+  return {outer, std::max(1, total / outer)};
 }
 
 /// Calls job(i) for every i in [0, count) on WorkerCount(threads, count) threads (the calling
@@ -52,5 +72,27 @@ inline void ParallelFor(int count, int threads, const std::function<void(int)>& 
   for (std::thread& t : pool) t.join();
   if (error) std::rethrow_exception(error);
 }
+
+/// Counts work done by jobs on any worker thread for a progress callback (done, total, what),
+/// which it calls under its lock, one call at a time, with the running count.
+class ProgressCounter {
+ public:
+  using Callback = std::function<void(int done, int total, const std::string& what)>;
+
+  ProgressCounter(int total, Callback callback) : total_(total), callback_(std::move(callback)) {}
+
+  /// `count` more units of work are done (0: only says what is being worked on).
+  void Add(int count, const std::string& what) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    done_ += count;
+    if (callback_) callback_(done_, total_, what);
+  }
+
+ private:
+  std::mutex mutex_;
+  int done_ = 0;
+  const int total_;
+  const Callback callback_;
+};
 
 }  // namespace graspsynth

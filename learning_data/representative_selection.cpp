@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <utility>
 
 #include "common/errors.hpp"
+#include "common/parallel.hpp"
 #include "learning_data/demo_replay.hpp"
 #include "simulation/random.hpp"
 #include "simulation/robustness.hpp"
@@ -23,7 +25,8 @@ std::string FileName(const std::string& source) {
 struct Scored {
   const DemoLog* log = nullptr;
   SegmentedTrial segmented;
-  DemoReplay replay;  // the robot's replay of the log (RunNominal)
+  DemoReplay replay;                    // the robot's replay of the log (RunNominal)
+  std::optional<SelectionIssue> issue;  // why it could not be replayed (RunNominal)
   SelectionCandidate candidate;
 };
 
@@ -116,10 +119,10 @@ std::vector<Scored> SegmentLogs(const std::vector<DemoLog>& logs, const Selectio
   return scored;
 }
 
-// Replays demonstration `s` unperturbed (its nominal trial); `done` counts the replays of the
-// whole selection (of `total`) for `progress`.
-void RunNominal(const SimulationModel& model, const SelectionOptions& options, Scored* s, int* done,
-                int total, const SelectionProgress& progress, SelectionResult* result) {
+// Replays demonstration `s` unperturbed (its nominal trial). A demonstration the robot cannot
+// play keeps its issue in s->issue.
+void RunNominal(const SimulationModel& model, const SelectionOptions& options, Scored* s,
+                ProgressCounter* counter) {
   const DemoLog& log = *s->log;
   DemoScore& score = s->candidate.score;
   score.file = FileName(log.source);
@@ -134,22 +137,20 @@ void RunNominal(const SimulationModel& model, const SelectionOptions& options, S
     score.failures = "not replayable: " + s->replay.message;
     score.ci_low = 0.0;
     score.ci_high = 1.0;
-    result->issues.push_back({score.file, SelectionIssueKind::kNotReplayable, s->replay.message});
-    *done += options.perturbations + 1;
-    if (progress) progress(*done, total, score.file);
+    s->issue = SelectionIssue{score.file, SelectionIssueKind::kNotReplayable, s->replay.message};
+    counter->Add(options.perturbations + 1, score.file);
     return;
   }
   score.nominal_success = RunTrial(model, s->replay.trajectory, options.trial).success();
-  ++*done;
-  if (progress) progress(*done, total, score.file);
+  counter->Add(1, score.file);
 }
 
 // Scores demonstration `s` by its perturbed replays. With `rival` (a demonstration of the same
 // orientation whose replays have all run and that kTieRule prefers on every tie) the replays
 // stop once `s` has failed so often that it cannot score above the rival.
 void ScorePerturbed(const SimulationModel& model, const SelectionOptions& options,
-                    RobustnessOptions robustness, const DemoScore* rival, Scored* s, int* done,
-                    int total, const SelectionProgress& progress) {
+                    RobustnessOptions robustness, const DemoScore* rival, Scored* s,
+                    ProgressCounter* counter) {
   DemoScore& score = s->candidate.score;
   if (!s->replay.ok) return;
   const int n = options.perturbations;
@@ -158,21 +159,22 @@ void ScorePerturbed(const SimulationModel& model, const SelectionOptions& option
     const int needed = rival->successes + 1;  // ties go to the rival
     stop = [n, needed](int, int failures) { return n - failures < needed; };
   }
-  const int before = *done;
   if (rival && rival->successes >= n) {
     // the rival succeeded in every replay: nothing can win over it.
-    *done = before + n;
     score.stopped = "no replays: " + rival->file + " succeeded in all " + std::to_string(n) +
                     " of its replays and wins every tie";
-    if (progress) progress(*done, total, score.file);
+    counter->Add(n, score.file);
     return;
   }
   robustness.seed = score.seed;
+  int reported = 0;  // replays counted so far
   const RobustnessResult r =
       EvaluateRobustnessUntil(model, s->replay.trajectory, robustness, stop, [&](int k, int) {
-        if (progress) progress(before + k, total, score.file);
+        if (k <= reported) return;  // a stop leaves finished replays past it uncounted
+        counter->Add(k - reported, score.file);
+        reported = k;
       });
-  *done = before + n;
+  counter->Add(n - reported, score.file);  // those the stop skipped
   score.trials = static_cast<int>(r.trials.size());
   score.successes = r.successes;
   score.score = r.score;
@@ -187,19 +189,17 @@ void ScorePerturbed(const SimulationModel& model, const SelectionOptions& option
         << rival->file << " (" << rival->successes << " of " << n << ")";
     score.stopped = why.str();
   }
-  if (progress) progress(*done, total, score.file);
 }
 
-// Scores every demonstration of one orientation ([begin, end) of `order`, in the order in which
-// kTieRule breaks ties) and, with options.early_stop, spends replays only while a demonstration
-// can still become the representative.
+// Scores every demonstration of one orientation (`order`, in the order in which kTieRule breaks
+// ties) and, with options.early_stop, spends replays only while a demonstration can still
+// become the representative.
 void ScoreOrientation(const SimulationModel& model, const SelectionOptions& options,
                       const RobustnessOptions& robustness, const std::vector<Scored*>& order,
-                      int* done, int total, const SelectionProgress& progress) {
+                      ProgressCounter* counter) {
   const DemoScore* best = nullptr;  // the preferred one of those whose replays all ran
   for (Scored* s : order) {
-    ScorePerturbed(model, options, robustness, options.early_stop ? best : nullptr, s, done, total,
-                   progress);
+    ScorePerturbed(model, options, robustness, options.early_stop ? best : nullptr, s, counter);
     if (!s->candidate.score.stopped.empty()) continue;
     if (!best || s->candidate.score.successes > best->successes) best = &s->candidate.score;
   }
@@ -282,12 +282,15 @@ SelectionResult SelectRepresentatives(const SimulationModel& model,
   std::vector<Scored> scored = SegmentLogs(logs, options, &result);
   RobustnessOptions robustness;
   robustness.trials = options.perturbations;
-  robustness.threads = options.threads;
   robustness.perturbation = options.perturbation;
   robustness.trial = options.trial;
-  const int total = static_cast<int>(scored.size()) * (options.perturbations + 1);
-  int done = 0;
-  for (Scored& s : scored) RunNominal(model, options, &s, &done, total, progress, &result);
+  ProgressCounter counter(static_cast<int>(scored.size()) * (options.perturbations + 1), progress);
+  ParallelFor(static_cast<int>(scored.size()), options.threads, [&](int i) {
+    RunNominal(model, options, &scored[static_cast<size_t>(i)], &counter);
+  });
+  for (const Scored& s : scored) {
+    if (s.issue) result.issues.push_back(*s.issue);
+  }
   // each orientation's demonstrations in kTieRule's order of ties (a successful nominal replay,
   // the shorter motion, the file name), so that a later one needs more successes to win.
   std::vector<Scored*> order;
@@ -298,17 +301,24 @@ SelectionResult SelectRepresentatives(const SimulationModel& model,
     }
     return PreferredOnTies(a->candidate, b->candidate);
   });
-  for (size_t begin = 0; begin < order.size();) {
-    size_t end = begin;
-    while (end < order.size() &&
-           order[end]->candidate.score.theta_deg == order[begin]->candidate.score.theta_deg) {
-      ++end;
+  std::vector<std::vector<Scored*>> orientations;
+  for (Scored* s : order) {
+    if (orientations.empty() ||
+        orientations.back().front()->candidate.score.theta_deg != s->candidate.score.theta_deg) {
+      orientations.emplace_back();
     }
-    ScoreOrientation(model, options, robustness,
-                     std::vector<Scored*>(order.begin() + begin, order.begin() + end), &done, total,
-                     progress);
-    begin = end;
+    orientations.back().push_back(s);
   }
+  // orientations are independent: they run side by side, the largest first so that a small one
+  // ends the stage, each on its share of the threads (one, when there are more orientations
+  // than threads; a replay never depends on the thread that runs it).
+  std::stable_sort(orientations.begin(), orientations.end(),
+                   [](const auto& a, const auto& b) { return a.size() > b.size(); });
+  const ThreadSplit split = SplitThreads(options.threads, static_cast<int>(orientations.size()));
+  robustness.threads = split.inner;
+  ParallelFor(static_cast<int>(orientations.size()), split.outer, [&](int k) {
+    ScoreOrientation(model, options, robustness, orientations[static_cast<size_t>(k)], &counter);
+  });
 
   PickRepresentatives(options, &scored, &result);
   for (const Scored& s : scored) library.scores.push_back(s.candidate.score);

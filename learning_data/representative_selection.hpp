@@ -24,6 +24,10 @@
 /// needs strictly more successes than the best one scored in full; its replays stop at the
 /// first failure that makes that impossible. The representatives and every fully scored
 /// demonstration's figures are those of a selection that runs every replay.
+///
+/// Threads: the nominal replays run side by side, then the orientations (each one's
+/// demonstrations in turn, as the early stop needs), the largest orientation first; with fewer
+/// orientations than threads, each orientation's replays share the threads left over.
 
 #include <cstdint>
 #include <filesystem>

@@ -1,10 +1,12 @@
 #include "solver/study.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
 
 #include "common/errors.hpp"
+#include "common/parallel.hpp"
 #include "common/stopwatch.hpp"
 #include "kinematics/arm_ik.hpp"
 #include "kinematics/pose_math.hpp"
@@ -158,70 +160,77 @@ std::vector<StudyRow> SynthesisTable(const SimulationModel& model, const GraspLi
                                      const SynthesisTableOptions& options,
                                      const SynthesisTableProgress& progress) {
   const SynthesisModel synthesis(model.robot(), model.scene(), library);
-  SynthesisData data(synthesis);
-  const auto report = [&](int done, int total, const std::string& what) {
-    if (progress) progress(done, total, what);
-  };
-  std::vector<StudyRow> rows;
   // the nominal trial, the perturbed replays and the sensitivity table's replays.
   const int per_row = options.gate_perturbations + 1 +
                       2 * static_cast<int>(AllPhysicsFactors().size()) * options.sensitivity_trials;
-  const int total =
-      static_cast<int>(options.orientations.size() * options.methods.size()) * per_row;
-  int base = 0;
+  std::vector<StudyRow> rows;
+  std::vector<StudyMethod> methods;  // of each row
   for (double theta : options.orientations) {
     for (const StudyMethod& method : options.methods) {
-      StudyRow row = NewRow(theta, method, options.seed);
-      const std::string what = "theta " + Deg(theta) + " " + row.method;
-      report(base, total, what);
-      ValidatedSynthesisOptions vo;
-      vo.synthesis = method.Options();
-      vo.physics_fallback = options.physics_fallback;
-      vo.gate.perturbations = options.gate_perturbations;
-      vo.gate.min_robustness = options.min_robustness;
-      vo.gate.perturbation = options.perturbation;
-      vo.gate.sensitivity_trials = options.sensitivity_trials;
-      vo.gate.seed = row.seed;
-      vo.gate.threads = options.threads;
-      const ValidatedSynthesis v =
-          SynthesizeAndValidate(model, synthesis, theta, vo, &data,
-                                [&](int done, int) { report(base + 1 + done, total, what); });
-      const SynthesisResult& s = v.synthesis;
-      const PhysicsGateResult& gate = v.gate;
-      row.synthesis_s = v.synthesis_s;
-      row.status = s.status;
-      row.message = s.message;
-      if (v.gate_run) {
-        row.used = s.used;
-        row.fallback = s.fallback;
-        row.fallback_reason = s.fallback_reason;
-        row.refined = s.refined;
-        for (const SourceDemo& d : s.sources) row.source_thetas_deg.push_back(d.theta_deg);
-        row.gate_run = true;
-        row.gate_s = v.gate_s;
-        row.nominal_success = gate.nominal.success();
-        row.nominal_outcome = gate.nominal.outcome;
-        row.nominal_reason = gate.nominal.reason;
-        row.nominal_hold = gate.nominal.hold;
-        row.sensitivity = gate.sensitivity;
-        if (gate.robustness_run) {
-          row.trials = static_cast<int>(gate.robustness.trials.size());
-          row.successes = gate.robustness.successes;
-          row.robustness = gate.robustness.score;
-          row.ci_low = gate.robustness.ci95.lo;
-          row.ci_high = gate.robustness.ci95.hi;
-          row.failures = FailureSummary(gate.robustness);
-        }
-        row.passed = gate.passed;
-        row.gate_reason = gate.reason;
-        row.epsilon = gate.quality.epsilon;
-        row.force_closure = gate.quality.force_closure;
-      }
-      rows.push_back(row);
-      base += per_row;
-      report(base, total, what);
+      rows.push_back(NewRow(theta, method, options.seed));
+      methods.push_back(method);
     }
   }
+  ProgressCounter counter(static_cast<int>(rows.size()) * per_row, progress);
+  // rows are independent: they run side by side, each on its share of the threads (one, when
+  // there are more rows than threads), so that no thread waits for another's nominal trial or
+  // last replay but at the very end.
+  const ThreadSplit split = SplitThreads(options.threads, static_cast<int>(rows.size()));
+  ParallelFor(static_cast<int>(rows.size()), split.outer, [&](int i) {
+    StudyRow& row = rows[static_cast<size_t>(i)];
+    const double theta = row.theta_deg;
+    const std::string what = "theta " + Deg(theta) + " " + row.method;
+    counter.Add(0, what);
+    ValidatedSynthesisOptions vo;
+    vo.synthesis = methods[static_cast<size_t>(i)].Options();
+    vo.physics_fallback = options.physics_fallback;
+    vo.gate.perturbations = options.gate_perturbations;
+    vo.gate.min_robustness = options.min_robustness;
+    vo.gate.perturbation = options.perturbation;
+    vo.gate.sensitivity_trials = options.sensitivity_trials;
+    vo.gate.seed = row.seed;
+    vo.gate.threads = split.inner;
+    SynthesisData data(synthesis);
+    int counted = 0;  // of the row's per_row (a fallback's second gate counts no further)
+    const ValidatedSynthesis v =
+        SynthesizeAndValidate(model, synthesis, theta, vo, &data, [&](int done, int) {
+          const int now = std::clamp(1 + done, counted, per_row);
+          counter.Add(now - counted, what);
+          counted = now;
+        });
+    const SynthesisResult& s = v.synthesis;
+    const PhysicsGateResult& gate = v.gate;
+    row.synthesis_s = v.synthesis_s;
+    row.status = s.status;
+    row.message = s.message;
+    if (v.gate_run) {
+      row.used = s.used;
+      row.fallback = s.fallback;
+      row.fallback_reason = s.fallback_reason;
+      row.refined = s.refined;
+      for (const SourceDemo& d : s.sources) row.source_thetas_deg.push_back(d.theta_deg);
+      row.gate_run = true;
+      row.gate_s = v.gate_s;
+      row.nominal_success = gate.nominal.success();
+      row.nominal_outcome = gate.nominal.outcome;
+      row.nominal_reason = gate.nominal.reason;
+      row.nominal_hold = gate.nominal.hold;
+      row.sensitivity = gate.sensitivity;
+      if (gate.robustness_run) {
+        row.trials = static_cast<int>(gate.robustness.trials.size());
+        row.successes = gate.robustness.successes;
+        row.robustness = gate.robustness.score;
+        row.ci_low = gate.robustness.ci95.lo;
+        row.ci_high = gate.robustness.ci95.hi;
+        row.failures = FailureSummary(gate.robustness);
+      }
+      row.passed = gate.passed;
+      row.gate_reason = gate.reason;
+      row.epsilon = gate.quality.epsilon;
+      row.force_closure = gate.quality.force_closure;
+    }
+    counter.Add(per_row - counted, what);
+  });
   return rows;
 }
 

@@ -492,7 +492,9 @@ std::string StudyReportMarkdown(const StudyResult& result) {
   WristLineSection(result.analysis, md);
   KinematicsSection(result.reachability, md);
   LibrarySection(result.selection, md);
-  md << "## Synthesis and physics validation\n\n";
+  md << "## Synthesis and physics validation\n\n"
+     << "The rows run side by side, each on its share of the threads: a row's synthesis and "
+        "gate times are its own wall times, and together they exceed the stage's.\n\n";
   md << SynthesisTableMarkdown(result.rows);
   md << "## Hold quality and sensitivity to the physics\n\n"
      << "The nominal trial's hold (tilt of the pan at the end of the hold and its largest, its "
