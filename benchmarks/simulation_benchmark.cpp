@@ -4,6 +4,8 @@
 //
 //   build/benchmarks/simulation_benchmark                      the timings
 //   build/benchmarks/simulation_benchmark --agreement=100      fast vs full on 100 replays
+//   build/benchmarks/simulation_benchmark --agreement=500 --noise=1
+//                                                  the same at the default noise only
 //
 // Figures in benchmarks/README.md, "Simulation".
 
@@ -14,6 +16,7 @@
 #include <cstring>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "motion/joint_trajectory.hpp"
 #include "simulation/robustness.hpp"
@@ -111,12 +114,13 @@ int Agreement(int trials, double noise_scale) {
   const RobustnessResult fast = EvaluateRobustness(Model(), Example(), o);
   o.trial.fidelity = Fidelity::kFull;
   const RobustnessResult full = EvaluateRobustness(Model(), Example(), o);
-  int agree = 0;
+  int agree = 0, agree_success = 0;
   std::map<std::string, int> outcomes;
   for (int i = 0; i < trials; ++i) {
     const RobustnessTrial& a = fast.trials[i];
     const RobustnessTrial& b = full.trials[i];
     agree += a.outcome == b.outcome;
+    agree_success += a.success() == b.success();
     ++outcomes[std::string(ToString(a.outcome))];
     if (a.outcome != b.outcome) {
       std::printf("  trial %d differs: fast %s (%s) | full %s (%s)\n", i,
@@ -125,10 +129,10 @@ int Agreement(int trials, double noise_scale) {
     }
   }
   std::printf(
-      "noise x%.1f: %d trials, outcomes agree on %d; fast %d successes (score %.3f, "
-      "95%% [%.3f, %.3f]), full %d successes;",
-      noise_scale, trials, agree, fast.successes, fast.score, fast.ci95.lo, fast.ci95.hi,
-      full.successes);
+      "noise x%.1f: %d trials, outcomes agree on %d, success or failure on %d; fast %d "
+      "successes (score %.3f, 95%% [%.3f, %.3f]), full %d successes;",
+      noise_scale, trials, agree, agree_success, fast.successes, fast.score, fast.ci95.lo,
+      fast.ci95.hi, full.successes);
   for (const auto& [name, n] : outcomes) std::printf(" %s %d", name.c_str(), n);
   std::printf(
       "\n  fast %.1f s wall, %.1fx real time per core; full %.1f s wall, %.1fx per core; "
@@ -143,13 +147,16 @@ int Agreement(int trials, double noise_scale) {
 }  // namespace graspsynth::bench
 
 int main(int argc, char** argv) {
+  int trials = 0;
+  std::vector<double> scales = {1.0, 2.0};  // of the default noise
   for (int i = 1; i < argc; ++i) {
-    if (std::strncmp(argv[i], "--agreement=", 12) == 0) {
-      const int trials = std::atoi(argv[i] + 12);
-      int differ = 0;
-      for (double scale : {1.0, 2.0}) differ += graspsynth::bench::Agreement(trials, scale);
-      return differ == 0 ? 0 : 1;
-    }
+    if (std::strncmp(argv[i], "--agreement=", 12) == 0) trials = std::atoi(argv[i] + 12);
+    if (std::strncmp(argv[i], "--noise=", 8) == 0) scales = {std::atof(argv[i] + 8)};
+  }
+  if (trials > 0) {
+    int differ = 0;
+    for (double scale : scales) differ += graspsynth::bench::Agreement(trials, scale);
+    return differ == 0 ? 0 : 1;
   }
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
