@@ -32,6 +32,7 @@ struct AnalyzeOptions {
   std::string plot;
   std::string table;
   std::string scene;
+  std::string object;          // --object: a shipped object's name or an object file
   std::string region;          // empty: the scene's grasp region shape
   double region_radius = 0.0;  // 0: the scene's
   double region_height = 0.0;  // 0: the scene's
@@ -103,8 +104,7 @@ void PrintSummary(const DemonstrationAnalysis& a, const PaperComparisonOptions& 
 
 // Runs the analysis of `o.directory`; the exit status (1 when some files were rejected).
 int RunAnalyze(const AnalyzeOptions& o) {
-  const SceneModel scene =
-      LoadSceneModel(o.scene.empty() ? DefaultSceneModelPath() : fs::path(o.scene));
+  const SceneModel scene = LoadScene(o.scene, o.object);
   const AnalysisOptions options = MakeAnalysisOptions(o, scene);
   const PaperComparisonOptions comparison;
 
@@ -160,8 +160,9 @@ void AddAnalyzeCommand(CLI::App& app, int* exit_code) {
                   "Also write the comparison with the paper's Table I (markdown) to this file; "
                   "rows beyond 5 mm / 2 deg are marked");
   cmd->add_option("--scene", opts->scene,
-                  "Scene description (graspsynth-scene/1) for the default grasp region and the "
+                  "Scene description (graspsynth-scene/2) for the default grasp region and the "
                   "object outline; default: models/scene.json");
+  AddObjectFlag(cmd, &opts->object);
   cmd->add_option("--region", opts->region, "Grasp region shape (default: the scene's, cylinder)")
       ->check(CLI::IsMember({"cylinder", "sphere"}));
   cmd->add_option("--region-radius", opts->region_radius,

@@ -87,6 +87,18 @@ void AddAllReplaysFlag(CLI::App* app, bool* all_replays) {
                 "replays)");
 }
 
+void AddObjectFlag(CLI::App* app, std::string* object) {
+  app->add_option("--object", *object,
+                  "The object to grasp in place of the scene's: a shipped object's name (a file "
+                  "models/objects/NAME.json) or an object description file "
+                  "(graspsynth-object/1); default: the object the scene names");
+}
+
+SceneModel LoadScene(const std::string& scene, const std::string& object) {
+  return LoadSceneModel(scene.empty() ? DefaultSceneModelPath() : std::filesystem::path(scene),
+                        object);
+}
+
 void CheckPhysicsFlags(const PhysicsPerturbationOptions& options) {
   // each flag's fields alone on the defaults, so that the error names the flag.
   using O = PhysicsPerturbationOptions;

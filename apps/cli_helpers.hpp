@@ -2,14 +2,15 @@
 
 /// @file
 /// Pieces shared by the commands: a list of orientations from the command line
-/// (ParseOrientationList, common/orientation_list.hpp), the physics perturbation's flags, and a
-/// progress bar on stderr.
+/// (ParseOrientationList, common/orientation_list.hpp), the scene and object flags, the physics
+/// perturbation's flags, and a progress bar on stderr.
 
 #include <mutex>
 #include <string>
 #include <vector>
 
 #include "common/orientation_list.hpp"
+#include "kinematics/scene_model.hpp"
 #include "simulation/physics_perturbation.hpp"
 
 namespace CLI {
@@ -27,6 +28,14 @@ void AddPhysicsPerturbationFlags(CLI::App* app, PhysicsPerturbationOptions* opti
 
 /// Throws InputError naming the flag when the physics perturbation's flags are not valid.
 void CheckPhysicsFlags(const PhysicsPerturbationOptions& options);
+
+/// Adds --object NAME|FILE to a command that takes --scene: the object to use in place of the
+/// scene's (a shipped object's name, models/objects/NAME.json, or an object file).
+void AddObjectFlag(CLI::App* app, std::string* object);
+
+/// The scene of --scene (models/scene.json when empty) with the object of --object (the
+/// scene's own when empty). Throws InputError naming the file at fault.
+SceneModel LoadScene(const std::string& scene, const std::string& object);
 
 /// A check for an option that must be a number > 0: "must be > 0 (got VALUE)" (CLI11's
 /// PositiveNumber prints the whole double range instead).

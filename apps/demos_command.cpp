@@ -33,6 +33,7 @@ struct DemosOptions {
   std::string config;
   std::string robot;
   std::string scene;
+  std::string object;  // --object: a shipped object's name or an object file
   uint64_t seed = 0;
   bool seed_given = false;
   int trials = 0;  // 0: the config's
@@ -56,7 +57,7 @@ OperatorOptions LoadOperator(const DemosOptions& o) {
 std::unique_ptr<SimulationModel> LoadModel(const DemosOptions& o) {
   RobotModel robot =
       LoadRobotModel(o.robot.empty() ? DefaultRobotDescriptionPath() : fs::path(o.robot));
-  SceneModel scene = LoadSceneModel(o.scene.empty() ? DefaultSceneModelPath() : fs::path(o.scene));
+  SceneModel scene = LoadScene(o.scene, o.object);
   return std::make_unique<SimulationModel>(std::move(robot), std::move(scene));
 }
 
@@ -205,6 +206,7 @@ void AddCommonOptions(CLI::App* cmd, DemosOptions* o) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--robot", o->robot, "Robot description (URDF)");
   cmd->add_option("--scene", o->scene, "Scene description (JSON)");
+  AddObjectFlag(cmd, &o->object);
   cmd->add_flag("--quiet", o->quiet, "No progress bar");
 }
 

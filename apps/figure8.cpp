@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -20,6 +21,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
+#include "kinematics/triangle_mesh.hpp"
 
 extern char** environ;
 
@@ -110,36 +112,74 @@ int PointType(size_t index) {
   return kTypes[index % (sizeof(kTypes) / sizeof(kTypes[0]))];
 }
 
-// The object's outline (object.dat): the body circle, and the handle at the first, middle and
-// last orientation of `rows`; `labels` gets the gnuplot labels of the handles.
-std::string ObjectData(const ObjectModel& pan, const std::vector<OrientationStats>& rows,
-                       std::string* labels) {
-  std::string object;
-  for (int i = 0; i <= 72; ++i) {
-    const double a = 2.0 * M_PI * i / 72.0;
-    object += Num(pan.body_radius * std::cos(a)) + " " + Num(pan.body_radius * std::sin(a)) + "\n";
-  }
-  std::vector<double> handle_thetas;
-  if (rows.empty()) {
-    handle_thetas = {20.0, 60.0, 100.0};
+// The corners of a part's footprint on the table plane, in O: a box's rectangle, the
+// bounding rectangle of a mesh, and none for round parts (circles, drawn once).
+std::vector<Eigen::Vector2d> Footprint(const CollisionShape& s) {
+  Eigen::Vector2d half, mid = s.X_LG.translation().head<2>();
+  if (s.kind == CollisionShape::Kind::kBox) {
+    half = 0.5 * s.size.head<2>();
+  } else if (s.kind == CollisionShape::Kind::kMesh) {
+    const Eigen::Vector3d lo = s.mesh->BoxMin(), hi = s.mesh->BoxMax();
+    half = 0.5 * (hi - lo).head<2>();
+    mid += s.X_LG.linear().topLeftCorner<2, 2>() * (0.5 * (lo + hi)).head<2>();
   } else {
-    handle_thetas = {rows.front().theta_deg};
-    if (rows.size() > 2) handle_thetas.push_back(rows[rows.size() / 2].theta_deg);
-    if (rows.size() > 1) handle_thetas.push_back(rows.back().theta_deg);
+    return {};
   }
-  for (double theta_deg : handle_thetas) {
-    const double phi = theta_deg * kDeg + pan.handle_offset;
+  const Eigen::Vector2d ax = s.X_LG.linear().col(0).head<2>();
+  const Eigen::Vector2d ay = s.X_LG.linear().col(1).head<2>();
+  return {mid - half.x() * ax + half.y() * ay, mid + half.x() * ax + half.y() * ay,
+          mid + half.x() * ax - half.y() * ay, mid - half.x() * ax - half.y() * ay,
+          mid - half.x() * ax + half.y() * ay};
+}
+
+// The object's outline (object.dat), seen from above: its round parts (cylinders, spheres,
+// capsules) as circles, once, and its other parts' footprints at the first, middle and last
+// orientation of `rows`; `labels` gets the gnuplot labels of those orientations. Parts that
+// touch only the table (supports) are left out.
+std::string ObjectData(const SceneModel& scene, const std::vector<OrientationStats>& rows,
+                       std::string* labels) {
+  const ObjectModel& o = scene.object;
+  std::string object;
+  double reach = 0.0;  // farthest footprint corner along the object's x axis
+  for (const ObjectPart& part : o.parts) {
+    if (part.touches == PartContact::kTable) continue;
+    const CollisionShape& s = part.shape;
+    for (const Eigen::Vector2d& c : Footprint(s)) reach = std::max(reach, c.x());
+    if (s.kind == CollisionShape::Kind::kBox || s.kind == CollisionShape::Kind::kMesh) continue;
+    const Eigen::Vector2d centre = s.X_LG.translation().head<2>();
+    reach = std::max(reach, centre.x() + s.size[0]);
+    if (!object.empty()) object += "\n";
+    for (int i = 0; i <= 72; ++i) {
+      const double a = 2.0 * M_PI * i / 72.0;
+      object += Num(centre.x() + s.size[0] * std::cos(a)) + " " +
+                Num(centre.y() + s.size[0] * std::sin(a)) + "\n";
+    }
+  }
+  std::vector<double> thetas;
+  if (rows.empty()) {
+    thetas = {20.0, 60.0, 100.0};
+  } else {
+    thetas = {rows.front().theta_deg};
+    if (rows.size() > 2) thetas.push_back(rows[rows.size() / 2].theta_deg);
+    if (rows.size() > 1) thetas.push_back(rows.back().theta_deg);
+  }
+  const std::string what = o.handle ? "handle" : o.name;
+  for (double theta_deg : thetas) {
+    const double phi = theta_deg * kDeg + scene.object_yaw_offset;
     const Eigen::Vector2d u(std::cos(phi), std::sin(phi));
     const Eigen::Vector2d v(-u.y(), u.x());
-    const double h = 0.5 * pan.handle_width;
-    const Eigen::Vector2d corners[] = {
-        pan.handle_start_radius * u + h * v, pan.handle_end_radius * u + h * v,
-        pan.handle_end_radius * u - h * v, pan.handle_start_radius * u - h * v,
-        pan.handle_start_radius * u + h * v};
-    object += "\n";
-    for (const Eigen::Vector2d& c : corners) object += Num(c.x()) + " " + Num(c.y()) + "\n";
-    const Eigen::Vector2d tip = (pan.handle_end_radius + 0.12) * u;
-    *labels += "set label 'handle θ = " + Num(theta_deg) + "' at " + Num(tip.x()) + "," +
+    for (const ObjectPart& part : o.parts) {
+      if (part.touches == PartContact::kTable) continue;
+      const std::vector<Eigen::Vector2d> corners = Footprint(part.shape);
+      if (corners.empty()) continue;
+      object += "\n";
+      for (const Eigen::Vector2d& c : corners) {
+        const Eigen::Vector2d w = c.x() * u + c.y() * v;
+        object += Num(w.x()) + " " + Num(w.y()) + "\n";
+      }
+    }
+    const Eigen::Vector2d tip = (reach + 0.12) * u;
+    *labels += "set label '" + what + " θ = " + Num(theta_deg) + "' at " + Num(tip.x()) + "," +
                Num(tip.y()) + " font ',9' textcolor rgb '#606060' center\n";
   }
   return object;
@@ -219,7 +259,7 @@ void DrawFigure8(const DemonstrationAnalysis& analysis, const SceneModel& scene,
   const std::vector<OrientationStats>& rows = analysis.table.orientations;
 
   std::string labels;
-  WriteText(dir / "object.dat", ObjectData(scene.object, rows, &labels));
+  WriteText(dir / "object.dat", ObjectData(scene, rows, &labels));
 
   // the grasp region boundary (its horizontal section).
   std::string region;

@@ -41,6 +41,7 @@ struct GeneralizeOptions {
   std::string out;
   std::string robot;
   std::string scene;
+  std::string object;  // --object: a shipped object's name or an object file
   PhysicsPerturbationOptions physics = SynthesisTableOptions{}.perturbation.physics;
   bool no_physics_fallback = false;
 };
@@ -81,7 +82,7 @@ int RunGeneralize(const GeneralizeOptions& o) {
   const GraspLibrary library = ReadGraspLibrary(library_path);
   const SimulationModel model(
       LoadRobotModel(o.robot.empty() ? DefaultRobotDescriptionPath() : fs::path(o.robot)),
-      LoadSceneModel(o.scene.empty() ? DefaultSceneModelPath() : fs::path(o.scene)));
+      LoadScene(o.scene, o.object));
 
   SynthesisTableOptions table;
   table.methods = ParseMethods(o.methods);
@@ -196,6 +197,7 @@ void AddGeneralizeCommand(CLI::App& app, int* exit_code) {
   AddPhysicsPerturbationFlags(cmd, &opts->physics);
   cmd->add_option("--robot", opts->robot, "Robot description (URDF); default: the shipped one");
   cmd->add_option("--scene", opts->scene, "Scene description (JSON); default: models/scene.json");
+  AddObjectFlag(cmd, &opts->object);
   cmd->callback([opts, exit_code] { *exit_code = RunGeneralize(*opts); });
 }
 

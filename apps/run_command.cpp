@@ -45,6 +45,7 @@ struct RunOptions {
   std::string gnuplot = "gnuplot";
   std::string robot;
   std::string scene;
+  std::string object;  // --object: a shipped object's name or an object file
   PhysicsPerturbationOptions physics = StudyOptions{}.perturbation.physics;
   bool no_physics_fallback = false;
   bool all_replays = false;
@@ -142,8 +143,7 @@ void PrintStudySummary(const StudyResult& result, const fs::path& out) {
 }
 
 int RunStudyCommand(const RunOptions& o) {
-  const SceneModel scene =
-      LoadSceneModel(o.scene.empty() ? DefaultSceneModelPath() : fs::path(o.scene));
+  const SceneModel scene = LoadScene(o.scene, o.object);
   const SimulationModel model(
       LoadRobotModel(o.robot.empty() ? DefaultRobotDescriptionPath() : fs::path(o.robot)), scene);
   const StudyOptions options = StudyOptionsOf(o, scene);
@@ -228,6 +228,7 @@ void AddRunCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str();
   run->add_option("--robot", opts->robot, "Robot description (URDF); default: the shipped one");
   run->add_option("--scene", opts->scene, "Scene description (JSON); default: models/scene.json");
+  AddObjectFlag(run, &opts->object);
   AddPhysicsFallbackFlag(run, &opts->no_physics_fallback);
   AddAllReplaysFlag(run, &opts->all_replays);
   AddPhysicsPerturbationFlags(run, &opts->physics);

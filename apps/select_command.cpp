@@ -29,13 +29,13 @@ struct SelectCommandOptions {
   int threads = SelectionOptions{}.threads;
   std::string robot;
   std::string scene;
+  std::string object;  // --object: a shipped object's name or an object file
   PhysicsPerturbationOptions physics = SelectionOptions{}.perturbation.physics;
   bool all_replays = false;
 };
 
 int RunSelect(const SelectCommandOptions& o) {
-  const SceneModel scene =
-      LoadSceneModel(o.scene.empty() ? DefaultSceneModelPath() : std::filesystem::path(o.scene));
+  const SceneModel scene = LoadScene(o.scene, o.object);
   const SimulationModel model(LoadRobotModel(o.robot.empty() ? DefaultRobotDescriptionPath()
                                                              : std::filesystem::path(o.robot)),
                               scene);
@@ -164,6 +164,7 @@ void AddSelectCommand(CLI::App& app, int* exit_code) {
   AddPhysicsPerturbationFlags(select, &opts->physics);
   select->add_option("--scene", opts->scene,
                      "Scene description (JSON); default: models/scene.json");
+  AddObjectFlag(select, &opts->object);
   select->callback([opts, exit_code] { *exit_code = RunSelect(*opts); });
 }
 

@@ -50,6 +50,7 @@ struct SimulateOptions {
   double finger_noise_deg = PerturbationOptions{}.finger_sigma / kDeg;
   std::string robot;
   std::string scene;
+  std::string object;  // --object: a shipped object's name or an object file
   PhysicsPerturbationOptions physics = PerturbationOptions{}.physics;
 };
 
@@ -60,6 +61,7 @@ struct ScriptedOptions {
   std::string out;
   std::string robot;
   std::string scene;
+  std::string object;  // --object: a shipped object's name or an object file
 };
 
 // Rounds for the report: the figures are physical, 1e-9 is far below their accuracy, and
@@ -73,10 +75,11 @@ json PoseJson(const Eigen::Isometry3d& X) {
           {"quaternion", {Round(q.w()), Round(q.x()), Round(q.y()), Round(q.z())}}};
 }
 
-SimulationModel LoadModel(const std::string& robot, const std::string& scene) {
+SimulationModel LoadModel(const std::string& robot, const std::string& scene,
+                          const std::string& object) {
   return SimulationModel(
       LoadRobotModel(robot.empty() ? DefaultRobotDescriptionPath() : std::filesystem::path(robot)),
-      LoadSceneModel(scene.empty() ? DefaultSceneModelPath() : std::filesystem::path(scene)));
+      LoadScene(scene, object));
 }
 
 std::string StatesCsv(const std::vector<TrialState>& states) {
@@ -189,7 +192,7 @@ int RunSimulate(const SimulateOptions& o) {
   if (o.fidelity != "fast" && o.fidelity != "full" && o.fidelity != "fast-wrist") {
     throw InputError("--fidelity must be 'fast', 'fast-wrist' or 'full', not '" + o.fidelity + "'");
   }
-  const SimulationModel model = LoadModel(o.robot, o.scene);
+  const SimulationModel model = LoadModel(o.robot, o.scene, o.object);
   // a graspsynth-trajectory/1 file, or the "trajectory" member of a graspsynth-grasp/1 file.
   const JointTrajectory trajectory =
       LoadTrajectoryOrGraspFile(o.trajectory, model.robot().arm, model.robot().hand);
@@ -233,7 +236,7 @@ int RunSimulate(const SimulateOptions& o) {
 }
 
 int RunScripted(const ScriptedOptions& o) {
-  const SimulationModel model = LoadModel(o.robot, o.scene);
+  const SimulationModel model = LoadModel(o.robot, o.scene, o.object);
   ScriptedGraspOptions g;
   g.theta_deg = o.theta;
   g.grasp_radius = o.grasp_radius;
@@ -322,6 +325,7 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str();
   sim->add_option("--robot", opts->robot, "Robot description (URDF); default: the shipped one");
   sim->add_option("--scene", opts->scene, "Scene description (JSON); default: models/scene.json");
+  AddObjectFlag(sim, &opts->object);
   AddPhysicsPerturbationFlags(sim, &opts->physics);
   sim->callback([opts, exit_code] { *exit_code = RunSimulate(*opts); });
 
@@ -342,6 +346,7 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
   scripted->add_option("--out", sopts->out, "Trajectory file to write")->required();
   scripted->add_option("--robot", sopts->robot, "Robot description (URDF)");
   scripted->add_option("--scene", sopts->scene, "Scene description (JSON)");
+  AddObjectFlag(scripted, &sopts->object);
   scripted->callback([sopts, exit_code] { *exit_code = RunScripted(*sopts); });
 }
 

@@ -40,6 +40,7 @@ struct SynthesizeOptions {
   std::string out;
   std::string robot;
   std::string scene;
+  std::string object;  // --object: a shipped object's name or an object file
   PhysicsPerturbationOptions physics = PhysicsGateOptions{}.perturbation.physics;
 };
 
@@ -71,10 +72,9 @@ int RunSynthesize(const SynthesizeOptions& o) {
   const std::filesystem::path library_path =
       o.library.empty() ? DefaultGraspLibraryPath() : std::filesystem::path(o.library);
   GraspLibrary library = ReadGraspLibrary(library_path);
-  const SimulationModel sim(
-      LoadRobotModel(o.robot.empty() ? DefaultRobotDescriptionPath()
-                                     : std::filesystem::path(o.robot)),
-      LoadSceneModel(o.scene.empty() ? DefaultSceneModelPath() : std::filesystem::path(o.scene)));
+  const SimulationModel sim(LoadRobotModel(o.robot.empty() ? DefaultRobotDescriptionPath()
+                                                           : std::filesystem::path(o.robot)),
+                            LoadScene(o.scene, o.object));
   SynthesisModel model(sim.robot(), sim.scene(), std::move(library));
 
   SynthesisOptions so;
@@ -188,6 +188,7 @@ void AddSynthesizeCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--out", opts->out, "Output grasp file")->required();
   cmd->add_option("--robot", opts->robot, "Robot description (default: the shipped URDF)");
   cmd->add_option("--scene", opts->scene, "Scene description (default: models/scene.json)");
+  AddObjectFlag(cmd, &opts->object);
   AddPhysicsFallbackFlag(cmd, &opts->no_physics_fallback);
   AddPhysicsPerturbationFlags(cmd, &opts->physics);
   cmd->callback([opts, exit_code] { *exit_code = RunSynthesize(*opts); });

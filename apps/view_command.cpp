@@ -15,6 +15,7 @@
 #include <string>
 #include <thread>
 
+#include "apps/cli_helpers.hpp"
 #include "apps/stop_signals.hpp"
 #include "common/errors.hpp"
 #include "common/stopwatch.hpp"
@@ -34,6 +35,7 @@ struct ViewOptions {
   std::string log;
   std::string robot;
   std::string scene;
+  std::string object;  // --object: a shipped object's name or an object file
   std::string address = "127.0.0.1";
   int port = 8765;
   std::string camera;
@@ -129,8 +131,7 @@ int RunView(const ViewOptions& opts) {
   }
   const RobotModel robot = LoadRobotModel(opts.robot.empty() ? DefaultRobotDescriptionPath()
                                                              : std::filesystem::path(opts.robot));
-  const SceneModel scene = LoadSceneModel(opts.scene.empty() ? DefaultSceneModelPath()
-                                                             : std::filesystem::path(opts.scene));
+  const SceneModel scene = LoadScene(opts.scene, opts.object);
   const teleop::ViewerCamera camera =
       opts.camera.empty()
           ? teleop::DefaultViewerCamera(scene)
@@ -189,7 +190,8 @@ void AddViewCommand(CLI::App& app, int* exit_code) {
                    "Robot description (URDF); default: models/pa10_gifu3.urdf of this checkout "
                    "or $GRASPSYNTH_DATA_DIR");
   view->add_option("--scene", opts->scene,
-                   "Scene description (graspsynth-scene/1); default: models/scene.json");
+                   "Scene description (graspsynth-scene/2); default: models/scene.json");
+  AddObjectFlag(view, &opts->object);
   view->add_option("--address", opts->address,
                    "IPv4 address to serve on; 0.0.0.0 opens the viewer to the network")
       ->capture_default_str();

@@ -52,22 +52,22 @@ std::optional<Vector7d> SolveWrist(const Eigen::Isometry3d& X_WH) {
 const std::vector<RobotState>& ApproachStates() {
   static const std::vector<RobotState> states = [] {
     std::mt19937_64 rng(20261125);
-    const ObjectModel& o = Scene().object;
-    const double phi = kTheta + o.handle_offset;
+    const HandleAxis& o = Scene().object.Handle("the collision benchmark");
+    const double phi = kTheta + Scene().object_yaw_offset;
     const Eigen::Isometry3d X_WO = Scene().ObjectPose(kTheta);
     Eigen::Matrix3d R_WH;
     const Eigen::Vector3d x(0, 0, -1), z(-std::sin(phi), std::cos(phi), 0);
     R_WH << x, z.cross(x), z;
     std::vector<RobotState> out;
     while (static_cast<int>(out.size()) < kStateCount) {
-      const double r = std::uniform_real_distribution<double>(o.handle_start_radius + 0.05,
-                                                              o.handle_end_radius - 0.03)(rng);
+      const double r =
+          std::uniform_real_distribution<double>(o.start_radius + 0.05, o.end_radius - 0.03)(rng);
       const double h = std::uniform_real_distribution<double>(0.08, 0.25)(rng);
       Eigen::Isometry3d X_WH = Eigen::Isometry3d::Identity();
       X_WH.linear() = R_WH;
       X_WH.translation() =
           X_WO.translation() + r * Eigen::Vector3d(std::cos(phi), std::sin(phi), 0);
-      X_WH.translation().z() = Scene().table.top_z + o.handle_axis_height + h;
+      X_WH.translation().z() = Scene().table.top_z + o.axis_height + h;
       const std::optional<Vector7d> q = SolveWrist(X_WH);
       if (q) out.push_back({*q, RandomHand(&rng)});
     }

@@ -1,10 +1,12 @@
 #include "collision/collision_scene.hpp"
 
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
+#include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/sphere.h>
+#include <fcl/math/bv/OBBRSS.h>
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/collision_object.h>
 #include <fcl/narrowphase/distance.h>
@@ -18,6 +20,7 @@
 #include <utility>
 
 #include "common/demand.hpp"
+#include "kinematics/triangle_mesh.hpp"
 
 namespace graspsynth {
 
@@ -105,6 +108,19 @@ std::shared_ptr<fcl::CollisionGeometryd> MakeGeometry(const CollisionShape& s) {
       return std::make_shared<fcl::Cylinderd>(s.size[0], s.size[1]);
     case CollisionShape::Kind::kSphere:
       return std::make_shared<fcl::Sphered>(s.size[0]);
+    case CollisionShape::Kind::kMesh: {
+      auto bvh = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
+      std::vector<fcl::Triangle> triangles;
+      triangles.reserve(s.mesh->triangles.size());
+      for (const std::array<int, 3>& t : s.mesh->triangles) {
+        triangles.emplace_back(static_cast<size_t>(t[0]), static_cast<size_t>(t[1]),
+                               static_cast<size_t>(t[2]));
+      }
+      bvh->beginModel();
+      bvh->addSubModel(s.mesh->vertices, triangles);
+      bvh->endModel();
+      return bvh;
+    }
   }
   GS_DEMAND(false, "unknown collision shape kind");
   return nullptr;
@@ -139,6 +155,13 @@ fcl::AABBd TightBox(const CollisionShape& s, const Eigen::Isometry3d& X_WG) {
     case CollisionShape::Kind::kBox:
       e = R.cwiseAbs() * (0.5 * s.size);
       break;
+    case CollisionShape::Kind::kMesh: {
+      // the mesh's own bounding box, turned: not tight, but it holds the mesh.
+      const Eigen::Vector3d lo = s.mesh->BoxMin(), hi = s.mesh->BoxMax();
+      const Eigen::Vector3d mid = c + R * (0.5 * (lo + hi));
+      e = R.cwiseAbs() * (0.5 * (hi - lo));
+      return fcl::AABBd(Eigen::Vector3d(mid - e), Eigen::Vector3d(mid + e));
+    }
   }
   return fcl::AABBd(Eigen::Vector3d(c - e), Eigen::Vector3d(c + e));
 }
@@ -154,6 +177,11 @@ double BoundingRadius(const CollisionShape& s) {
       return std::hypot(0.5 * s.size[1], s.size[0]);
     case CollisionShape::Kind::kBox:
       return 0.5 * s.size.norm();
+    case CollisionShape::Kind::kMesh: {
+      double r = 0.0;
+      for (const Eigen::Vector3d& v : s.mesh->vertices) r = std::max(r, v.norm());
+      return r;
+    }
   }
   return 0.0;
 }
@@ -177,6 +205,9 @@ double PointShapeDistance(const CollisionShape& s, const Eigen::Isometry3d& X_WG
     }
     case CollisionShape::Kind::kBox:
       return (p.cwiseAbs() - 0.5 * s.size).cwiseMax(0.0).norm();
+    case CollisionShape::Kind::kMesh:
+      // to the mesh's bounding box: a lower bound of the distance to the mesh.
+      return (p - s.mesh->BoxMax()).cwiseMax(s.mesh->BoxMin() - p).cwiseMax(0.0).norm();
   }
   return 0.0;
 }
@@ -499,15 +530,16 @@ CollisionModel::CollisionModel(const RobotModel& robot, const SceneModel& scene,
     }
   }
 
-  // the pan in its frame O (origin at the body centre, x along the handle).
+  // the object in its frame O: every part the robot can touch (a part that touches only the
+  // table supports the object in the simulation and lies inside it, as the pan's foot does).
   const ObjectModel& o = scene.object;
   const int object_body = new_body(-1);
-  const CollisionShape pan_body = o.BodyShape();
-  const CollisionShape handle = o.HandleShape();
-  m->shapes.push_back({o.name + "/body", o.name, CollisionGroup::kObject, object_body, pan_body});
-  m->sources.push_back({FrameKind::kObject, 0, 0});
-  m->shapes.push_back({o.name + "/handle", o.name, CollisionGroup::kObject, object_body, handle});
-  m->sources.push_back({FrameKind::kObject, 0, 0});
+  for (const ObjectPart& part : o.parts) {
+    if (part.touches == PartContact::kTable) continue;
+    m->shapes.push_back(
+        {o.name + "/" + part.name, o.name, CollisionGroup::kObject, object_body, part.shape});
+    m->sources.push_back({FrameKind::kObject, 0, 0});
+  }
 
   // the table: a box whose top face is z = top_z.
   const TableModel& t = scene.table;

@@ -6,6 +6,7 @@
 /// from the robot description (kinematics/robot_description.hpp), and never changes.
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -13,15 +14,19 @@
 
 namespace graspsynth {
 
-/// Primitive collision (and visual) geometry attached to a link.
+struct TriangleMesh;
+
+/// Collision (and visual) geometry attached to a link: a primitive or a triangle mesh.
 struct CollisionShape {
-  enum class Kind { kBox, kCapsule, kCylinder, kSphere };
+  enum class Kind { kBox, kCapsule, kCylinder, kSphere, kMesh };
   Kind kind = Kind::kBox;
   /// Box: full side lengths (x, y, z). Capsule and cylinder: (radius, length of the straight
-  /// part along the shape's z axis, 0). Sphere: (radius, 0, 0). Metres.
+  /// part along the shape's z axis, 0). Sphere: (radius, 0, 0). Mesh: unused. Metres.
   Eigen::Vector3d size = Eigen::Vector3d::Zero();
-  /// Pose of the shape (centred at its origin) in its link frame.
+  /// Pose of the shape (centred at its origin; a mesh's own frame) in its link frame.
   Eigen::Isometry3d X_LG = Eigen::Isometry3d::Identity();
+  /// Mesh: its closed triangle mesh (kinematics/triangle_mesh.hpp), shared between copies.
+  std::shared_ptr<const TriangleMesh> mesh;
 };
 
 /// Mass properties of a link, in its link frame.
@@ -43,10 +48,10 @@ struct RevoluteJoint {
   std::string name;
   Eigen::Isometry3d X_PJ = Eigen::Isometry3d::Identity();  ///< joint frame in parent link, q = 0
   Eigen::Vector3d axis_J = Eigen::Vector3d::UnitZ();       ///< unit axis in the joint frame
-  double lower = 0.0;                                       ///< rad
-  double upper = 0.0;                                       ///< rad
-  double max_velocity = 0.0;                                ///< rad/s
-  double max_effort = 0.0;                                  ///< N m
+  double lower = 0.0;                                      ///< rad
+  double upper = 0.0;                                      ///< rad
+  double max_velocity = 0.0;                               ///< rad/s
+  double max_effort = 0.0;                                 ///< N m
 };
 
 /// The four lengths of an SRS arm with the standard DH table of reference/robot.md 1.3.

@@ -10,7 +10,7 @@
 namespace graspsynth {
 Vector7d DefaultRestConfiguration(const RobotModel& robot, const SceneModel& scene,
                                   const Eigen::Matrix3d& R_WH) {
-  const Eigen::Vector2d toward = scene.object.centre_xy.normalized();
+  const Eigen::Vector2d toward = scene.object_centre_xy.normalized();
   const Eigen::Matrix3d R = R_WH * Eigen::AngleAxisd(30.0 * kDeg, Eigen::Vector3d::UnitY());
   const Eigen::Vector3d p(0.60 * toward.x(), 0.60 * toward.y(), scene.table.top_z + 0.30);
   Eigen::Isometry3d X_WH = Eigen::Isometry3d::Identity();

@@ -1,5 +1,6 @@
 #include "kinematics/scene_model.hpp"
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -11,36 +12,86 @@
 namespace graspsynth {
 namespace {
 
-constexpr std::string_view kFormat = "graspsynth-scene/1";
+constexpr std::string_view kFormat = "graspsynth-scene/2";
+constexpr std::string_view kFormatV1 = "graspsynth-scene/1";
+
+// The inline pan of graspsynth-scene/1.
+ObjectModel ParseLegacyPan(const JsonReader& obj) {
+  LegacyPanParameters p;
+  p.body_radius = obj.NumberIn("body_radius", 1e-3, 1.0);
+  p.body_height = obj.NumberIn("body_height", 1e-3, 1.0);
+  p.handle_start_radius = obj.NumberIn("handle_start_radius", 0.0, 2.0);
+  p.handle_end_radius = obj.NumberIn("handle_end_radius", 1e-3, 2.0);
+  p.handle_width = obj.NumberIn("handle_width", 1e-3, 0.5);
+  p.handle_thickness = obj.NumberIn("handle_thickness", 1e-3, 0.5);
+  p.handle_axis_height = obj.NumberIn("handle_axis_height", 0.0, 1.0);
+  p.body_mass = obj.NumberIn("body_mass", 1e-3, 100.0);
+  p.handle_mass = obj.NumberIn("handle_mass", 1e-3, 100.0);
+  p.friction = obj.NumberIn("friction", 0.0, 10.0);
+  if (p.handle_end_radius <= p.handle_start_radius) {
+    obj.Field("handle_end_radius").Fail("a radius above handle_start_radius");
+  }
+  if (p.handle_axis_height < 0.5 * p.handle_thickness) {
+    obj.Field("handle_axis_height")
+        .Fail("at least half the handle_thickness (the handle would be in the table)");
+  }
+  return LegacyPanObject(obj.String("name"), p, obj.source());
+}
 
 }  // namespace
 
-CollisionShape ObjectModel::BodyShape() const {
-  CollisionShape body;
-  body.kind = CollisionShape::Kind::kCylinder;
-  body.size << body_radius, body_height, 0.0;
-  return body;
-}
-
-CollisionShape ObjectModel::HandleShape() const {
-  CollisionShape handle;
-  handle.kind = CollisionShape::Kind::kBox;
-  handle.size << handle_end_radius - handle_start_radius, handle_width, handle_thickness;
-  handle.X_LG.translation() << 0.5 * (handle_start_radius + handle_end_radius), 0.0,
-      handle_axis_height - rest_height();
-  return handle;
+ObjectModel LegacyPanObject(const std::string& name, const LegacyPanParameters& p,
+                            const std::string& source) {
+  ObjectModel o;
+  o.name = name;
+  o.source = source;
+  o.friction = p.friction;
+  o.rest_height = 0.5 * p.body_height;
+  ObjectPart body;
+  body.name = "body";
+  body.shape.kind = CollisionShape::Kind::kCylinder;
+  body.shape.size << p.body_radius, p.body_height, 0.0;
+  body.mass = p.body_mass;
+  body.friction = p.friction;
+  body.touches = PartContact::kRobot;
+  ObjectPart handle;
+  handle.name = "handle";
+  handle.shape.kind = CollisionShape::Kind::kBox;
+  handle.shape.size << p.handle_end_radius - p.handle_start_radius, p.handle_width,
+      p.handle_thickness;
+  handle.shape.X_LG.translation() << 0.5 * (p.handle_start_radius + p.handle_end_radius), 0.0,
+      p.handle_axis_height - o.rest_height;
+  handle.mass = p.handle_mass;
+  handle.friction = p.friction;
+  ObjectPart foot;
+  foot.name = "foot";
+  const double side = std::sqrt(2.0) * p.body_radius;
+  foot.shape.size = Eigen::Vector3d(side, side, p.body_height);
+  foot.friction = p.friction;
+  foot.touches = PartContact::kTable;
+  ObjectPart foot_turned = foot;
+  foot_turned.name = "foot_turned";
+  foot_turned.shape.X_LG.linear() =
+      Eigen::AngleAxisd(M_PI / 4, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  o.parts = {body, handle, foot, foot_turned};
+  o.handle = HandleAxis{p.handle_start_radius, p.handle_end_radius, p.handle_axis_height};
+  return o;
 }
 
 Eigen::Isometry3d SceneModel::ObjectPose(double theta) const {
   Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
-  X_WO.translation() << object.centre_xy, table.top_z + object.rest_height();
-  X_WO.rotate(Eigen::AngleAxisd(theta + object.handle_offset, Eigen::Vector3d::UnitZ()));
+  X_WO.translation() << object_centre_xy, table.top_z + object.rest_height;
+  X_WO.rotate(Eigen::AngleAxisd(theta + object_yaw_offset, Eigen::Vector3d::UnitZ()));
   return X_WO;
 }
 
-SceneModel ParseSceneModel(std::string_view json_text, const std::string& source) {
+SceneModel ParseSceneModel(std::string_view json_text, const std::string& source,
+                           const std::filesystem::path& base_dir,
+                           const std::string& object_override) {
   const JsonReader top = JsonReader::Parse(json_text, source).AsObject();
-  top.ExpectString("format", kFormat);
+  const JsonReader format = top.Field("format");
+  const bool v1 = format.IsString() && format.AsString() == kFormatV1;
+  if (!v1) top.ExpectString("format", kFormat);
   SceneModel scene;
   scene.source = source;
 
@@ -50,28 +101,24 @@ SceneModel ParseSceneModel(std::string_view json_text, const std::string& source
   scene.table.size = table.Numbers("size", 3, 1e-3, 10.0);
   scene.table.friction = table.NumberIn("friction", 0.0, 10.0);
 
-  const JsonReader obj = top.Object("object");
-  ObjectModel& o = scene.object;
-  o.name = obj.String("name");
-  o.centre_xy = obj.Numbers("centre", 2, -5.0, 5.0);
-  o.handle_offset = obj.NumberIn("handle_offset_deg", -360.0, 360.0) * M_PI / 180.0;
-  o.body_radius = obj.NumberIn("body_radius", 1e-3, 1.0);
-  o.body_height = obj.NumberIn("body_height", 1e-3, 1.0);
-  o.handle_start_radius = obj.NumberIn("handle_start_radius", 0.0, 2.0);
-  o.handle_end_radius = obj.NumberIn("handle_end_radius", 1e-3, 2.0);
-  o.handle_width = obj.NumberIn("handle_width", 1e-3, 0.5);
-  o.handle_thickness = obj.NumberIn("handle_thickness", 1e-3, 0.5);
-  o.handle_axis_height = obj.NumberIn("handle_axis_height", 0.0, 1.0);
-  o.body_mass = obj.NumberIn("body_mass", 1e-3, 100.0);
-  o.handle_mass = obj.NumberIn("handle_mass", 1e-3, 100.0);
-  o.friction = obj.NumberIn("friction", 0.0, 10.0);
-  if (o.handle_end_radius <= o.handle_start_radius) {
-    obj.Field("handle_end_radius").Fail("a radius above handle_start_radius");
+  if (v1) {
+    const JsonReader obj = top.Object("object");
+    scene.object_centre_xy = obj.Numbers("centre", 2, -5.0, 5.0);
+    scene.object_yaw_offset = obj.NumberIn("handle_offset_deg", -360.0, 360.0) * M_PI / 180.0;
+    if (object_override.empty()) scene.object = ParseLegacyPan(obj);
+  } else {
+    scene.object_centre_xy = top.Numbers("object_centre", 2, -5.0, 5.0);
+    scene.object_yaw_offset = top.NumberIn("object_yaw_offset_deg", -360.0, 360.0) * M_PI / 180.0;
+    const std::string file = top.String("object");
+    if (object_override.empty()) {
+      try {
+        scene.object = LoadObjectModel(base_dir / file);
+      } catch (const InputError& e) {
+        throw InputError(source + ": field 'object': " + e.what());
+      }
+    }
   }
-  if (o.handle_axis_height < 0.5 * o.handle_thickness) {
-    obj.Field("handle_axis_height")
-        .Fail("at least half the handle_thickness (the handle would be in the table)");
-  }
+  if (!object_override.empty()) scene.object = LoadObjectModel(ResolveObjectPath(object_override));
 
   const JsonReader region = top.Object("grasp_region");
   const JsonReader shape = region.Field("shape");
@@ -88,12 +135,12 @@ SceneModel ParseSceneModel(std::string_view json_text, const std::string& source
   return scene;
 }
 
-SceneModel LoadSceneModel(const std::filesystem::path& path) {
+SceneModel LoadSceneModel(const std::filesystem::path& path, const std::string& object_override) {
   std::ifstream in(path);
   if (!in) throw InputError("cannot open scene description '" + path.string() + "'");
   std::stringstream text;
   text << in.rdbuf();
-  return ParseSceneModel(text.str(), path.string());
+  return ParseSceneModel(text.str(), path.string(), path.parent_path(), object_override);
 }
 
 std::filesystem::path DefaultSceneModelPath() { return DataDirectory() / "models" / "scene.json"; }

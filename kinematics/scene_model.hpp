@@ -1,19 +1,21 @@
 #pragma once
 
 /// @file
-/// The immutable description of the robot's surroundings: the table, the pan-like object of
-/// DESIGN.md and the grasp workspace region, loaded from models/scene.json.
+/// The immutable description of the robot's surroundings: the table, the object (a file of its
+/// own, kinematics/object_model.hpp: the pan of DESIGN.md by default) and where it stands, and
+/// the grasp workspace region, loaded from models/scene.json.
 ///
-/// The object frame O has its origin at the object centre (the centre of the pan's body), z up
-/// and x along the handle. At orientation theta the object stands at its fixed centre, turned
-/// about the vertical so that the handle points along phi(theta) = theta + handle_offset in the
-/// world.
+/// The object frame O has its origin at the object centre, z up (for the pan: x along the
+/// handle). At orientation theta the object stands at the scene's object centre, resting on the
+/// table, turned about the vertical so that its x axis points along
+/// phi(theta) = theta + object_yaw_offset in the world.
 
 #include <filesystem>
 #include <string>
 #include <string_view>
 
 #include "kinematics/arm_model.hpp"
+#include "kinematics/object_model.hpp"
 #include "kinematics/types.hpp"
 
 namespace graspsynth {
@@ -24,34 +26,6 @@ struct TableModel {
   Eigen::Vector2d centre_xy = Eigen::Vector2d::Zero();  ///< m, world
   Eigen::Vector3d size = Eigen::Vector3d::Zero();       ///< full side lengths, m
   double friction = 0.8;                                ///< Coulomb coefficient with the object
-};
-
-/// The pan: a short cylinder (the body) with a radial bar handle (a box).
-struct ObjectModel {
-  std::string name;
-  Eigen::Vector2d centre_xy = Eigen::Vector2d::Zero();  ///< object centre in the table plane, m
-  double handle_offset = 0.0;        ///< rad; the handle points along theta + handle_offset
-  double body_radius = 0.0;          ///< m
-  double body_height = 0.0;          ///< m
-  double handle_start_radius = 0.0;  ///< m from the centre
-  double handle_end_radius = 0.0;    ///< m from the centre
-  double handle_width = 0.0;         ///< horizontal side of the bar's cross-section, m
-  double handle_thickness = 0.0;     ///< vertical side of the bar's cross-section, m
-  double handle_axis_height = 0.0;   ///< height of the bar's axis above the table, m
-  double body_mass = 0.0;            ///< kg
-  double handle_mass = 0.0;          ///< kg
-  double friction = 1.0;             ///< Coulomb coefficient with the fingers
-
-  /// Height of the object centre above the table when the pan rests on it.
-  double rest_height() const { return 0.5 * body_height; }
-
-  /// The pan's body in the object frame O: a cylinder of body_radius and body_height centred
-  /// at O, axis z. Every module that builds the pan (collision, simulation, viewer) uses it.
-  CollisionShape BodyShape() const;
-  /// The handle in O: a box from handle_start_radius to handle_end_radius along x,
-  /// handle_width across and handle_thickness high, its axis handle_axis_height above the
-  /// table.
-  CollisionShape HandleShape() const;
 };
 
 /// Where the grasping motion starts: the pre-grasp pose is the first wrist sample inside it.
@@ -74,6 +48,10 @@ struct SceneModel {
   std::string source;
   TableModel table;
   ObjectModel object;
+  /// Where the object stands: its centre in the table plane, world, m.
+  Eigen::Vector2d object_centre_xy = Eigen::Vector2d::Zero();
+  /// The object's yaw at orientation 0: its x axis points along theta + object_yaw_offset, rad.
+  double object_yaw_offset = 0.0;
   GraspRegionModel grasp_region;
 
   /// Pose X_WO of the object frame at rest on the table at orientation theta (radians).
@@ -84,13 +62,35 @@ struct SceneModel {
   }
 };
 
-/// Parses a scene description (format graspsynth-scene/1). `source` names it in messages.
+/// Parses a scene description. Format graspsynth-scene/2 names its object file
+/// (`"object": "objects/pan.json"`, relative to `base_dir`, the scene file's folder);
+/// graspsynth-scene/1, the format before objects were files, describes the pan inline and is
+/// still read. A non-empty `object_override` (a shipped object's name or a file,
+/// ResolveObjectPath) replaces the scene's object. `source` names the scene in messages.
 /// Throws InputError naming the source, the field and the value for anything missing, of the
-/// wrong type, non-finite or out of range.
-SceneModel ParseSceneModel(std::string_view json_text, const std::string& source);
+/// wrong type, non-finite or out of range, or the object file and its fault.
+SceneModel ParseSceneModel(std::string_view json_text, const std::string& source,
+                           const std::filesystem::path& base_dir = {},
+                           const std::string& object_override = {});
 
-/// Reads and parses a scene file. Throws InputError naming the file.
-SceneModel LoadSceneModel(const std::filesystem::path& path);
+/// Reads and parses a scene file, with its object (or `object_override`'s). Throws InputError
+/// naming the file.
+SceneModel LoadSceneModel(const std::filesystem::path& path,
+                          const std::string& object_override = {});
+
+/// The pan of graspsynth-scene/1, from the parameters that format gives inline: a cylinder
+/// body of body_radius and body_height (touching only the robot) standing on two boxes
+/// inscribed in it (touching only the table), and a box handle along x from
+/// handle_start_radius to handle_end_radius, its axis handle_axis_height above the table.
+/// models/objects/pan.json describes the same object.
+struct LegacyPanParameters {
+  double body_radius = 0.0, body_height = 0.0;
+  double handle_start_radius = 0.0, handle_end_radius = 0.0;
+  double handle_width = 0.0, handle_thickness = 0.0, handle_axis_height = 0.0;
+  double body_mass = 0.0, handle_mass = 0.0, friction = 1.0;
+};
+ObjectModel LegacyPanObject(const std::string& name, const LegacyPanParameters& p,
+                            const std::string& source);
 
 /// models/scene.json under $GRASPSYNTH_DATA_DIR if set, else in this source checkout.
 std::filesystem::path DefaultSceneModelPath();

@@ -57,10 +57,11 @@ PlannedTrial PlanTrial(const SceneModel& scene, const HandModel& hand, const Ope
   const double k = sloppy ? o.sloppy_scale : 1.0;
   const GraspStyle& style = strategy.grasp ? *strategy.grasp : o.grasp;
   const Eigen::Isometry3d X_WO = scene.ObjectPose(plan.theta_deg * kDeg);
-  const Eigen::Vector2d c = scene.object.centre_xy;
+  const Eigen::Vector2d c = scene.object_centre_xy;
   const Eigen::Vector3d h = X_WO.linear().col(0);
   const Eigen::Vector3d n = Eigen::Vector3d::UnitZ().cross(h);
-  const double handle_z = scene.table.top_z + scene.object.handle_axis_height;
+  const double handle_z =
+      scene.table.top_z + scene.object.Handle("the synthetic operator's grip").axis_height;
 
   // the wrist at the grasp (its height follows from the hook below).
   Eigen::Vector3d w =

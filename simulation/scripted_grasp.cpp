@@ -112,8 +112,8 @@ Eigen::Isometry3d GraspWristPose(const SceneModel& scene, const ScriptedGraspOpt
   R.col(2) = z_H;
   R.col(1) = z_H.cross(-up);
   const ObjectModel& o = scene.object;
-  const Eigen::Vector3d p_bar =
-      X_WO.translation() + options.grasp_radius * h + (o.handle_axis_height - o.rest_height()) * up;
+  const Eigen::Vector3d p_bar = X_WO.translation() + options.grasp_radius * h +
+                                (o.Handle("the scripted grasp").axis_height - o.rest_height) * up;
   return Pose(R, p_bar - R * options.bar_in_hand);
 }
 

@@ -16,6 +16,7 @@
 #include "common/demand.hpp"
 #include "common/errors.hpp"
 #include "kinematics/pose_math.hpp"
+#include "kinematics/triangle_mesh.hpp"
 
 #ifndef dDOUBLE
 #error "graspsynth needs ODE built in double precision (Debian's libode-dev is)"
@@ -34,8 +35,9 @@ double Seconds(Clock::time_point a, Clock::time_point b) {
 enum class Role { kTable, kObject, kArm, kPalm, kFinger, kProxy };
 
 // Collision categories: only the pairs listed in simulation_data.hpp are ever tested. The
-// object is made of the pan's cylinder (touched by the robot only), the handle (robot and
-// table) and the pan's foot (table only; see Build).
+// object's parts touch the robot and the table (kCatHandle: the pan's handle), the robot only
+// (kCatPan: the pan's cylinder) or the table only (kCatFoot: the pan's foot), as the object
+// description says (PartContact).
 constexpr unsigned long kCatTable = 1, kCatHandle = 2, kCatArm = 4, kCatPalm = 8, kCatFinger = 16,
                         kCatPan = 32, kCatFoot = 64;
 constexpr unsigned long kCatRobot = kCatArm | kCatPalm | kCatFinger;
@@ -45,8 +47,9 @@ constexpr double kStopMargin = 2.0 * M_PI / 180.0;
 
 struct GeomInfo {
   Role role = Role::kTable;
-  std::string link;     // name of the link the geometry belongs to
-  int hand_index = -1;  // HandJointVector index of a finger link, 20 for the palm and mount
+  std::string link;       // name of the link the geometry belongs to
+  int hand_index = -1;    // HandJointVector index of a finger link, 20 for the palm and mount
+  double friction = 0.0;  // an object part's Coulomb coefficient with the fingers
 };
 
 // A rigid body made of one or more links, with its frame at the centre of mass and axes of
@@ -194,6 +197,13 @@ struct SimulationData::Impl {
   dJointGroupID contact_group = nullptr;
   dThreadingImplementationID threading = nullptr;
   std::deque<GeomInfo> geom_info;  // stable addresses for dGeomSetData
+  // ODE trimesh data of mesh geoms, with the arrays it points into (stable addresses).
+  struct MeshBuffers {
+    std::vector<double> vertices;
+    std::vector<dTriIndex> indices;
+    dTriMeshDataID data = nullptr;
+  };
+  std::deque<MeshBuffers> mesh_data;
   int geom_count = 0;
 
   // arm bodies: arm[0..5] = links 1..6 (S1..W1), arm[6] = the wrist (W2 + mount + palm).
@@ -253,6 +263,7 @@ struct SimulationData::Impl {
     if (contact_group) dJointGroupDestroy(contact_group);
     if (proxy_space) dSpaceDestroy(proxy_space);
     if (space) dSpaceDestroy(space);
+    for (MeshBuffers& b : mesh_data) dGeomTriMeshDataDestroy(b.data);
     if (world) dWorldDestroy(world);
   }
 
@@ -267,6 +278,28 @@ struct SimulationData::Impl {
     int n = 0;
     for (int i = 0; i < kArmDof; ++i) n += joint_dynamic(i);
     return n;
+  }
+
+  // A triangle mesh (an ODE trimesh over the shape's vertices, kept in mesh_data); with
+  // `inflate` > 0 (a proximity proxy), the mesh's bounding box grown by `inflate` instead,
+  // which the caller places at the box's centre.
+  dGeomID AddMeshGeom(dSpaceID into, const CollisionShape& shape, double inflate) {
+    const TriangleMesh& m = *shape.mesh;
+    if (inflate > 0.0) {
+      const Eigen::Vector3d size = m.BoxMax() - m.BoxMin() + Eigen::Vector3d::Constant(2 * inflate);
+      return dCreateBox(into, size.x(), size.y(), size.z());
+    }
+    MeshBuffers& b = mesh_data.emplace_back();
+    for (const Eigen::Vector3d& v : m.vertices)
+      b.vertices.insert(b.vertices.end(), {v.x(), v.y(), v.z()});
+    for (const std::array<int, 3>& t : m.triangles) {
+      for (int k : t) b.indices.push_back(static_cast<dTriIndex>(k));
+    }
+    b.data = dGeomTriMeshDataCreate();
+    dGeomTriMeshDataBuildDouble(b.data, b.vertices.data(), 3 * sizeof(double),
+                                static_cast<int>(m.vertices.size()), b.indices.data(),
+                                static_cast<int>(b.indices.size()), 3 * sizeof(dTriIndex));
+    return dCreateTriMesh(into, b.data, nullptr, nullptr, nullptr);
   }
 
   dGeomID AddGeom(dSpaceID into, const CollisionShape& shape, Role role, const std::string& link,
@@ -285,6 +318,9 @@ struct SimulationData::Impl {
         break;
       case CollisionShape::Kind::kSphere:
         g = dCreateSphere(into, s.x() + inflate);
+        break;
+      case CollisionShape::Kind::kMesh:
+        g = AddMeshGeom(into, shape, inflate);
         break;
     }
     geom_info.push_back({role, link});
@@ -426,7 +462,9 @@ struct SimulationData::Impl {
     }
   }
 
-  // the object: pan body (cylinder) and handle (box), frame at its centre of mass.
+  // the object: its parts on one body whose frame is at the centre of mass. Each part gets
+  // the collision category of what it touches (PartContact), and a proximity proxy unless it
+  // touches only the table.
   void AddObject() {
     const ObjectModel& o = model->scene().object;
     const ObjectInertia& oi = model->object_inertia();
@@ -434,31 +472,28 @@ struct SimulationData::Impl {
     const PhysicsVariation& pv = options.physics;
     object.p_LC = oi.p_OC + pv.object_com_offset;
     SetMass(object.body, oi.mass * pv.object_mass, oi.I_C * pv.object_mass);
-    const CollisionShape pan = o.BodyShape();
-    const CollisionShape handle = o.HandleShape();
-    // ODE's cylinder-box contact rocks (3-4 contacts that jump around the rim; measured: the
-    // pan tilted 0.8 deg and crept 3 mm in 10 s). The pan therefore stands on a "foot" of two
-    // boxes inscribed in its cylinder, turned 45 deg to each other (an eight-pointed star whose
-    // points lie on the rim), which is what touches the table; the cylinder itself meets only
-    // the robot.
-    CollisionShape foot;
-    const double side = std::sqrt(2.0) * o.body_radius;
-    foot.size = Eigen::Vector3d(side, side, o.body_height);
-    CollisionShape foot2 = foot;
-    foot2.X_LG.linear() = Eigen::AngleAxisd(M_PI / 4, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-    const std::pair<const CollisionShape*, unsigned long> parts[] = {
-        {&pan, kCatPan}, {&handle, kCatHandle}, {&foot, kCatFoot}, {&foot2, kCatFoot}};
-    for (const auto& [shape, category] : parts) {
+    for (const ObjectPart& part : o.parts) {
+      const unsigned long category = part.touches == PartContact::kTable   ? kCatFoot
+                                     : part.touches == PartContact::kRobot ? kCatPan
+                                                                           : kCatHandle;
+      const CollisionShape& shape = part.shape;
       for (bool proxy : {false, true}) {
         if (proxy && category == kCatFoot) continue;
         dGeomID g =
-            proxy ? AddGeom(proxy_space, *shape, Role::kProxy, o.name, options.proximity_margin)
-                  : AddGeom(space, *shape, Role::kObject, o.name, 0.0, category);
+            proxy ? AddGeom(proxy_space, shape, Role::kProxy, o.name, options.proximity_margin)
+                  : AddGeom(space, shape, Role::kObject, o.name, 0.0, category);
+        geom_info.back().friction = part.friction;
         dGeomSetBody(g, object.body);
-        const Eigen::Vector3d off = shape->X_LG.translation() - object.p_LC;
+        // a mesh's proxy box stands at the centre of the mesh's bounding box.
+        const Eigen::Vector3d centre =
+            proxy && shape.kind == CollisionShape::Kind::kMesh
+                ? Eigen::Vector3d(shape.X_LG *
+                                  (0.5 * (shape.mesh->BoxMin() + shape.mesh->BoxMax())))
+                : Eigen::Vector3d(shape.X_LG.translation());
+        const Eigen::Vector3d off = centre - object.p_LC;
         dGeomSetOffsetPosition(g, off.x(), off.y(), off.z());
         dMatrix3 R;
-        ToOde(shape->X_LG.linear(), R);
+        ToOde(shape.X_LG.linear(), R);
         dGeomSetOffsetRotation(g, R);
       }
     }
@@ -670,12 +705,12 @@ struct SimulationData::Impl {
     } else if (ra == Role::kObject && (rb == Role::kPalm || rb == Role::kFinger)) {
       report.object_hand += n;
       report.hand_links_on_object |= 1ul << ib->hand_index;
-      mu = model->scene().object.friction * options.physics.object_hand_friction;
+      mu = ia->friction * options.physics.object_hand_friction;
       // geom a is the object: ODE's normal points into body 1, the object.
       for (int i = 0; i < n; ++i) {
         hand_object.push_back({Eigen::Vector3d(cg[i].pos[0], cg[i].pos[1], cg[i].pos[2]),
                                Eigen::Vector3d(cg[i].normal[0], cg[i].normal[1], cg[i].normal[2]),
-                               cg[i].depth, ib->hand_index});
+                               cg[i].depth, ib->hand_index, Eigen::Vector3d::Zero(), ia->friction});
       }
     } else {
       return;

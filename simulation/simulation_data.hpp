@@ -102,6 +102,8 @@ struct HandObjectContact {
   /// Force this contact put on the object in the step that followed the pass (world, N); zero
   /// after a detection-only pass (StepKinematically).
   Eigen::Vector3d f_W = Eigen::Vector3d::Zero();
+  /// Coulomb coefficient of the object part touched, as modelled (before any PhysicsVariation).
+  double friction = 1.0;
 };
 
 /// Size of the world (the figures a benchmark reports).

@@ -21,37 +21,6 @@ bool Check(bool ok, const std::string& what, double value, std::string* why) {
 bool Positive(double x) { return std::isfinite(x) && x > 0.0; }
 bool NonNegative(double x) { return std::isfinite(x) && x >= 0.0; }
 
-// Inertia of a solid cylinder (axis z) and a solid box about their centres.
-Eigen::Matrix3d CylinderInertia(double m, double r, double h) {
-  const double ixx = m * (3.0 * r * r + h * h) / 12.0;
-  return Eigen::Vector3d(ixx, ixx, 0.5 * m * r * r).asDiagonal();
-}
-
-Eigen::Matrix3d BoxInertia(double m, const Eigen::Vector3d& s) {
-  return Eigen::Vector3d(m * (s.y() * s.y() + s.z() * s.z()) / 12.0,
-                         m * (s.x() * s.x() + s.z() * s.z()) / 12.0,
-                         m * (s.x() * s.x() + s.y() * s.y()) / 12.0)
-      .asDiagonal();
-}
-
-// Parallel-axis term of a point mass m at offset d.
-Eigen::Matrix3d Shift(double m, const Eigen::Vector3d& d) {
-  return m * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
-}
-
-ObjectInertia ComputeObjectInertia(const ObjectModel& o) {
-  const CollisionShape handle = o.HandleShape();
-  const Eigen::Vector3d p_body = Eigen::Vector3d::Zero();
-  const Eigen::Vector3d p_handle = handle.X_LG.translation();
-  ObjectInertia out;
-  out.mass = o.body_mass + o.handle_mass;
-  out.p_OC = (o.body_mass * p_body + o.handle_mass * p_handle) / out.mass;
-  out.I_C = CylinderInertia(o.body_mass, o.body_radius, o.body_height) +
-            Shift(o.body_mass, p_body - out.p_OC) + BoxInertia(o.handle_mass, handle.size) +
-            Shift(o.handle_mass, p_handle - out.p_OC);
-  return out;
-}
-
 }  // namespace
 
 bool PhysicsVariation::IsValid(std::string* why) const {
@@ -94,7 +63,7 @@ SimulationModel::SimulationModel(RobotModel robot, SceneModel scene, SimulationO
     : robot_(std::move(robot)), scene_(std::move(scene)), options_(options) {
   std::string why;
   if (!options_.IsValid(&why)) throw InputError("invalid simulation option: " + why);
-  object_inertia_ = ComputeObjectInertia(scene_.object);
+  object_inertia_ = scene_.object.Inertia();
 }
 
 SimulationModel LoadDefaultSimulationModel(const SimulationOptions& options) {

@@ -64,13 +64,6 @@ struct PhysicsVariation {
   bool operator==(const PhysicsVariation&) const = default;
 };
 
-/// Mass properties of the object, derived from the scene (uniform density per part).
-struct ObjectInertia {
-  double mass = 0.0;                               ///< kg
-  Eigen::Vector3d p_OC = Eigen::Vector3d::Zero();  ///< centre of mass in the object frame O, m
-  Eigen::Matrix3d I_C = Eigen::Matrix3d::Zero();   ///< about the centre of mass, O axes, kg m^2
-};
-
 /// Robot + scene + physics parameters. Immutable once built.
 class SimulationModel {
  public:
@@ -80,7 +73,7 @@ class SimulationModel {
   const RobotModel& robot() const { return robot_; }
   const SceneModel& scene() const { return scene_; }
   const SimulationOptions& options() const { return options_; }
-  /// The pan's mass properties: a solid cylinder body plus a solid bar handle.
+  /// The object's mass properties (ObjectModel::Inertia: its parts at uniform density).
   const ObjectInertia& object_inertia() const { return object_inertia_; }
 
  private:

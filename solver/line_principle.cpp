@@ -138,9 +138,10 @@ SideKnot KnotOf(const SceneModel& scene, const GraspingMotion& motion,
   // hook of the synthetic operator alike, whatever the hand's yaw; the point nearest the
   // wrist when the hand lies (nearly) along the handle. In H.
   const ObjectModel& o = scene.object;
+  const HandleAxis& handle = o.Handle("the line principle");
   const Eigen::Vector3d h = X_WO.linear().col(0);
   const Eigen::Vector3d a0 =
-      X_WO.translation() + (o.handle_axis_height - o.rest_height()) * Eigen::Vector3d::UnitZ();
+      X_WO.translation() + (handle.axis_height - o.rest_height) * Eigen::Vector3d::UnitZ();
   const Eigen::Vector2d u = R_G.col(2).head<2>().normalized();
   const Eigen::Vector2d d = (a0 - g.p_WH).head<2>();
   auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
@@ -148,7 +149,7 @@ SideKnot KnotOf(const SceneModel& scene, const GraspingMotion& motion,
   };
   const double sine = cross(u, h.head<2>());
   const double crossing = std::abs(sine) > 0.1 ? -cross(u, d) / sine : (g.p_WH - a0).dot(h);
-  const double along = std::clamp(crossing, o.handle_start_radius, o.handle_end_radius);
+  const double along = std::clamp(crossing, handle.start_radius, handle.end_radius);
   *handle_in_hand += weight * (R_G.transpose() * (a0 + along * h - g.p_WH));
   // the approach relative to the grasp.
   const GraspingMotion r = Resample(motion, n);

@@ -45,8 +45,7 @@ PhysicsGateResult RunPhysicsGate(const SimulationModel& model, const JointTrajec
       X_WO = data.object_pose();
     }
   });
-  const double mu = model.scene().object.friction;
-  for (const HandObjectContact& c : last) r.contacts.push_back({c.p_WC, c.n_W, mu});
+  for (const HandObjectContact& c : last) r.contacts.push_back({c.p_WC, c.n_W, c.friction});
   r.quality = EvaluateGraspQuality(r.contacts, X_WO * model.object_inertia().p_OC, options.quality);
 
   std::ostringstream s;

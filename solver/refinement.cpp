@@ -71,10 +71,11 @@ CheckedStates ChooseStates(const GraspingMotion& m, const RefinementOptions& o) 
 // Distance of p_W from the handle's axis (clamped to the bar) of object `o` at pose X_WO.
 double HandleAxisDistance(const ObjectModel& o, const Eigen::Isometry3d& X_WO,
                           const Eigen::Vector3d& p_W) {
+  const HandleAxis& handle = o.Handle("the refinement");
   const Eigen::Vector3d h = X_WO.linear().col(0);
   const Eigen::Vector3d a0 =
-      X_WO.translation() + (o.handle_axis_height - o.rest_height()) * Eigen::Vector3d::UnitZ();
-  const double along = std::clamp((p_W - a0).dot(h), o.handle_start_radius, o.handle_end_radius);
+      X_WO.translation() + (handle.axis_height - o.rest_height) * Eigen::Vector3d::UnitZ();
+  const double along = std::clamp((p_W - a0).dot(h), handle.start_radius, handle.end_radius);
   return (a0 + along * h - p_W).norm();
 }
 

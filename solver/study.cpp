@@ -38,7 +38,7 @@ Eigen::Isometry3d GraspWristPose(const SceneModel& scene, const PaperTableRow& r
   R.col(1) = R.col(2).cross(R.col(0));
   Eigen::Isometry3d X_WH = Eigen::Isometry3d::Identity();
   X_WH.linear() = R;
-  X_WH.translation() << scene.object.centre_xy + p_OW, scene.table.top_z + kWristHeight;
+  X_WH.translation() << scene.object_centre_xy + p_OW, scene.table.top_z + kWristHeight;
   return X_WH;
 }
 

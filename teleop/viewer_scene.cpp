@@ -8,6 +8,7 @@
 #include "common/text_input.hpp"
 #include "kinematics/hand_model.hpp"
 #include "kinematics/pose_math.hpp"
+#include "kinematics/triangle_mesh.hpp"
 
 namespace graspsynth::teleop {
 namespace {
@@ -38,6 +39,17 @@ json ShapeJson(const CollisionShape& s) {
     case CollisionShape::Kind::kSphere:
       j = {{"kind", "sphere"}, {"radius", s.size.x()}};
       break;
+    case CollisionShape::Kind::kMesh: {
+      json vertices = json::array(), triangles = json::array();
+      for (const Eigen::Vector3d& v : s.mesh->vertices) {
+        vertices.insert(vertices.end(), {v.x(), v.y(), v.z()});
+      }
+      for (const std::array<int, 3>& t : s.mesh->triangles) {
+        triangles.insert(triangles.end(), {t[0], t[1], t[2]});
+      }
+      j = {{"kind", "mesh"}, {"vertices", vertices}, {"triangles", triangles}};
+      break;
+    }
   }
   j["pose"] = PoseJson(s.X_LG);
   return j;
@@ -80,7 +92,7 @@ void AppendPose(const Eigen::Isometry3d& X, std::string* out) {
 }  // namespace
 
 ViewerCamera DefaultViewerCamera(const SceneModel& scene) {
-  const Eigen::Vector2d centre = scene.object.centre_xy;
+  const Eigen::Vector2d centre = scene.object_centre_xy;
   const Eigen::Vector2d toward =
       centre.norm() > 1e-9 ? Eigen::Vector2d(centre.normalized()) : Eigen::Vector2d::UnitX();
   // to the right of the base-to-object line, swung 35 deg toward the object's side.
@@ -132,8 +144,9 @@ std::vector<ViewerBody> ViewerRobotBodies(const RobotModel& robot) {
 
 ViewerBody ViewerObjectBody(const ObjectModel& o) {
   ViewerBody body{o.name, "object", {}};
-  body.shapes.push_back(o.BodyShape());
-  body.shapes.push_back(o.HandleShape());
+  for (const ObjectPart& part : o.parts) {
+    if (part.touches != PartContact::kTable) body.shapes.push_back(part.shape);
+  }
   return body;
 }
 

@@ -16,11 +16,17 @@ function showStatus(text, error = false) {
   statusBox.classList.toggle('error', error);
 }
 
-// a three.js geometry for one primitive; three's cylinders and capsules run along y, ours
-// along z.
+// a three.js geometry for one primitive or mesh; three's cylinders and capsules run along y,
+// ours along z.
 function makeGeometry(shape) {
   let geometry;
   switch (shape.kind) {
+    case 'mesh':
+      geometry = new THREE.BufferGeometry();
+      geometry.setAttribute('position', new THREE.Float32BufferAttribute(shape.vertices, 3));
+      geometry.setIndex(shape.triangles);
+      geometry.computeVertexNormals();
+      return geometry;
     case 'box':
       return new THREE.BoxGeometry(shape.size[0], shape.size[1], shape.size[2]);
     case 'sphere':

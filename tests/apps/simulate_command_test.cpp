@@ -209,11 +209,37 @@ TEST_F(SimulateCommand, RejectsMalformedTrajectoriesNamingFileSampleAndField) {
       HasSubstr("nan.json: field 'samples[10].arm[0]': expected a finite number, found NaN"));
 }
 
+// --object names the object by its shipped name or by its file; the pan either way gives the
+// report of the scene's own pan, and an unknown object or a broken object file is a clear error
+// before any trial runs.
+TEST_F(SimulateCommand, ObjectFlagTakesAShippedNameOrAFile) {
+  ASSERT_EQ(RunGraspsynth("simulate " + Example() + " --out " + Path("scene.json")).exit_code, 0);
+  const std::string pan_file = std::string(::testing::SourceDir()) + "/models/objects/pan.json";
+  for (const std::string& object : {std::string("pan"), pan_file}) {
+    const auto r =
+        RunGraspsynth("simulate " + Example() + " --object " + object + " --out " + Path("o.json"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(ReadFileText(Path("o.json")), ReadFileText(Path("scene.json"))) << object;
+  }
+  auto r = RunGraspsynth("simulate " + Example() + " --object teapot --out " + Path("t.json"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("unknown object 'teapot': not a file, and not a shipped object ("));
+  EXPECT_THAT(r.err, HasSubstr("pan"));
+  std::ofstream(Path("heavy.json"))
+      << R"({"format": "graspsynth-object/1", "name": "heavy", "parts": [)"
+      << R"({"name": "b", "type": "box", "size": [0.1, 0.1, 0.1], "mass": -1}]})";
+  r = RunGraspsynth("simulate " + Example() + " --object " + Path("heavy.json") + " --out " +
+                    Path("h.json"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr(Path("heavy.json") + ": field 'parts[0].mass': expected a number"));
+  EXPECT_FALSE(fs::exists(Path("h.json")));
+}
+
 TEST_F(SimulateCommand, HelpNamesEveryOption) {
   const auto r = RunGraspsynth("simulate --help");
   EXPECT_EQ(r.exit_code, 0);
   for (const char* option : {"--perturb", "--seed", "--threads", "--record", "--out", "--fidelity",
-                             "--position-noise", "graspsynth-simulation/1"}) {
+                             "--position-noise", "--object", "graspsynth-simulation/1"}) {
     EXPECT_THAT(r.out, HasSubstr(option));
   }
 }

@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "kinematics/arm_ik.hpp"
+#include "kinematics/triangle_mesh.hpp"
 #include "tests/utils/eigen_matchers.hpp"
 #include "tests/utils/robot_fixtures.hpp"
 
@@ -260,6 +261,14 @@ Eigen::Vector3d LowestPoint(const CollisionShape& s, const Eigen::Isometry3d& X_
       }
       return corner;
     }
+    case CollisionShape::Kind::kMesh: {
+      Eigen::Vector3d low = c;
+      low.z() = INFINITY;
+      for (const Eigen::Vector3d& v : s.mesh->vertices) {
+        if ((X_WG * v).z() < low.z()) low = X_WG * v;
+      }
+      return low;
+    }
   }
   return c;
 }
@@ -394,19 +403,15 @@ struct HandleBox {
   double top_z() const { return X_WG.translation().z() + half.z(); }
 };
 HandleBox Handle(double theta) {
-  const ObjectModel& o = Scene().object;
-  Eigen::Isometry3d X_OG = Eigen::Isometry3d::Identity();
-  X_OG.translation() << 0.5 * (o.handle_start_radius + o.handle_end_radius), 0,
-      o.handle_axis_height - o.rest_height();
-  const Eigen::Vector3d half = 0.5 * Eigen::Vector3d(o.handle_end_radius - o.handle_start_radius,
-                                                     o.handle_width, o.handle_thickness);
-  return {Scene().ObjectPose(theta) * X_OG, half};
+  const ObjectPart& handle = Scene().object.parts[1];
+  EXPECT_EQ(handle.name, "handle");
+  return {Scene().ObjectPose(theta) * handle.shape.X_LG, 0.5 * handle.shape.size};
 }
 
 // hand orientation over the handle at theta: palm down (x_H = -z_W), the hand's long axis z_H
 // horizontal and across the handle, the thumb side (+y_H) toward the pan's centre.
 Eigen::Matrix3d PalmDownAcrossHandle(double theta) {
-  const double phi = theta + Scene().object.handle_offset;  // handle direction in the world
+  const double phi = theta + Scene().object_yaw_offset;  // handle direction in the world
   const Eigen::Vector3d x(0, 0, -1);
   const Eigen::Vector3d z(std::cos(phi + M_PI / 2), std::sin(phi + M_PI / 2), 0);
   Eigen::Matrix3d R;
@@ -604,11 +609,77 @@ TEST(CollisionScene, HandPushedIntoTheTableCollidesWithIt) {
 // handle's top face, over the handle's axis at 0.20 m from the pan's centre.
 Eigen::Isometry3d HoverPose(double theta, const HandVector& f, double height) {
   const HandleBox h = Handle(theta);
-  const double phi = theta + Scene().object.handle_offset;
+  const double phi = theta + Scene().object_yaw_offset;
   const Eigen::Vector3d p_WO = Scene().ObjectPose(theta).translation();
   Eigen::Vector3d target = p_WO + 0.20 * Eigen::Vector3d(std::cos(phi), std::sin(phi), 0.0);
   target.z() = h.top_z() + height;
   return WristPoseWithLowestPointAt(PalmDownAcrossHandle(theta), f, target);
+}
+
+// A closed prism of `n` sides around z (radius r, height h, centred at the origin), or a box
+// (n = 4, turned 45 deg, radius half its diagonal), as a mesh.
+std::shared_ptr<const TriangleMesh> PrismMesh(int n, double r, double h, double turn = 0.0) {
+  auto m = std::make_shared<TriangleMesh>();
+  m->source = "prism";
+  for (int k = 0; k < n; ++k) {
+    const double a = turn + 2.0 * M_PI * k / n;
+    m->vertices.emplace_back(r * std::cos(a), r * std::sin(a), -0.5 * h);
+    m->vertices.emplace_back(r * std::cos(a), r * std::sin(a), 0.5 * h);
+  }
+  const int bottom = 2 * n, top = 2 * n + 1;
+  m->vertices.emplace_back(0, 0, -0.5 * h);
+  m->vertices.emplace_back(0, 0, 0.5 * h);
+  for (int k = 0; k < n; ++k) {
+    const int b0 = 2 * k, t0 = 2 * k + 1, b1 = 2 * ((k + 1) % n), t1 = b1 + 1;
+    m->triangles.push_back({b0, b1, t1});
+    m->triangles.push_back({b0, t1, t0});
+    m->triangles.push_back({bottom, b1, b0});
+    m->triangles.push_back({top, t0, t1});
+  }
+  return m;
+}
+
+// The shipped pan with its body a 128-sided prism and its handle a box, both meshes: the mesh
+// object's clearance is the primitive object's within the prism's sag, r (1 - cos(pi / 128))
+// = 0.024 mm, and FCL's tolerance.
+TEST(CollisionScene, MeshObjectGivesItsPrimitiveApproximationsClearance) {
+  SceneModel mesh_scene = Scene();
+  ObjectPart& body = mesh_scene.object.parts[0];
+  ObjectPart& handle = mesh_scene.object.parts[1];
+  ASSERT_EQ(body.name, "body");
+  ASSERT_EQ(handle.name, "handle");
+  body.shape.mesh = PrismMesh(128, body.shape.size[0], body.shape.size[1]);
+  body.shape.kind = CollisionShape::Kind::kMesh;
+  CheckSolidMesh(*body.shape.mesh);
+  // the box as a 4-sided prism turned 45 deg, then stretched to the bar's sides.
+  auto bar = std::make_shared<TriangleMesh>(*PrismMesh(4, std::sqrt(0.5), 1.0, M_PI / 4));
+  for (Eigen::Vector3d& v : bar->vertices) v = v.cwiseProduct(handle.shape.size);
+  CheckSolidMesh(*bar);
+  handle.shape.mesh = bar;
+  handle.shape.kind = CollisionShape::Kind::kMesh;
+  const CollisionModel mesh_model(Robot(), mesh_scene);
+  const CollisionModel& primitive_model = Model();
+
+  const double theta = Deg(60);
+  const HandVector f = HandVector::Zero();
+  int compared = 0;
+  for (double height : {0.005, 0.02, 0.05, 0.10}) {
+    const std::optional<MidArcSolution> ik = SolveWrist(HoverPose(theta, f, height));
+    ASSERT_TRUE(ik.has_value());
+    CollisionData a(primitive_model), b(mesh_model);
+    SetState(primitive_model, ik->q, f, theta, &a);
+    SetState(mesh_model, ik->q, f, theta, &b);
+    const SignedDistanceResult da =
+        SignedDistance(primitive_model, CollisionGroup::kHand, CollisionGroup::kObject, &a);
+    const SignedDistanceResult db =
+        SignedDistance(mesh_model, CollisionGroup::kHand, CollisionGroup::kObject, &b);
+    ASSERT_EQ(db.status, SignedDistanceResult::Status::kOk) << height;
+    EXPECT_NEAR(db.distance, da.distance, 1e-4) << height;
+    EXPECT_NEAR(da.distance, height, 1e-6);
+    EXPECT_EQ(db.name_b, da.name_b);
+    ++compared;
+  }
+  EXPECT_EQ(compared, 4);
 }
 
 TEST(CollisionScene, HandHoveringAboveTheHandleHasTheAnalyticClearance) {
@@ -623,7 +694,7 @@ TEST(CollisionScene, HandHoveringAboveTheHandleHasTheAnalyticClearance) {
   const Eigen::Vector3d p_G = h.X_WG.inverse() * lowest.p_W;
   ASSERT_LT(std::abs(p_G.x()), h.half.x() - 0.01);
   ASSERT_LT(std::abs(p_G.y()), h.half.y() - 1e-3);
-  ASSERT_LT(Scene().object.body_height, h.top_z());
+  ASSERT_LT(2.0 * Scene().object.rest_height, h.top_z());
   const std::optional<MidArcSolution> ik = SolveWrist(X_WH);
   ASSERT_TRUE(ik.has_value());
 

@@ -34,7 +34,7 @@ TEST(DefaultRestConfiguration, PutsTheWristAboveTheTableTowardTheObject) {
       ((q.array() >= Robot().arm.lower().array()) && (q.array() <= Robot().arm.upper().array()))
           .all());
   const Eigen::Isometry3d X_WH = ArmFlangePose(Robot().arm, q) * Robot().X_FH;
-  const Eigen::Vector2d toward = scene.object.centre_xy.normalized();
+  const Eigen::Vector2d toward = scene.object_centre_xy.normalized();
   EXPECT_NEAR(X_WH.translation().head<2>().dot(toward), 0.60, 1e-6);
   EXPECT_NEAR(X_WH.translation().z(), scene.table.top_z + 0.30, 1e-6);
   // turned like the grasp, pitched 30 deg about y_H.

@@ -158,6 +158,8 @@ double Volume(const CollisionShape& s) {
       return M_PI * r * r * l + 4.0 / 3.0 * M_PI * r * r * r;
     case CollisionShape::Kind::kSphere:
       return 4.0 / 3.0 * M_PI * r * r * r;
+    case CollisionShape::Kind::kMesh:  // the robot description has primitives only
+      break;
   }
   return 0.0;
 }
@@ -191,6 +193,8 @@ Eigen::Matrix3d ShapeInertia(const CollisionShape& s, double m) {
     }
     case CollisionShape::Kind::kSphere:
       d.setConstant(2 * m * r * r / 5);
+      break;
+    case CollisionShape::Kind::kMesh:  // the robot description has primitives only
       break;
   }
   return d.asDiagonal();

@@ -97,7 +97,7 @@ TEST(SyntheticOperator, TheHookPutsTheHandleWhereTheStyleSays) {
     // the handle's axis in H: across the hand (along y_H, a square crossing) through
     // (wrist_above_handle, 0, hook_reach); the wrist where the strategy put it.
     const Eigen::Isometry3d X_WO = scene.ObjectPose(theta_deg * M_PI / 180.0);
-    const double up = scene.object.handle_axis_height - scene.object.rest_height();
+    const double up = scene.object.handle->axis_height - scene.object.rest_height;
     const Eigen::Vector3d a0 = X_WH.inverse() * (X_WO * Eigen::Vector3d(0.1, 0.0, up));
     const Eigen::Vector3d a1 = X_WH.inverse() * (X_WO * Eigen::Vector3d(0.3, 0.0, up));
     const Eigen::Vector3d dir = (a1 - a0).normalized();
@@ -106,7 +106,7 @@ TEST(SyntheticOperator, TheHookPutsTheHandleWhereTheStyleSays) {
     EXPECT_NEAR(at.x(), 0.03, 1e-6);
     EXPECT_NEAR(at.z(), 0.12, 1e-6);
     const GraspStrategy& s = options.plans.front().strategies.front();
-    const Eigen::Vector2d c = scene.object.centre_xy;
+    const Eigen::Vector2d c = scene.object_centre_xy;
     EXPECT_NEAR((grasp->p_WH.head<2>() - c).norm(), s.d, 1e-9);
     // palm down and fingers down: x_H points below the horizon, z_H not above it.
     EXPECT_LT(X_WH.linear().col(0).z(), 0.0);

@@ -48,7 +48,7 @@ TEST(ScriptedGrasp, TheWristPutsTheHandleWhereTheHandPinches) {
     const Eigen::Vector3d p_O = X_WO.inverse() * (X_WH * o.bar_in_hand);
     EXPECT_NEAR(p_O.x(), o.grasp_radius, 1e-12);
     EXPECT_NEAR(p_O.y(), 0.0, 1e-12);
-    EXPECT_NEAR(p_O.z(), Scene().object.handle_axis_height - Scene().object.rest_height(), 1e-12);
+    EXPECT_NEAR(p_O.z(), Scene().object.handle->axis_height - Scene().object.rest_height, 1e-12);
     // palm down, the hand across the handle, the thumb side toward the pan.
     EXPECT_TRUE(testing::MatricesNear(X_WH.linear().col(0), -Eigen::Vector3d::UnitZ(), 1e-12));
     EXPECT_NEAR(X_WH.linear().col(2).dot(X_WO.linear().col(0)), 0.0, 1e-12);

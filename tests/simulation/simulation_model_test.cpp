@@ -28,12 +28,13 @@ TEST(SimulationModel, ObjectInertiaIsThatOfThePanAndItsHandle) {
   const SimulationModel model = LoadDefaultSimulationModel();
   const ObjectModel& o = model.scene().object;
   const ObjectInertia& in = model.object_inertia();
-  EXPECT_DOUBLE_EQ(in.mass, o.body_mass + o.handle_mass);
+  const double body_mass = o.parts[0].mass, handle_mass = o.parts[1].mass;
+  EXPECT_DOUBLE_EQ(in.mass, body_mass + handle_mass);
   // the handle's centre lies halfway along it, 2 cm above the pan's centre.
-  const double r = 0.5 * (o.handle_start_radius + o.handle_end_radius);
-  EXPECT_NEAR(in.p_OC.x(), o.handle_mass * r / in.mass, 1e-12);
-  EXPECT_NEAR(in.p_OC.z(), o.handle_mass * (o.handle_axis_height - o.rest_height()) / in.mass,
-              1e-12);
+  const HandleAxis& h = *o.handle;
+  const double r = 0.5 * (h.start_radius + h.end_radius);
+  EXPECT_NEAR(in.p_OC.x(), handle_mass * r / in.mass, 1e-12);
+  EXPECT_NEAR(in.p_OC.z(), handle_mass * (h.axis_height - o.rest_height) / in.mass, 1e-12);
   // symmetric positive definite, with the long axis (x) the easiest to turn about.
   EXPECT_TRUE(testing::MatricesNear(in.I_C, in.I_C.transpose(), 1e-15));
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(in.I_C);

@@ -106,7 +106,7 @@ TEST(PhysicsGate, HandObjectContactsMatchTheContactReport) {
     const Eigen::Vector3d axis = X_WO.linear().col(0);
     const Eigen::Vector3d a0 =
         X_WO *
-        Eigen::Vector3d(0.0, 0.0, scene.object.handle_axis_height - scene.object.rest_height());
+        Eigen::Vector3d(0.0, 0.0, scene.object.handle->axis_height - scene.object.rest_height);
     for (const HandObjectContact& k : c) {
       EXPECT_NEAR(k.n_W.norm(), 1.0, 1e-9);
       EXPECT_GE(k.hand_link, 0);

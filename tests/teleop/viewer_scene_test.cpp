@@ -8,6 +8,7 @@
 
 #include "common/errors.hpp"
 #include "kinematics/hand_model.hpp"
+#include "kinematics/triangle_mesh.hpp"
 #include "tests/utils/eigen_matchers.hpp"
 #include "tests/utils/robot_fixtures.hpp"
 
@@ -84,6 +85,9 @@ TEST(ViewerScene, ListsEveryLinkWithItsShapes) {
           EXPECT_EQ(shape["kind"], "sphere");
           EXPECT_EQ(shape["radius"], expected.size.x());
           break;
+        case CollisionShape::Kind::kMesh:
+          ADD_FAILURE() << "the robot description has primitives only";
+          break;
       }
       ++shapes;
     }
@@ -106,13 +110,13 @@ TEST(ViewerScene, ListsEveryLinkWithItsShapes) {
   EXPECT_EQ(object["group"], "object");
   ASSERT_EQ(object["shapes"].size(), 2u);
   EXPECT_EQ(object["shapes"][0]["kind"], "cylinder");
-  EXPECT_EQ(object["shapes"][0]["radius"], o.body_radius);
-  EXPECT_EQ(object["shapes"][0]["length"], o.body_height);
+  EXPECT_EQ(object["shapes"][0]["radius"], 0.08);
+  EXPECT_EQ(object["shapes"][0]["length"], 2.0 * o.rest_height);
   EXPECT_EQ(object["shapes"][1]["kind"], "box");
   const Eigen::Isometry3d X_OHandle = PoseFromJson(object["shapes"][1]["pose"]);
-  EXPECT_NEAR(X_OHandle.translation().x(), 0.5 * (o.handle_start_radius + o.handle_end_radius),
+  EXPECT_NEAR(X_OHandle.translation().x(), 0.5 * (o.handle->start_radius + o.handle->end_radius),
               1e-12);
-  EXPECT_NEAR(X_OHandle.translation().z(), o.handle_axis_height - o.rest_height(), 1e-12);
+  EXPECT_NEAR(X_OHandle.translation().z(), o.handle->axis_height - o.rest_height, 1e-12);
 
   // the table: a box whose top face is at top_z.
   const json& table = scene["table"];
@@ -135,6 +139,31 @@ bool InView(const ViewerCamera& camera, const Eigen::Vector3d& p, double aspect 
   if (depth <= 0.0) return false;
   const double half = std::tan(0.5 * camera.fov_deg * M_PI / 180.0);
   return std::abs(d.dot(up) / depth) < half && std::abs(d.dot(right) / depth) < half * aspect;
+}
+
+// A mesh part goes to the page as its vertices and triangles (flat arrays), at its pose; a part
+// that touches only the table (a support) is not drawn.
+TEST(ViewerScene, MeshPartsAreSentAsIndexedTriangles) {
+  SceneModel scene = Scene();
+  auto tetra = std::make_shared<TriangleMesh>();
+  tetra->vertices = {{0, 0, 0}, {0.1, 0, 0}, {0, 0.1, 0}, {0, 0, 0.1}};
+  tetra->triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  ObjectPart part;
+  part.name = "tetra";
+  part.shape.kind = CollisionShape::Kind::kMesh;
+  part.shape.mesh = tetra;
+  part.shape.X_LG.translation() << 0.0, 0.0, -0.05;
+  part.mass = 0.1;
+  scene.object.parts = {part, scene.object.parts[2]};
+  ASSERT_EQ(scene.object.parts[1].touches, PartContact::kTable);
+  const json j = json::parse(ViewerSceneJson(Robot(), scene, DefaultViewerCamera(scene)));
+  const json& shapes = j["object"]["shapes"];
+  ASSERT_EQ(shapes.size(), 1u);
+  EXPECT_EQ(shapes[0]["kind"], "mesh");
+  EXPECT_EQ(shapes[0]["vertices"].size(), 12u);
+  EXPECT_EQ(shapes[0]["vertices"][3], 0.1);  // x of the second vertex
+  EXPECT_EQ(shapes[0]["triangles"], json::array({0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3}));
+  EXPECT_EQ(PoseFromJson(shapes[0]["pose"]).translation().z(), -0.05);
 }
 
 TEST(ViewerScene, DefaultCameraSeesTheArmAndTheObject) {

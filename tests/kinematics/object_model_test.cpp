@@ -1,0 +1,204 @@
+#include "kinematics/object_model.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "common/errors.hpp"
+#include "kinematics/scene_model.hpp"
+#include "kinematics/triangle_mesh.hpp"
+#include "tests/utils/eigen_matchers.hpp"
+#include "tests/utils/paths.hpp"
+#include "tests/utils/test_folder.hpp"
+
+namespace graspsynth {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path ShippedObject(const std::string& name) {
+  return fs::path(::testing::SourceDir()) / "models" / "objects" / (name + ".json");
+}
+
+// A scratch folder for object files and meshes, removed at the end of the test.
+class ObjectFiles : public ::testing::Test {
+ protected:
+  fs::path Write(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ / name) << text;
+    return dir_ / name;
+  }
+  // A one-part object: `part` is the JSON of that part.
+  fs::path WriteObject(const nlohmann::json& part) {
+    nlohmann::json j = {{"format", "graspsynth-object/1"}, {"name", "thing"}, {"parts", {part}}};
+    return Write("thing.json", j.dump());
+  }
+
+  const testing::TestFolder folder_;
+  const fs::path& dir_ = folder_.path();
+};
+
+// A closed unit tetrahedron scaled by `s`, outward, as OBJ.
+std::string Tetrahedron(double s) {
+  const std::string a = std::to_string(s);
+  return "v 0 0 0\nv " + a + " 0 0\nv 0 " + a + " 0\nv 0 0 " + a +
+         "\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+}
+
+TEST(ObjectModel, ShippedPanHasTheHandComputedMassInertiaAndRestHeight) {
+  const ObjectModel pan = LoadObjectModel(ShippedObject("pan"));
+  EXPECT_EQ(pan.name, "pan");
+  ASSERT_EQ(pan.parts.size(), 4u);
+  EXPECT_EQ(pan.parts[0].touches, PartContact::kRobot);
+  EXPECT_EQ(pan.parts[1].touches, PartContact::kRobotAndTable);
+  EXPECT_EQ(pan.parts[2].touches, PartContact::kTable);
+  EXPECT_EQ(pan.parts[2].mass, 0.0);
+  // it rests on its foot, 0.05 m high, centred on O.
+  EXPECT_DOUBLE_EQ(pan.rest_height, 0.025);
+  ASSERT_TRUE(pan.handle);
+  EXPECT_DOUBLE_EQ(pan.handle->start_radius, 0.08);
+  EXPECT_DOUBLE_EQ(pan.handle->end_radius, 0.38);
+  EXPECT_DOUBLE_EQ(pan.handle->axis_height, 0.045);
+  // body 0.20 kg at O; handle 0.07 kg at (0.23, 0, 0.02): centre of mass 0.07 / 0.27 of the
+  // way to the handle's centre.
+  const ObjectInertia in = pan.Inertia();
+  EXPECT_DOUBLE_EQ(in.mass, 0.27);
+  EXPECT_TRUE(
+      testing::MatricesNear(in.p_OC, Eigen::Vector3d(0.23, 0.0, 0.02) * 0.07 / 0.27, 1e-12));
+  // cylinder: m (3 r^2 + h^2) / 12 = 3.6167e-4 (x, y), m r^2 / 2 = 6.4e-4 (z); bar
+  // 0.3 x 0.024 x 0.024: 6.72e-6, 5.2836e-4, 5.2836e-4; plus both parallel-axis terms
+  // m (|d|^2 1 - d d^T) about the centre of mass.
+  Eigen::Matrix3d expected;
+  expected << 3.89127407407e-4, 0.0, -2.38518518519e-4,  //
+      0.0, 3.65373037037e-3, 0.0,                        //
+      -2.38518518519e-4, 0.0, 3.91132296296e-3;
+  EXPECT_TRUE(testing::MatricesNear(in.I_C, expected, 1e-14));
+}
+
+TEST(ObjectModel, ShippedPanIsTheInlinePanOfSceneFormat1) {
+  const ObjectModel file = LoadObjectModel(ShippedObject("pan"));
+  LegacyPanParameters p;
+  p.body_radius = 0.08;
+  p.body_height = 0.05;
+  p.handle_start_radius = 0.08;
+  p.handle_end_radius = 0.38;
+  p.handle_width = 0.024;
+  p.handle_thickness = 0.024;
+  p.handle_axis_height = 0.045;
+  p.body_mass = 0.2;
+  p.handle_mass = 0.07;
+  const ObjectModel legacy = LegacyPanObject("pan", p, "scene.json");
+  ASSERT_EQ(file.parts.size(), legacy.parts.size());
+  for (size_t i = 0; i < file.parts.size(); ++i) {
+    const ObjectPart& a = file.parts[i];
+    const ObjectPart& b = legacy.parts[i];
+    EXPECT_EQ(a.name, b.name);
+    EXPECT_EQ(a.shape.kind, b.shape.kind) << a.name;
+    EXPECT_EQ(a.shape.size, b.shape.size) << a.name;
+    EXPECT_EQ(a.shape.X_LG.linear(), b.shape.X_LG.linear()) << a.name;
+    // bit for bit: the handle's height is written as the double the study computes.
+    EXPECT_EQ(a.shape.X_LG.translation(), b.shape.X_LG.translation()) << a.name;
+    EXPECT_EQ(a.mass, b.mass) << a.name;
+    EXPECT_EQ(a.friction, b.friction) << a.name;
+    EXPECT_EQ(a.touches, b.touches) << a.name;
+  }
+  EXPECT_EQ(file.rest_height, legacy.rest_height);
+  EXPECT_EQ(file.handle->start_radius, legacy.handle->start_radius);
+  EXPECT_EQ(file.handle->end_radius, legacy.handle->end_radius);
+  EXPECT_EQ(file.handle->axis_height, legacy.handle->axis_height);
+}
+
+TEST_F(ObjectFiles, MeshPartHasTheMeshsMassPropertiesAtItsPose) {
+  Write("tet.obj", Tetrahedron(0.1));
+  const fs::path file = WriteObject({{"name", "tet"},
+                                     {"type", "mesh"},
+                                     {"file", "tet.obj"},
+                                     {"density", 1000.0},
+                                     {"position", {0.0, 0.0, -0.05}},
+                                     {"rpy_deg", {0.0, 0.0, 90.0}}});
+  const ObjectModel o = LoadObjectModel(file);
+  // volume 0.1^3 / 6, centroid at a quarter of each edge, turned 90 deg about z.
+  const ObjectInertia in = o.Inertia();
+  EXPECT_NEAR(in.mass, 1000.0 * 1e-3 / 6.0, 1e-12);
+  EXPECT_TRUE(testing::MatricesNear(in.p_OC, Eigen::Vector3d(-0.025, 0.025, -0.025), 1e-12));
+  // it rests on its base triangle, 0.05 m below O.
+  EXPECT_NEAR(o.rest_height, 0.05, 1e-15);
+  EXPECT_FALSE(o.handle);
+  GS_EXPECT_THROW_WITH(o.Handle("the line principle"), InputError, "object 'thing' (",
+                       "has no handle, and the line principle needs one");
+}
+
+TEST_F(ObjectFiles, PrimitiveDensityGivesTheVolumesMass) {
+  const ObjectModel o = LoadObjectModel(
+      WriteObject({{"name", "ball"}, {"type", "sphere"}, {"radius", 0.1}, {"density", 1000.0}}));
+  EXPECT_NEAR(o.Inertia().mass, 1000.0 * 4.0 / 3.0 * M_PI * 1e-3, 1e-12);
+  EXPECT_NEAR(o.Inertia().I_C(0, 0), 0.4 * o.Inertia().mass * 0.01, 1e-15);
+  EXPECT_DOUBLE_EQ(o.rest_height, 0.1);
+}
+
+TEST_F(ObjectFiles, BadObjectFilesNameTheFileAndTheField) {
+  const std::string where = (dir_ / "thing.json").string();
+  GS_EXPECT_THROW_WITH(
+      LoadObjectModel(
+          WriteObject({{"name", "m"}, {"type", "mesh"}, {"file", "gone.stl"}, {"mass", 1}})),
+      InputError,
+      where + ": field 'parts[0].file': cannot open mesh '" + (dir_ / "gone.stl").string() + "'");
+  const std::string tet = Tetrahedron(0.1);
+  Write("open.obj", tet.substr(0, tet.rfind("f ")));
+  GS_EXPECT_THROW_WITH(LoadObjectModel(WriteObject(
+                           {{"name", "m"}, {"type", "mesh"}, {"file", "open.obj"}, {"mass", 1}})),
+                       InputError,
+                       where + ": field 'parts[0].file': " + (dir_ / "open.obj").string() +
+                           ": the mesh is not closed");
+  GS_EXPECT_THROW_WITH(
+      LoadObjectModel(
+          WriteObject({{"name", "b"}, {"type", "box"}, {"size", {1, 1, 1}}, {"mass", -2}})),
+      InputError, where + ": field 'parts[0].mass': expected a number in", "found -2");
+  GS_EXPECT_THROW_WITH(
+      LoadObjectModel(WriteObject({{"name", "c"}, {"type", "cone"}, {"mass", 1}})), InputError,
+      where +
+          ": field 'parts[0].type': expected a part type: \"box\", \"cylinder\", \"capsule\", "
+          "\"sphere\" or \"mesh\", found \"cone\"");
+  GS_EXPECT_THROW_WITH(
+      LoadObjectModel(WriteObject({{"name", "b"}, {"type", "box"}, {"size", {1, 1, 1}}})),
+      InputError, where + ": field 'parts[0].mass': expected a mass in kg (or a density");
+  GS_EXPECT_THROW_WITH(LoadObjectModel(WriteObject({{"name", "b"},
+                                                    {"type", "box"},
+                                                    {"size", {1, 1, 1}},
+                                                    {"mass", 1},
+                                                    {"touches", "robot"}})),
+                       InputError,
+                       where +
+                           ": field 'parts': expected at least one part that "
+                           "touches the table");
+  GS_EXPECT_THROW_WITH(
+      LoadObjectModel(WriteObject(
+          {{"name", "b"}, {"type", "box"}, {"size", {1, 1, 1}}, {"mass", 1}, {"colour", "red"}})),
+      InputError, where + ": field 'parts[0].colour'");
+  GS_EXPECT_THROW_WITH(
+      LoadObjectModel(WriteObject({{"name", "b"}, {"type", "box"}, {"radius", 1}, {"mass", 1}})),
+      InputError,
+      where + ": field 'parts[0].radius': expected no 'radius' on a part of type \"box\"");
+  GS_EXPECT_THROW_WITH(LoadObjectModel(dir_ / "none.json"), InputError,
+                       "cannot open object description '" + (dir_ / "none.json").string() + "'");
+}
+
+TEST(ObjectModel, ResolvesShippedNamesAndFiles) {
+  EXPECT_EQ(ResolveObjectPath("pan").filename(), "pan.json");
+  EXPECT_EQ(ResolveObjectPath("my/own.json"), fs::path("my/own.json"));
+  GS_EXPECT_THROW_WITH(ResolveObjectPath("teapot"), InputError,
+                       "unknown object 'teapot': not a file, and not a shipped object (", "pan");
+}
+
+TEST(ObjectModel, SceneObjectOverrideReplacesTheScenesObject) {
+  const fs::path scene_file = fs::path(::testing::SourceDir()) / "models" / "scene.json";
+  const SceneModel scene = LoadSceneModel(scene_file, "pan");
+  EXPECT_EQ(scene.object.name, "pan");
+  EXPECT_EQ(scene.object.source, ShippedObject("pan").string());
+  GS_EXPECT_THROW_WITH(LoadSceneModel(scene_file, "teapot"), InputError, "unknown object 'teapot'");
+}
+
+}  // namespace
+}  // namespace graspsynth
