@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <random>
 #include <string>
 
 #include "common/errors.hpp"
@@ -12,6 +13,7 @@
 #include "kinematics/triangle_mesh.hpp"
 #include "tests/utils/eigen_matchers.hpp"
 #include "tests/utils/paths.hpp"
+#include "tests/utils/run_command.hpp"
 #include "tests/utils/test_folder.hpp"
 
 namespace graspsynth {
@@ -198,6 +200,41 @@ TEST(ObjectModel, SceneObjectOverrideReplacesTheScenesObject) {
   EXPECT_EQ(scene.object.name, "pan");
   EXPECT_EQ(scene.object.source, ShippedObject("pan").string());
   GS_EXPECT_THROW_WITH(LoadSceneModel(scene_file, "teapot"), InputError, "unknown object 'teapot'");
+}
+
+// A mangled pan.json - bytes changed, dropped, repeated or cut short - gives an object or an
+// InputError, never another exception or a crash (the sanitizer build runs this too).
+TEST(ObjectModel, MangledFilesGiveAnObjectOrAnInputError) {
+  const std::string pan = testing::ReadFileText(ShippedObject("pan"));
+  std::mt19937_64 rng(23);
+  int objects = 0, errors = 0;
+  for (int i = 0; i < 2000; ++i) {
+    std::string text = pan;
+    const int edits = 1 + static_cast<int>(rng() % 3);
+    for (int e = 0; e < edits && !text.empty(); ++e) {
+      const size_t at = rng() % text.size();
+      switch (rng() % 3) {
+        case 0:
+          text[at] = "0123456789.-e,:[]{}\" tx"[rng() % 20];
+          break;
+        case 1:
+          text.erase(at, 1 + rng() % 6);
+          break;
+        default:
+          text.insert(at, text.substr(at, 1 + rng() % 12));
+      }
+    }
+    try {
+      const ObjectModel o = ParseObjectModel(text, "pan.json", ShippedObject("pan").parent_path());
+      o.Inertia();
+      ++objects;
+    } catch (const InputError&) {
+      ++errors;
+    }
+  }
+  EXPECT_EQ(objects + errors, 2000);
+  EXPECT_GT(objects, 0);
+  EXPECT_GT(errors, 0);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <string>
 
 #include "common/errors.hpp"
@@ -168,6 +169,48 @@ TEST(TriangleMesh, LoadReadsFilesByExtension) {
   const TriangleMesh stl = LoadTriangleMesh(dir / "box.stl", 1.0);
   EXPECT_EQ(stl.source, (dir / "box.stl").string());
   EXPECT_EQ(stl.triangles.size(), 12u);
+}
+
+// Mangled files - bytes changed, dropped, repeated or cut short - give a mesh or an InputError,
+// never another exception or a crash (the sanitizer build runs this too).
+TEST(TriangleMesh, MangledFilesGiveAMeshOrAnInputError) {
+  const TriangleMesh box = ParseObj(BoxObj(Eigen::Vector3d(0.1, 0.2, 0.3)), 1.0, "box.obj");
+  const std::string inputs[] = {BoxObj(Eigen::Vector3d(0.1, 0.2, 0.3)), BoxAsciiStl(box),
+                                BoxBinaryStl(box)};
+  std::mt19937_64 rng(17);
+  int meshes = 0, errors = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const int which = i % 3;
+    std::string bytes = inputs[which];
+    const int edits = 1 + static_cast<int>(rng() % 4);
+    for (int e = 0; e < edits && !bytes.empty(); ++e) {
+      const size_t at = rng() % bytes.size();
+      switch (rng() % 4) {
+        case 0:  // a byte changed
+          bytes[at] = static_cast<char>(rng() % 256);
+          break;
+        case 1:  // bytes dropped
+          bytes.erase(at, 1 + rng() % 8);
+          break;
+        case 2:  // bytes repeated
+          bytes.insert(at, bytes.substr(at, 1 + rng() % 16));
+          break;
+        default:  // cut short
+          bytes.resize(at);
+      }
+    }
+    try {
+      const TriangleMesh m =
+          which == 0 ? ParseObj(bytes, 1.0, "m.obj") : ParseStl(bytes, 1.0, "m.stl");
+      CheckSolidMesh(m);
+      ComputeMeshMassProperties(m);
+      ++meshes;
+    } catch (const InputError&) {
+      ++errors;
+    }
+  }
+  EXPECT_EQ(meshes + errors, 3000);
+  EXPECT_GT(errors, 0);
 }
 
 }  // namespace
