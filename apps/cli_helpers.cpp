@@ -94,9 +94,12 @@ void AddObjectFlag(CLI::App* app, std::string* object) {
                   "(graspsynth-object/1); default: the object the scene names");
 }
 
-SceneModel LoadScene(const std::string& scene, const std::string& object) {
-  return LoadSceneModel(scene.empty() ? DefaultSceneModelPath() : std::filesystem::path(scene),
-                        object);
+SceneModel LoadScene(const std::string& scene, const std::string& object,
+                     std::string_view needs_handle) {
+  SceneModel out = LoadSceneModel(
+      scene.empty() ? DefaultSceneModelPath() : std::filesystem::path(scene), object);
+  if (!needs_handle.empty()) out.object.Handle(needs_handle);
+  return out;
 }
 
 void CheckPhysicsFlags(const PhysicsPerturbationOptions& options) {

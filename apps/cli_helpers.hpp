@@ -7,6 +7,7 @@
 
 #include <mutex>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "common/orientation_list.hpp"
@@ -34,8 +35,15 @@ void CheckPhysicsFlags(const PhysicsPerturbationOptions& options);
 void AddObjectFlag(CLI::App* app, std::string* object);
 
 /// The scene of --scene (models/scene.json when empty) with the object of --object (the
-/// scene's own when empty). Throws InputError naming the file at fault.
-SceneModel LoadScene(const std::string& scene, const std::string& object);
+/// scene's own when empty). With `needs_handle` (what the command does with it), an object
+/// without a handle is refused before any work starts. Throws InputError naming the file at
+/// fault, or the object and what needs its handle.
+/// What a command that synthesizes grasps needs an object's handle for.
+inline constexpr std::string_view kSynthesisNeedsHandle =
+    "the synthesis (its line principle and refinement aim at the handle)";
+
+SceneModel LoadScene(const std::string& scene, const std::string& object,
+                     std::string_view needs_handle = {});
 
 /// A check for an option that must be a number > 0: "must be > 0 (got VALUE)" (CLI11's
 /// PositiveNumber prints the whole double range instead).

@@ -57,7 +57,7 @@ OperatorOptions LoadOperator(const DemosOptions& o) {
 std::unique_ptr<SimulationModel> LoadModel(const DemosOptions& o) {
   RobotModel robot =
       LoadRobotModel(o.robot.empty() ? DefaultRobotDescriptionPath() : fs::path(o.robot));
-  SceneModel scene = LoadScene(o.scene, o.object);
+  SceneModel scene = LoadScene(o.scene, o.object, "the synthetic operator's grip");
   return std::make_unique<SimulationModel>(std::move(robot), std::move(scene));
 }
 

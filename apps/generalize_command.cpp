@@ -82,7 +82,7 @@ int RunGeneralize(const GeneralizeOptions& o) {
   const GraspLibrary library = ReadGraspLibrary(library_path);
   const SimulationModel model(
       LoadRobotModel(o.robot.empty() ? DefaultRobotDescriptionPath() : fs::path(o.robot)),
-      LoadScene(o.scene, o.object));
+      LoadScene(o.scene, o.object, kSynthesisNeedsHandle));
 
   SynthesisTableOptions table;
   table.methods = ParseMethods(o.methods);

@@ -143,7 +143,7 @@ void PrintStudySummary(const StudyResult& result, const fs::path& out) {
 }
 
 int RunStudyCommand(const RunOptions& o) {
-  const SceneModel scene = LoadScene(o.scene, o.object);
+  const SceneModel scene = LoadScene(o.scene, o.object, kSynthesisNeedsHandle);
   const SimulationModel model(
       LoadRobotModel(o.robot.empty() ? DefaultRobotDescriptionPath() : fs::path(o.robot)), scene);
   const StudyOptions options = StudyOptionsOf(o, scene);

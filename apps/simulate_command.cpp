@@ -76,10 +76,10 @@ json PoseJson(const Eigen::Isometry3d& X) {
 }
 
 SimulationModel LoadModel(const std::string& robot, const std::string& scene,
-                          const std::string& object) {
+                          const std::string& object, std::string_view needs_handle = {}) {
   return SimulationModel(
       LoadRobotModel(robot.empty() ? DefaultRobotDescriptionPath() : std::filesystem::path(robot)),
-      LoadScene(scene, object));
+      LoadScene(scene, object, needs_handle));
 }
 
 std::string StatesCsv(const std::vector<TrialState>& states) {
@@ -236,7 +236,7 @@ int RunSimulate(const SimulateOptions& o) {
 }
 
 int RunScripted(const ScriptedOptions& o) {
-  const SimulationModel model = LoadModel(o.robot, o.scene, o.object);
+  const SimulationModel model = LoadModel(o.robot, o.scene, o.object, "the scripted grasp");
   ScriptedGraspOptions g;
   g.theta_deg = o.theta;
   g.grasp_radius = o.grasp_radius;

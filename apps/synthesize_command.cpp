@@ -74,7 +74,7 @@ int RunSynthesize(const SynthesizeOptions& o) {
   GraspLibrary library = ReadGraspLibrary(library_path);
   const SimulationModel sim(LoadRobotModel(o.robot.empty() ? DefaultRobotDescriptionPath()
                                                            : std::filesystem::path(o.robot)),
-                            LoadScene(o.scene, o.object));
+                            LoadScene(o.scene, o.object, kSynthesisNeedsHandle));
   SynthesisModel model(sim.robot(), sim.scene(), std::move(library));
 
   SynthesisOptions so;

@@ -1,6 +1,7 @@
 // Tests of `graspsynth synthesize`: the command end to end on a library file of scripted
 // grasps, and its bad queries (each an error that writes nothing).
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -98,6 +99,19 @@ TEST_F(SynthesizeCommand, WrongVersionAndCorruptLibrariesAreErrors) {
   const testing::CommandOutput missing = RunGraspsynth(
       "synthesize --library " + (dir_ / "none.json").string() + " --theta 50 --out " + out_);
   EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_FALSE(fs::exists(out_));
+}
+
+// An object without a handle is refused before any work: the synthesis aims at the handle.
+TEST_F(SynthesizeCommand, ObjectWithoutAHandleIsRefusedUpFront) {
+  const std::string box = (dir_ / "box.json").string();
+  std::ofstream(box) << R"({"format": "graspsynth-object/1", "name": "sugar_box", "parts": [)"
+                     << R"({"name": "b", "type": "box", "size": [0.038, 0.089, 0.175],)"
+                     << R"( "mass": 0.514}]})";
+  const testing::CommandOutput r = RunGraspsynth(Args("--theta 50 --object " + box));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_THAT(r.err, ::testing::HasSubstr("object 'sugar_box' (" + box +
+                                          ") has no handle, and the synthesis"));
   EXPECT_FALSE(fs::exists(out_));
 }
 
