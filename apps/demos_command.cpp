@@ -43,9 +43,10 @@ struct DemosOptions {
   bool quiet = false;
 };
 
-OperatorOptions LoadOperator(const DemosOptions& o) {
-  OperatorOptions options =
-      ReadOperatorOptions(o.config.empty() ? DefaultOperatorOptionsPath() : fs::path(o.config));
+// The operator of --config, or the shipped one of the scene's object.
+OperatorOptions LoadOperator(const DemosOptions& o, const SceneModel& scene) {
+  OperatorOptions options = ReadOperatorOptions(
+      o.config.empty() ? DefaultOperatorOptionsPath(scene.object.name) : fs::path(o.config));
   if (o.seed_given) options.seed = o.seed;
   if (o.trials > 0) {  // the same count everywhere
     options.trials_per_orientation = o.trials;
@@ -104,8 +105,8 @@ void PrintSummary(const TableAnalysis& table, const std::vector<OperatorTrial>& 
 }
 
 int Generate(const DemosOptions& o) {
-  const OperatorOptions options = LoadOperator(o);
   const std::unique_ptr<SimulationModel> model = LoadModel(o);
+  const OperatorOptions options = LoadOperator(o, model->scene());
   ProgressBar bar;
   const std::vector<OperatorTrial> trials =
       GenerateDemonstrations(*model, options, o.threads, [&](int done, int total) {
@@ -146,8 +147,8 @@ double RowError(const OrientationStats& s, const PaperTableRow& p) {
 // difference between the paper's row and the mean of its successful trials, and the best plan
 // seen (RowError) is kept.
 int Calibrate(const DemosOptions& o) {
-  OperatorOptions options = LoadOperator(o);
   const std::unique_ptr<SimulationModel> model = LoadModel(o);
+  OperatorOptions options = LoadOperator(o, model->scene());
   std::map<double, PaperTableRow> paper;
   for (const PaperTableRow& r : PaperTableI()) paper[r.theta_deg] = r;
   std::vector<OrientationPlan> best = options.plans;

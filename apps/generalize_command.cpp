@@ -76,13 +76,15 @@ int RunGeneralize(const GeneralizeOptions& o) {
   if (o.name.empty() || o.name.find('/') != std::string::npos) {
     throw InputError("--name '" + o.name + "' must be a plain file name stem");
   }
-  const fs::path library_path = o.library.empty() ? DefaultGraspLibraryPath() : fs::path(o.library);
+  SceneModel scene = LoadScene(o.scene, o.object, kSynthesisNeedsHandle);
+  const fs::path library_path =
+      o.library.empty() ? DefaultGraspLibraryPath(scene.object.name) : fs::path(o.library);
   const std::string library_name =
       o.library.empty() ? "the shipped library" : "`" + o.library + "`";
   const GraspLibrary library = ReadGraspLibrary(library_path);
   const SimulationModel model(
       LoadRobotModel(o.robot.empty() ? DefaultRobotDescriptionPath() : fs::path(o.robot)),
-      LoadScene(o.scene, o.object, kSynthesisNeedsHandle));
+      std::move(scene));
 
   SynthesisTableOptions table;
   table.methods = ParseMethods(o.methods);

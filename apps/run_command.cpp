@@ -18,10 +18,10 @@
 #include "apps/cli_helpers.hpp"
 #include "apps/figure8.hpp"
 #include "common/atomic_file.hpp"
-#include "common/data_dir.hpp"
 #include "common/errors.hpp"
 #include "kinematics/robot_description.hpp"
 #include "kinematics/scene_model.hpp"
+#include "learning_data/demo_directory.hpp"
 #include "learning_data/grasp_library.hpp"
 #include "simulation/simulation_model.hpp"
 #include "solver/study.hpp"
@@ -60,7 +60,7 @@ constexpr int kQuickSensitivityTrials = 0;
 // The study's options from the command's flags; throws InputError for invalid ones.
 StudyOptions StudyOptionsOf(const RunOptions& o, const SceneModel& scene) {
   StudyOptions options;
-  options.demos = o.demos.empty() ? DataDirectory() / "learning_data" / "demos" : fs::path(o.demos);
+  options.demos = o.demos.empty() ? DefaultDemoDirectory(scene.object.name) : fs::path(o.demos);
   options.seed = o.seed;
   options.threads = o.threads;
   options.analysis.segmentation.region = scene.grasp_region;

@@ -69,12 +69,14 @@ Vector7d ParseStart(const std::string& text) {
 int RunSynthesize(const SynthesizeOptions& o) {
   const SynthesisMethod method = ParseSynthesisMethod(o.method);
   if (!std::isfinite(o.theta)) throw InputError("--theta must be a finite number of degrees");
-  const std::filesystem::path library_path =
-      o.library.empty() ? DefaultGraspLibraryPath() : std::filesystem::path(o.library);
+  SceneModel scene = LoadScene(o.scene, o.object, kSynthesisNeedsHandle);
+  const std::filesystem::path library_path = o.library.empty()
+                                                 ? DefaultGraspLibraryPath(scene.object.name)
+                                                 : std::filesystem::path(o.library);
   GraspLibrary library = ReadGraspLibrary(library_path);
   const SimulationModel sim(LoadRobotModel(o.robot.empty() ? DefaultRobotDescriptionPath()
                                                            : std::filesystem::path(o.robot)),
-                            LoadScene(o.scene, o.object, kSynthesisNeedsHandle));
+                            std::move(scene));
   SynthesisModel model(sim.robot(), sim.scene(), std::move(library));
 
   SynthesisOptions so;

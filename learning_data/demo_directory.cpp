@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <system_error>
 
+#include "common/data_dir.hpp"
 #include "common/errors.hpp"
 
 namespace graspsynth {
@@ -45,6 +46,15 @@ DemoDirectory ReadDemoDirectory(const fs::path& directory) {
     }
   }
   return result;
+}
+
+std::filesystem::path ObjectLearningDataDirectory(const std::string& object_name) {
+  const std::filesystem::path root = DataDirectory() / "learning_data";
+  return object_name == "pan" ? root : root / "objects" / object_name;
+}
+
+std::filesystem::path DefaultDemoDirectory(const std::string& object_name) {
+  return ObjectLearningDataDirectory(object_name) / "demos";
 }
 
 }  // namespace graspsynth

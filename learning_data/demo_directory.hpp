@@ -33,4 +33,13 @@ struct DemoDirectory {
 /// goes to `rejected` with its reason.
 DemoDirectory ReadDemoDirectory(const std::filesystem::path& directory);
 
+/// The folder of an object's shipped learning data (its demonstrations, operator and library):
+/// learning_data/ for the pan, the study's reference object, whose files have always been
+/// there; learning_data/objects/<object_name>/ for every other object. Under the data directory
+/// (common/data_dir.hpp).
+std::filesystem::path ObjectLearningDataDirectory(const std::string& object_name);
+
+/// The shipped demonstrations of `object_name`: <ObjectLearningDataDirectory>/demos.
+std::filesystem::path DefaultDemoDirectory(const std::string& object_name = "pan");
+
 }  // namespace graspsynth

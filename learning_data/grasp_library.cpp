@@ -12,6 +12,7 @@
 #include "common/errors.hpp"
 #include "common/json_reader.hpp"
 #include "kinematics/pose_math.hpp"
+#include "learning_data/demo_directory.hpp"
 
 namespace graspsynth {
 namespace {
@@ -203,8 +204,8 @@ GraspLibrary ReadGraspLibrary(const std::filesystem::path& path) {
   return ReadLibrary(JsonReader::Load(path));
 }
 
-std::filesystem::path DefaultGraspLibraryPath() {
-  return DataDirectory() / "learning_data" / "library.json";
+std::filesystem::path DefaultGraspLibraryPath(const std::string& object_name) {
+  return ObjectLearningDataDirectory(object_name) / "library.json";
 }
 
 }  // namespace graspsynth

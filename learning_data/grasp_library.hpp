@@ -78,8 +78,9 @@ SelectionReplays CountSelectionReplays(const GraspLibrary& library);
 /// strictly increase.
 GraspLibrary ReadGraspLibrary(const std::filesystem::path& path);
 
-/// Path of the shipped library (learning_data/library.json of the source tree or the data
-/// directory).
-std::filesystem::path DefaultGraspLibraryPath();
+/// Path of the shipped library of `object_name`: library.json in its learning-data folder
+/// (learning_data/library.json for the pan; ObjectLearningDataDirectory), in the source tree or
+/// the data directory.
+std::filesystem::path DefaultGraspLibraryPath(const std::string& object_name = "pan");
 
 }  // namespace graspsynth

@@ -8,6 +8,7 @@
 #include "common/data_dir.hpp"
 #include "common/errors.hpp"
 #include "common/json_reader.hpp"
+#include "learning_data/demo_directory.hpp"
 
 namespace graspsynth {
 namespace {
@@ -254,8 +255,8 @@ void WriteOperatorOptions(const OperatorOptions& o, const std::filesystem::path&
   WriteFileAtomically(path, root.dump(2) + "\n");
 }
 
-std::filesystem::path DefaultOperatorOptionsPath() {
-  return DataDirectory() / "learning_data" / "demos" / "operator.json";
+std::filesystem::path DefaultOperatorOptionsPath(const std::string& object_name) {
+  return DefaultDemoDirectory(object_name) / "operator.json";
 }
 
 }  // namespace graspsynth

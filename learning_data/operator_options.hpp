@@ -119,7 +119,9 @@ struct OperatorOptions {
 OperatorOptions ReadOperatorOptions(const std::filesystem::path& path);
 /// Writes them (atomically), every field included.
 void WriteOperatorOptions(const OperatorOptions& options, const std::filesystem::path& path);
-/// Path of the shipped, calibrated operator (learning_data/demos/operator.json).
-std::filesystem::path DefaultOperatorOptionsPath();
+/// Path of the shipped, calibrated operator of `object_name`: demos/operator.json in its
+/// learning-data folder (learning_data/demos/operator.json for the pan;
+/// ObjectLearningDataDirectory).
+std::filesystem::path DefaultOperatorOptionsPath(const std::string& object_name = "pan");
 
 }  // namespace graspsynth

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -193,6 +194,17 @@ TEST_F(RunCommand, BadOptionsAreRefusedNamingTheValue) {
       RunGraspsynth("run --demos /nonexistent/demos --out " + (dir_ / "o").string());
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_THAT(missing.err, HasSubstr("/nonexistent/demos"));
+  EXPECT_FALSE(fs::exists(dir_ / "o"));
+  // another object's study reads its own demonstrations, learning_data/objects/NAME/demos.
+  const fs::path kettle = dir_ / "kettle.json";
+  std::ofstream(kettle) << R"({"format": "graspsynth-object/1", "name": "kettle", "parts": [)"
+                        << R"({"name": "b", "type": "cylinder", "radius": 0.08, "length": 0.1,)"
+                        << R"( "mass": 0.5}], "handle": {"start_radius": 0.08,)"
+                        << R"( "end_radius": 0.2, "axis_height": 0.08}})";
+  const testing::CommandOutput other =
+      RunGraspsynth("run --object " + kettle.string() + " --out " + (dir_ / "o").string());
+  EXPECT_EQ(other.exit_code, 2);
+  EXPECT_THAT(other.err, HasSubstr("learning_data/objects/kettle/demos"));
   EXPECT_FALSE(fs::exists(dir_ / "o"));
 }
 

@@ -80,5 +80,13 @@ TEST(DemoDirectory, AMissingFolderIsAnInputError) {
                        "not a folder");
 }
 
+TEST(DemoDirectory, EachObjectHasItsLearningDataFolderAndThePanKeepsItsOwn) {
+  EXPECT_EQ(ObjectLearningDataDirectory("pan").filename(), "learning_data");
+  EXPECT_EQ(DefaultDemoDirectory(), ObjectLearningDataDirectory("pan") / "demos");
+  const std::filesystem::path mug = ObjectLearningDataDirectory("mug");
+  EXPECT_EQ(mug, ObjectLearningDataDirectory("pan") / "objects" / "mug");
+  EXPECT_EQ(DefaultDemoDirectory("mug"), mug / "demos");
+}
+
 }  // namespace
 }  // namespace graspsynth
