@@ -30,6 +30,13 @@ const SimulationModel& Model() {
   return model;
 }
 
+// The pan built from meshes (models/objects/pan_mesh.json): its body and handle ODE trimeshes.
+const SimulationModel& MeshPanModel() {
+  static const SimulationModel model(LoadRobotModel(DefaultRobotDescriptionPath()),
+                                     LoadSceneModel(DefaultSceneModelPath(), "pan_mesh"));
+  return model;
+}
+
 const JointTrajectory& Example() {
   static const JointTrajectory t =
       LoadJointTrajectory(std::string(GRASPSYNTH_SOURCE_DIR) + "/examples/grasp_60deg.json",
@@ -39,14 +46,15 @@ const JointTrajectory& Example() {
 
 // One trial per iteration. Counters: x real time (simulated s per CPU s of the thread), dynamic
 // steps per CPU second, the world's size, and where the time went (shares of the wall time).
-void RunTrials(benchmark::State& state, const TrialOptions& options) {
+void RunTrials(benchmark::State& state, const TrialOptions& options,
+               const SimulationModel& model = Model()) {
   double simulated = 0.0, wall = 0.0, cpu = 0.0, collision = 0.0, solver = 0.0;
   long dynamic_steps = 0, kinematic_steps = 0;
   int max_contacts = 0;
   WorldCounts counts;
   bool all_succeeded = true;
   for (auto _ : state) {
-    const TrialResult r = RunTrial(Model(), Example(), options);
+    const TrialResult r = RunTrial(model, Example(), options);
     all_succeeded = all_succeeded && r.success();
     simulated += r.simulated_time;
     wall += r.wall_time;
@@ -75,6 +83,13 @@ void RunTrials(benchmark::State& state, const TrialOptions& options) {
 // contact detail, 4 ms, early stop).
 void BM_TrialFast(benchmark::State& state) { RunTrials(state, TrialOptions{}); }
 BENCHMARK(BM_TrialFast)->Unit(benchmark::kMillisecond)->MinTime(3.0);
+
+// The fast path with the pan's body and handle as triangle meshes (ODE trimeshes; the same
+// trial and foot): what meshes cost against the primitives they replace.
+void BM_TrialFastMeshPan(benchmark::State& state) {
+  RunTrials(state, TrialOptions{}, MeshPanModel());
+}
+BENCHMARK(BM_TrialFastMeshPan)->Unit(benchmark::kMillisecond)->MinTime(3.0);
 
 // The fast path at other steps (arg: step in microseconds).
 void BM_TrialFastStep(benchmark::State& state) {

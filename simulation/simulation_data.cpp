@@ -148,6 +148,18 @@ thread_local bool* current_world_broken = nullptr;
 
 void IgnoreOdeMessage(int, const char*, va_list) {}
 
+// dCollide, one trimesh pair at a time across threads: Debian's ODE is built without its
+// thread-local storage (dGetConfiguration has no ODE_EXT_ou), so OPCODE's trimesh colliders share
+// one cache, and two threads colliding trimeshes at once crash. Primitive pairs run freely.
+int CollideGeoms(dGeomID a, dGeomID b, int max_contacts, dContactGeom* contacts) {
+  if (dGeomGetClass(a) != dTriMeshClass && dGeomGetClass(b) != dTriMeshClass) {
+    return dCollide(a, b, max_contacts, contacts, sizeof(dContactGeom));
+  }
+  static std::mutex trimesh_mutex;
+  const std::lock_guard<std::mutex> lock(trimesh_mutex);
+  return dCollide(a, b, max_contacts, contacts, sizeof(dContactGeom));
+}
+
 }  // namespace
 
 void EnsureOdeThread() {
@@ -684,7 +696,7 @@ struct SimulationData::Impl {
     }
     const SimulationOptions& so = model->options();
     dContactGeom cg[16];
-    const int n = dCollide(a, b, so.max_contacts_per_pair, cg, sizeof(dContactGeom));
+    const int n = CollideGeoms(a, b, so.max_contacts_per_pair, cg);
     if (n <= 0) return;
     double mu = 0.0;
     const Role ra = ia->role, rb = ib->role;
@@ -858,7 +870,7 @@ struct SimulationData::Impl {
     const Role other = ia->role == Role::kProxy ? ib->role : ia->role;
     if (other != Role::kArm && other != Role::kPalm && other != Role::kFinger) return;
     dContactGeom cg;
-    if (dCollide(a, b, 1, &cg, sizeof(dContactGeom)) > 0) self->near_object = true;
+    if (CollideGeoms(a, b, 1, &cg) > 0) self->near_object = true;
   }
 
   bool HandNearObject() {

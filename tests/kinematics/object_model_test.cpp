@@ -79,6 +79,36 @@ TEST(ObjectModel, ShippedPanHasTheHandComputedMassInertiaAndRestHeight) {
   EXPECT_TRUE(testing::MatricesNear(in.I_C, expected, 1e-14));
 }
 
+// The pan built from meshes: its prism body (64 sides) and mesh handle give the pan's mass,
+// rest height and centre of mass, and its inertia within the prism's 0.2% area deficit.
+TEST(ObjectModel, ShippedMeshPanHasThePansMassProperties) {
+  const ObjectModel pan = LoadObjectModel(ShippedObject("pan"));
+  const ObjectModel mesh = LoadObjectModel(ShippedObject("pan_mesh"));
+  ASSERT_EQ(mesh.parts[0].shape.kind, CollisionShape::Kind::kMesh);
+  ASSERT_EQ(mesh.parts[1].shape.kind, CollisionShape::Kind::kMesh);
+  EXPECT_EQ(mesh.parts[0].shape.mesh->triangles.size(), 4u * 64u);
+  EXPECT_EQ(mesh.rest_height, pan.rest_height);
+  const ObjectInertia a = pan.Inertia(), b = mesh.Inertia();
+  EXPECT_DOUBLE_EQ(b.mass, a.mass);
+  EXPECT_TRUE(testing::MatricesNear(b.p_OC, a.p_OC, 1e-7));  // float32 STL vertices
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(b.I_C(i, i), a.I_C(i, i), 0.005 * a.I_C(i, i)) << i;
+}
+
+// Every shipped object loads, has a mass, rests above the table and names itself by its file.
+TEST(ObjectModel, EveryShippedObjectLoads) {
+  int count = 0;
+  for (const fs::directory_entry& e : fs::directory_iterator(ShippedObject("pan").parent_path())) {
+    if (e.path().extension() != ".json") continue;
+    SCOPED_TRACE(e.path().string());
+    const ObjectModel o = LoadObjectModel(e.path());
+    EXPECT_EQ(o.name, e.path().stem().string());
+    EXPECT_GT(o.Inertia().mass, 0.0);
+    EXPECT_GT(o.rest_height, 0.0);
+    ++count;
+  }
+  EXPECT_GE(count, 2);
+}
+
 TEST(ObjectModel, ShippedPanIsTheInlinePanOfSceneFormat1) {
   const ObjectModel file = LoadObjectModel(ShippedObject("pan"));
   LegacyPanParameters p;
