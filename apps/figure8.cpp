@@ -142,7 +142,7 @@ std::string ObjectData(const SceneModel& scene, const std::vector<OrientationSta
   std::string object;
   double reach = 0.0;  // farthest footprint corner along the object's x axis
   for (const ObjectPart& part : o.parts) {
-    if (part.touches == PartContact::kTable) continue;
+    if (!part.touches_robot()) continue;
     const CollisionShape& s = part.shape;
     for (const Eigen::Vector2d& c : Footprint(s)) reach = std::max(reach, c.x());
     if (s.kind == CollisionShape::Kind::kBox || s.kind == CollisionShape::Kind::kMesh) continue;
@@ -169,7 +169,7 @@ std::string ObjectData(const SceneModel& scene, const std::vector<OrientationSta
     const Eigen::Vector2d u(std::cos(phi), std::sin(phi));
     const Eigen::Vector2d v(-u.y(), u.x());
     for (const ObjectPart& part : o.parts) {
-      if (part.touches == PartContact::kTable) continue;
+      if (!part.touches_robot()) continue;
       const std::vector<Eigen::Vector2d> corners = Footprint(part.shape);
       if (corners.empty()) continue;
       object += "\n";

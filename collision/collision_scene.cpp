@@ -535,7 +535,7 @@ CollisionModel::CollisionModel(const RobotModel& robot, const SceneModel& scene,
   const ObjectModel& o = scene.object;
   const int object_body = new_body(-1);
   for (const ObjectPart& part : o.parts) {
-    if (part.touches == PartContact::kTable) continue;
+    if (!part.touches_robot()) continue;
     m->shapes.push_back(
         {o.name + "/" + part.name, o.name, CollisionGroup::kObject, object_body, part.shape});
     m->sources.push_back({FrameKind::kObject, 0, 0});

@@ -165,7 +165,7 @@ ObjectPart ParsePart(const JsonReader& p, double default_friction,
     part.mass = p.NumberIn("mass", 1e-6, 1000.0);
   } else if (p.Has("density")) {
     part.mass = p.NumberIn("density", 1.0, 25000.0) * ShapeVolume(s);
-  } else if (part.touches != PartContact::kTable) {
+  } else if (part.touches_robot()) {
     p.Field("mass").Fail(
         "a mass in kg (or a density in kg/m^3); only a part that touches only "
         "the table may have neither");

@@ -36,6 +36,10 @@ struct ObjectPart {
   double mass = 0.0;      ///< kg; 0 for a support part
   double friction = 1.0;  ///< Coulomb coefficient with the fingers
   PartContact touches = PartContact::kRobotAndTable;
+
+  /// Whether the robot can touch the part: every part but a support. The collision scene, the
+  /// viewer and the figure hold these parts only.
+  bool touches_robot() const { return touches != PartContact::kTable; }
 };
 
 /// A handle's axis, for objects grasped by a handle: a horizontal segment along the object's

@@ -145,7 +145,7 @@ std::vector<ViewerBody> ViewerRobotBodies(const RobotModel& robot) {
 ViewerBody ViewerObjectBody(const ObjectModel& o) {
   ViewerBody body{o.name, "object", {}};
   for (const ObjectPart& part : o.parts) {
-    if (part.touches != PartContact::kTable) body.shapes.push_back(part.shape);
+    if (part.touches_robot()) body.shapes.push_back(part.shape);
   }
   return body;
 }
