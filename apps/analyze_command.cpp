@@ -63,7 +63,8 @@ AnalysisOptions MakeAnalysisOptions(const AnalyzeOptions& o, const SceneModel& s
   return options;
 }
 
-void PrintSummary(const DemonstrationAnalysis& a, const PaperComparisonOptions& comparison,
+// `comparison` is null for an object that is not the paper's.
+void PrintSummary(const DemonstrationAnalysis& a, const PaperComparisonOptions* comparison,
                   std::ostream& out) {
   const TableAnalysis& t = a.table;
   out << "read " << a.files << " demonstration log(s) from " << a.directory << " ("
@@ -94,11 +95,15 @@ void PrintSummary(const DemonstrationAnalysis& a, const PaperComparisonOptions& 
                   a.grasp_ranges.position_eta / kDeg, a.grasp_ranges.object_theta / kDeg);
     out << line;
   }
+  if (!comparison) {
+    out << "paper Table I: none for this object (not the paper's pan)\n";
+    return;
+  }
   int within = 0;
-  const std::vector<PaperComparisonRow> rows = CompareWithPaper(t, comparison);
+  const std::vector<PaperComparisonRow> rows = CompareWithPaper(t, *comparison);
   for (const PaperComparisonRow& row : rows) within += row.within_tolerance ? 1 : 0;
   out << "paper Table I: " << within << " of " << rows.size() << " orientations within "
-      << comparison.distance_tolerance * 1000.0 << " mm / " << comparison.angle_tolerance_deg
+      << comparison->distance_tolerance * 1000.0 << " mm / " << comparison->angle_tolerance_deg
       << " deg\n";
 }
 
@@ -106,7 +111,10 @@ void PrintSummary(const DemonstrationAnalysis& a, const PaperComparisonOptions& 
 int RunAnalyze(const AnalyzeOptions& o) {
   const SceneModel scene = LoadScene(o.scene, o.object);
   const AnalysisOptions options = MakeAnalysisOptions(o, scene);
-  const PaperComparisonOptions comparison;
+  const PaperComparisonOptions paper_tolerances;
+  // only the paper's pan has a published Table I to compare with.
+  const PaperComparisonOptions* comparison =
+      scene.object.paper_object ? &paper_tolerances : nullptr;
 
   const DemoDirectory demos = ReadDemoDirectory(o.directory);
   for (const RejectedDemoFile& r : demos.rejected) {
@@ -116,9 +124,11 @@ int RunAnalyze(const AnalyzeOptions& o) {
     throw InputError("analyze: no demonstration logs (*.csv) in '" + o.directory + "'");
   }
   const DemonstrationAnalysis analysis = AnalyzeDemonstrations(demos, options);
-  WriteFileAtomically(o.out, AnalysisReportJson(analysis, comparison));
+  WriteFileAtomically(
+      o.out, comparison ? AnalysisReportJson(analysis, *comparison) : AnalysisReportJson(analysis));
   if (!o.table.empty()) {
-    WriteFileAtomically(o.table, PaperComparisonMarkdown(analysis.table, comparison));
+    WriteFileAtomically(o.table, comparison ? PaperComparisonMarkdown(analysis.table, *comparison)
+                                            : TableIMarkdown(analysis.table));
   }
   PrintSummary(analysis, comparison, std::cout);
   std::cout << "wrote " << o.out << "\n";

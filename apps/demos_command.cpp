@@ -70,8 +70,10 @@ TableAnalysis Analyze(const SimulationModel& model, const std::vector<OperatorTr
   return AnalyzeTable(segmented);
 }
 
-// Prints the per-orientation summary: successes, and the means beside the paper's.
-void PrintSummary(const TableAnalysis& table, const std::vector<OperatorTrial>& trials) {
+// Prints the per-orientation summary: successes, and the means (beside the paper's for the
+// paper's pan, `paper_object`).
+void PrintSummary(const TableAnalysis& table, const std::vector<OperatorTrial>& trials,
+                  bool paper_object) {
   std::map<double, std::pair<int, int>> counts;  // theta -> (trials, successes)
   std::map<double, std::map<std::string, int>> failures;
   for (const OperatorTrial& t : trials) {
@@ -83,9 +85,14 @@ void PrintSummary(const TableAnalysis& table, const std::vector<OperatorTrial>& 
     }
   }
   std::map<double, PaperTableRow> paper;
-  for (const PaperTableRow& r : PaperTableI()) paper[r.theta_deg] = r;
-  std::printf(
-      "theta  trials  ok   grasp d  (paper)   eta    (paper)  pre-grasp eta (paper)  failures\n");
+  if (paper_object) {
+    for (const PaperTableRow& r : PaperTableI()) paper[r.theta_deg] = r;
+    std::printf(
+        "theta  trials  ok   grasp d  (paper)   eta    (paper)  pre-grasp eta (paper)  "
+        "failures\n");
+  } else {
+    std::printf("theta  trials  ok   grasp d      eta   pre-grasp eta  failures\n");
+  }
   for (const auto& [theta, c] : counts) {
     std::printf("%5.0f  %6d  %2d", theta, c.first, c.second);
     const OrientationStats* row = nullptr;
@@ -96,6 +103,11 @@ void PrintSummary(const TableAnalysis& table, const std::vector<OperatorTrial>& 
       const PaperTableRow& p = paper[theta];
       std::printf("   %.3f  (%.3f)  %6.1f  (%6.1f)  %6.1f  (%6.1f)     ", row->grasp.d, p.grasp_d,
                   row->grasp.eta_deg, p.grasp_eta_deg, row->pregrasp.eta_deg, p.pregrasp_eta_deg);
+    } else if (row && !paper_object) {
+      std::printf("   %.3f  %6.1f  %13.1f   ", row->grasp.d, row->grasp.eta_deg,
+                  row->pregrasp.eta_deg);
+    } else if (!paper_object) {
+      std::printf("   %-33s", "-");
     } else {
       std::printf("   %-54s", "-");
     }
@@ -117,7 +129,7 @@ int Generate(const DemosOptions& o) {
   for (const OperatorTrial& t : trials) WriteDemoLog(fs::path(o.out) / t.log.source, t.log);
   OperatorOptions used = options;
   WriteOperatorOptions(used, fs::path(o.out) / "operator.json");
-  PrintSummary(Analyze(*model, trials), trials);
+  PrintSummary(Analyze(*model, trials), trials, model->scene().object.paper_object);
   std::printf("wrote %zu logs and operator.json to %s\n", trials.size(), o.out.c_str());
   return 0;
 }
@@ -148,6 +160,12 @@ double RowError(const OrientationStats& s, const PaperTableRow& p) {
 // seen (RowError) is kept.
 int Calibrate(const DemosOptions& o) {
   const std::unique_ptr<SimulationModel> model = LoadModel(o);
+  if (!model->scene().object.paper_object) {
+    throw InputError("demos calibrate: the object '" + model->scene().object.name +
+                     "' is not the paper's pan; only the pan has a published Table I to "
+                     "calibrate to (another object's operator is planned from its geometry: "
+                     "experiments/make_operator.py)");
+  }
   OperatorOptions options = LoadOperator(o, model->scene());
   std::map<double, PaperTableRow> paper;
   for (const PaperTableRow& r : PaperTableI()) paper[r.theta_deg] = r;
@@ -161,7 +179,7 @@ int Calibrate(const DemosOptions& o) {
         });
     bar.Finish();
     const TableAnalysis table = Analyze(*model, trials);
-    PrintSummary(table, trials);
+    PrintSummary(table, trials, true);
     for (size_t k = 0; k < options.plans.size(); ++k) {
       OrientationPlan& plan = options.plans[k];
       if (!paper.count(plan.theta_deg)) continue;

@@ -64,6 +64,7 @@ StudyOptions StudyOptionsOf(const RunOptions& o, const SceneModel& scene) {
   options.seed = o.seed;
   options.threads = o.threads;
   options.analysis.segmentation.region = scene.grasp_region;
+  options.paper_object = scene.object.paper_object;
   CheckPhysicsFlags(o.physics);
   options.perturbation.physics = o.physics;
   options.physics_fallback = !o.no_physics_fallback;
@@ -90,8 +91,10 @@ StudyOptions StudyOptionsOf(const RunOptions& o, const SceneModel& scene) {
 // The files; every one is written atomically, the report last (with Fig. 8 when drawn).
 void WriteStudyFiles(const SceneModel& scene, const std::string& gnuplot, const fs::path& out,
                      StudyResult* result) {
-  const PaperComparisonOptions& comparison = result->options.comparison;
-  WriteFileAtomically(out / "analysis.json", AnalysisReportJson(result->analysis, comparison));
+  WriteFileAtomically(out / "analysis.json",
+                      result->options.paper_object
+                          ? AnalysisReportJson(result->analysis, result->options.comparison)
+                          : AnalysisReportJson(result->analysis));
   WriteGraspLibrary(result->selection.library, out / "library.json");
   WriteFileAtomically(out / "synthesis.json", StudySynthesisJson(*result));
   WriteFileAtomically(out / "synthesis.csv", StudySynthesisCsv(result->rows));
@@ -117,11 +120,15 @@ void PrintStudySummary(const StudyResult& result, const fs::path& out) {
   }
   std::printf("graspsynth run: %s, seed %llu, %.1f s\n", options.demos.string().c_str(),
               static_cast<unsigned long long>(options.seed), result.total_s);
-  std::printf(
-      "  analysis: %d logs, %d trials used; Table I %d of %d orientations within %g mm / "
-      "%g deg\n",
-      result.analysis.files, result.analysis.table.used, within, paper_rows,
-      comparison.distance_tolerance * 1e3, comparison.angle_tolerance_deg);
+  std::printf("  analysis: %d logs, %d trials used; ", result.analysis.files,
+              result.analysis.table.used);
+  if (options.paper_object) {
+    std::printf("Table I %d of %d orientations within %g mm / %g deg\n", within, paper_rows,
+                comparison.distance_tolerance * 1e3, comparison.angle_tolerance_deg);
+  } else {
+    std::printf("Table I over %zu orientations (no paper table for this object)\n",
+                result.analysis.table.orientations.size());
+  }
   if (result.analysis.line.usable()) {
     std::printf("  wrist line: rms %.1f mm, max %.1f mm\n",
                 result.analysis.line.residuals.rms * 1e3, result.analysis.line.residuals.max * 1e3);

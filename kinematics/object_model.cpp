@@ -255,12 +255,14 @@ ObjectModel ParseObjectModel(std::string_view json_text, const std::string& sour
                              const std::filesystem::path& mesh_dir) {
   const JsonReader top = JsonReader::Parse(json_text, source).AsObject();
   top.ExpectString("format", kFormat);
-  top.RejectUnknownKeys({"format", "name", "comment", "sources", "friction", "parts", "handle"});
+  top.RejectUnknownKeys(
+      {"format", "name", "comment", "sources", "friction", "parts", "handle", "paper_object"});
   ObjectModel o;
   o.source = source;
   o.name = top.String("name");
   if (o.name.empty()) top.Field("name").Fail("a non-empty name");
   if (top.Has("friction")) o.friction = top.NumberIn("friction", 0.0, 10.0);
+  if (top.Has("paper_object")) o.paper_object = top.Bool("paper_object");
   const std::vector<JsonReader> parts = top.Array("parts");
   if (parts.empty()) top.Field("parts").Fail("at least one part");
   std::set<std::string> names;

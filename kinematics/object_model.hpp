@@ -70,6 +70,10 @@ struct ObjectModel {
   /// depth of the lowest point of the parts that touch the table below O).
   double rest_height = 0.0;
   std::optional<HandleAxis> handle;
+  /// The object stands for the paper's pan (`"paper_object": true`): studies of it compare
+  /// their Table I with the paper's and check the paper's grasp wrist poses. Other objects
+  /// have no published table; their studies report their own.
+  bool paper_object = false;
 
   /// The handle's axis. Throws InputError naming the object when it has none; `needed_by`
   /// says what needed it.

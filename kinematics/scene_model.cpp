@@ -47,6 +47,7 @@ ObjectModel LegacyPanObject(const std::string& name, const LegacyPanParameters& 
   o.source = source;
   o.friction = p.friction;
   o.rest_height = 0.5 * p.body_height;
+  o.paper_object = true;  // scene/1 held the study's pan inline
   ObjectPart body;
   body.name = "body";
   body.shape.kind = CollisionShape::Kind::kCylinder;

@@ -224,6 +224,21 @@ std::string PaperComparisonMarkdown(const TableAnalysis& table,
   return md;
 }
 
+std::string TableIMarkdown(const TableAnalysis& table) {
+  std::string md =
+      "Table I of these demonstrations: average pre-grasp (PG) and grasp (G) wrist positions "
+      "relative to the object centre, top view (d in m, eta in deg from world +x; the paper has "
+      "no table for this object).\n\n"
+      "| theta (deg) | n | d_PG | eta_PG | d_G | eta_G |\n"
+      "|---:|---:|---:|---:|---:|---:|\n";
+  for (const OrientationStats& row : table.orientations) {
+    md += "| " + Compact(row.theta_deg) + " | " + std::to_string(row.n) + " | " +
+          Fixed(row.pregrasp.d, 3) + " | " + Fixed(row.pregrasp.eta_deg, 1) + " | " +
+          Fixed(row.grasp.d, 3) + " | " + Fixed(row.grasp.eta_deg, 1) + " |\n";
+  }
+  return md;
+}
+
 namespace {
 
 // The wrist-line fit: status, loss, and when usable the line, its residuals, the plain fit and
@@ -272,10 +287,9 @@ json PaperComparisonJson(const TableAnalysis& table, const PaperComparisonOption
           {"rows", rows}};
 }
 
-}  // namespace
-
-std::string AnalysisReportJson(const DemonstrationAnalysis& analysis,
-                               const PaperComparisonOptions& comparison) {
+// The report, with the comparison with the paper when `comparison` is given (null otherwise).
+std::string AnalysisReport(const DemonstrationAnalysis& analysis,
+                           const PaperComparisonOptions* comparison) {
   const AnalysisOptions& o = analysis.options;
   const TableAnalysis& table = analysis.table;
   json report;
@@ -327,7 +341,7 @@ std::string AnalysisReportJson(const DemonstrationAnalysis& analysis,
       {"grasp_to_object_ratio",
        object_range > 0.0 ? json(analysis.grasp_ranges.position_eta / object_range) : json()}};
 
-  report["paper_comparison"] = PaperComparisonJson(table, comparison);
+  report["paper_comparison"] = comparison ? PaperComparisonJson(table, *comparison) : json();
 
   json rejected = json::array();
   for (const RejectedDemoFile& r : analysis.rejected) {
@@ -343,6 +357,17 @@ std::string AnalysisReportJson(const DemonstrationAnalysis& analysis,
   }
   report["skipped"] = skipped;
   return report.dump(2) + "\n";
+}
+
+}  // namespace
+
+std::string AnalysisReportJson(const DemonstrationAnalysis& analysis,
+                               const PaperComparisonOptions& comparison) {
+  return AnalysisReport(analysis, &comparison);
+}
+
+std::string AnalysisReportJson(const DemonstrationAnalysis& analysis) {
+  return AnalysisReport(analysis, nullptr);
 }
 
 }  // namespace graspsynth

@@ -324,8 +324,10 @@ StudyResult RunStudy(const SimulationModel& model, const StudyOptions& options,
                      "' (" + std::to_string(demos.rejected.size()) + " rejected)");
   }
   result.analysis = AnalyzeDemonstrations(demos, options.analysis);
-  result.comparison = CompareWithPaper(result.analysis.table, options.comparison);
-  result.reachability = TableIReachability(model.robot(), model.scene());
+  if (options.paper_object) {
+    result.comparison = CompareWithPaper(result.analysis.table, options.comparison);
+    result.reachability = TableIReachability(model.robot(), model.scene());
+  }
   report(StudyStage::kAnalysis, 2, 2, "Table I");
   result.analysis_s = SecondsSince(start);
 

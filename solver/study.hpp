@@ -96,6 +96,11 @@ struct StudyOptions {
   AnalysisOptions analysis;
   /// Tolerances of the comparison with the paper's Table I.
   PaperComparisonOptions comparison;
+  /// The object is the paper's pan (ObjectModel::paper_object): compare Table I with the
+  /// paper's and check the paper's grasp wrist poses. Otherwise the study reports its own
+  /// Table I, `comparison` and `reachability` of the result stay empty, and analysis.json's
+  /// paper_comparison is null.
+  bool paper_object = true;
 
   /// 20, 25, ..., 100 deg.
   static std::vector<double> DefaultStudyOrientations();

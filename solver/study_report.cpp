@@ -336,14 +336,19 @@ void SummarySection(const StudyResult& result, std::ostringstream& md) {
   const StudyOptions& o = result.options;
   const DemonstrationAnalysis& a = result.analysis;
   md << "## Summary\n\n";
-  int within = 0, paper_rows = 0;
-  for (const PaperComparisonRow& row : CompareWithPaper(a.table, o.comparison)) {
-    if (row.paper) ++paper_rows;
-    within += row.within_tolerance ? 1 : 0;
+  if (o.paper_object) {
+    int within = 0, paper_rows = 0;
+    for (const PaperComparisonRow& row : CompareWithPaper(a.table, o.comparison)) {
+      if (row.paper) ++paper_rows;
+      within += row.within_tolerance ? 1 : 0;
+    }
+    md << Format("- Table I: %d of %d of the paper's orientations within %.0f mm / %.0f deg.\n",
+                 within, paper_rows, o.comparison.distance_tolerance * 1e3,
+                 o.comparison.angle_tolerance_deg);
+  } else {
+    md << "- Table I: " << a.table.orientations.size()
+       << " orientations (the paper has no table for this object).\n";
   }
-  md << Format("- Table I: %d of %d of the paper's orientations within %.0f mm / %.0f deg.\n",
-               within, paper_rows, o.comparison.distance_tolerance * 1e3,
-               o.comparison.angle_tolerance_deg);
   if (a.line.usable()) {
     md << Format("- Wrist line: rms %.1f mm, max %.1f mm", a.line.residuals.rms * 1e3,
                  a.line.residuals.max * 1e3);
@@ -382,7 +387,9 @@ void TableISection(const StudyResult& result, std::ostringstream& md) {
   md << a.files << " logs read (" << a.rejected.size() << " rejected); " << t.used
      << " trials used, " << t.unsuccessful.size() << " unsuccessful, " << t.unsegmentable.size()
      << " unsegmentable.\n\n";
-  md << PaperComparisonMarkdown(t, result.options.comparison) << "\n";
+  md << (result.options.paper_object ? PaperComparisonMarkdown(t, result.options.comparison)
+                                     : TableIMarkdown(t))
+     << "\n";
   for (const RejectedDemoFile& r : a.rejected) {
     md << "- rejected `" << r.file << "`: " << Cell(r.reason) << "\n";
   }

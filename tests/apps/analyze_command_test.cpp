@@ -64,6 +64,28 @@ TEST(AnalyzeCommand, AnalyzesAFolderAndNamesTheBadFile) {
   }
 }
 
+// Only the paper's pan has a published Table I: for another object the report's
+// paper_comparison is null and the table is ours alone.
+TEST(AnalyzeCommand, AnotherObjectHasNoPaperComparison) {
+  const testing::TestFolder folder;
+  const auto demos = folder.path() / "demos";
+  std::filesystem::create_directories(demos);
+  WriteDemoSet(demos, false);
+  const auto report = folder.path() / "report.json";
+  const auto table = folder.path() / "table.md";
+  const auto r = RunGraspsynth("analyze " + demos.string() + " --object saucepan --out " +
+                               report.string() + " --table " + table.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("paper Table I: none for this object"));
+  const json j = json::parse(ReadFileText(report));
+  EXPECT_TRUE(j.at("paper_comparison").is_null());
+  EXPECT_EQ(j.at("orientations").size(), 9u);
+  const std::string md = ReadFileText(table);
+  EXPECT_THAT(md, HasSubstr("the paper has no table for this object"));
+  EXPECT_THAT(md, HasSubstr("| 100 | 5 | 0.410 | -39.8 | 0.321 | -40.6 |"));
+  EXPECT_THAT(md, ::testing::Not(HasSubstr("paper |")));
+}
+
 TEST(AnalyzeCommand, OptionsReachTheAnalysis) {
   const testing::TestFolder folder;
   WriteDemoSet(folder.path(), false);

@@ -71,6 +71,28 @@ TEST(DemosCommand, CalibrateWritesAValidOperator) {
   fs::remove_all(dir);
 }
 
+// Another object's shipped operator makes trials that physics labels; its summary has no
+// column of the paper's Table I, and calibrating to that table is refused.
+TEST(DemosCommand, AnotherObjectIsNotComparedWithThePaper) {
+  const fs::path dir = TempDir("saucepan");
+  OperatorOptions options = ReadOperatorOptions(DefaultOperatorOptionsPath("saucepan"));
+  options.plans.resize(1);  // 20 deg
+  WriteOperatorOptions(options, dir / "small.json");
+  const testing::CommandOutput r =
+      RunGraspsynth("demos generate --object saucepan --config " + (dir / "small.json").string() +
+                    " --out " + (dir / "out").string() + " --trials-per-orientation 2 --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("wrote 2 logs"));
+  EXPECT_THAT(r.out, ::testing::Not(HasSubstr("paper")));
+  const testing::CommandOutput c =
+      RunGraspsynth("demos calibrate --object saucepan --config " + (dir / "small.json").string() +
+                    " --out " + (dir / "c.json").string());
+  EXPECT_EQ(c.exit_code, 2);
+  EXPECT_THAT(c.err, HasSubstr("'saucepan' is not the paper's pan"));
+  EXPECT_FALSE(fs::exists(dir / "c.json"));
+  fs::remove_all(dir);
+}
+
 TEST(DemosCommand, BadConfigIsAnErrorNamingTheFile) {
   const fs::path dir = TempDir("bad");
   std::ofstream(dir / "bad.json") << R"({"format": "graspsynth-operator/1"})";

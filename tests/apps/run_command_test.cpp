@@ -161,6 +161,37 @@ TEST_F(RunCommand, QuickStudyWritesEveryFileWithPlausibleResults) {
   EXPECT_THAT(r.out, HasSubstr("nominal successes"));
 }
 
+// `run --object saucepan` studies the shipped saucepan on its own demonstrations (two
+// orientations of them here): its own Table I, no comparison with the paper's pan.
+TEST_F(RunCommand, AnotherObjectsStudyHasItsOwnTableI) {
+  const fs::path demos = dir_ / "saucepan";
+  fs::create_directories(demos);
+  const fs::path shipped =
+      fs::path(::testing::SourceDir()) / "learning_data" / "objects" / "saucepan" / "demos";
+  for (const char* prefix : {"theta040_", "theta050_"}) {
+    for (const fs::directory_entry& e : fs::directory_iterator(shipped)) {
+      if (e.path().filename().string().rfind(prefix, 0) == 0) {
+        fs::copy_file(e.path(), demos / e.path().filename());
+      }
+    }
+  }
+  const fs::path out = dir_ / "study";
+  const testing::CommandOutput r = RunGraspsynth(
+      "run --object saucepan --quick --orientations 45 --perturb 1 --select-perturb 1 --demos " +
+      demos.string() + " --threads 2 --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_THAT(r.out, HasSubstr("no paper table for this object"));
+  const json analysis = json::parse(ReadFileText(out / "analysis.json"));
+  EXPECT_TRUE(analysis["paper_comparison"].is_null());
+  EXPECT_EQ(analysis["orientations"].size(), 2u);
+  const std::string report = ReadFileText(out / "report.md");
+  EXPECT_THAT(report, HasSubstr("the paper has no table for this object"));
+  EXPECT_THAT(report, ::testing::Not(HasSubstr("Kinematics check of the paper's grasps")));
+  const json synthesis = json::parse(ReadFileText(out / "synthesis.json"));
+  ASSERT_EQ(synthesis["rows"].size(), 2u);
+  EXPECT_EQ(synthesis["rows"][0]["status"], "ok");
+}
+
 TEST_F(RunCommand, SameSeedGivesTheSameFilesWhateverTheThreads) {
   // one orientation's demonstrations: the selection, and the gate of the grasp at 40 deg
   // (the 40 deg demonstration itself) with perturbed replays spread over the threads.

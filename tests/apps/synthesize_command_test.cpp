@@ -56,6 +56,22 @@ TEST_F(SynthesizeCommand, WritesAValidatedGraspFileThatSimulatePlays) {
   EXPECT_TRUE(nlohmann::json::parse(ReadFileText(report))["nominal"]["success"].get<bool>());
 }
 
+// Another shipped object: with --object NAME the default library is that object's own
+// (learning_data/objects/saucepan/library.json); at an orientation it has no demonstration of
+// the grasp passes the gate, and simulate lifts the saucepan again with it.
+TEST_F(SynthesizeCommand, ShippedSaucepanGraspPassesTheGateAndLiftsAgain) {
+  const testing::CommandOutput r = RunGraspsynth("synthesize --object saucepan --theta 45 --out " +
+                                                 out_ + " --perturb 2 --threads 2");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(ReadFileText(out_));
+  EXPECT_TRUE(j["validation"]["passed"].get<bool>());
+  const std::string report = (dir_ / "report.json").string();
+  const testing::CommandOutput sim =
+      RunGraspsynth("simulate " + out_ + " --object saucepan --out " + report);
+  EXPECT_EQ(sim.exit_code, 0) << sim.err;
+  EXPECT_TRUE(nlohmann::json::parse(ReadFileText(report))["nominal"]["success"].get<bool>());
+}
+
 TEST_F(SynthesizeCommand, LineMethodGoesBeyondTheRange) {
   const testing::CommandOutput r = RunGraspsynth(Args("--theta 100 --method line --no-refine"));
   ASSERT_EQ(r.exit_code, 0) << r.err;

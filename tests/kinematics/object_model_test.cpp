@@ -79,6 +79,35 @@ TEST(ObjectModel, ShippedPanHasTheHandComputedMassInertiaAndRestHeight) {
   EXPECT_TRUE(testing::MatricesNear(in.I_C, expected, 1e-14));
 }
 
+// The saucepan: a 0.64 kg cylinder (r 0.07, h 0.08) at O and a 0.12 kg bar 0.22 x 0.022 x
+// 0.022 m centred at (0.18, 0, 0.025); the inertia written out part by part.
+TEST(ObjectModel, ShippedSaucepanHasTheHandComputedMassInertiaAndRestHeight) {
+  const ObjectModel pan = LoadObjectModel(ShippedObject("saucepan"));
+  EXPECT_FALSE(pan.paper_object);
+  EXPECT_TRUE(LoadObjectModel(ShippedObject("pan")).paper_object);
+  EXPECT_DOUBLE_EQ(pan.rest_height, 0.04);  // its foot, 0.08 m high, centred on O
+  ASSERT_TRUE(pan.handle);
+  EXPECT_DOUBLE_EQ(pan.handle->start_radius, 0.07);
+  EXPECT_DOUBLE_EQ(pan.handle->end_radius, 0.29);
+  EXPECT_DOUBLE_EQ(pan.handle->axis_height, 0.065);
+  const ObjectInertia in = pan.Inertia();
+  const double m1 = 0.64, r = 0.07, h = 0.08, m2 = 0.12, a = 0.22, b = 0.022;
+  const Eigen::Vector3d D(0.18, 0.0, 0.025);  // the bar's centre from the body's
+  EXPECT_DOUBLE_EQ(in.mass, 0.76);
+  EXPECT_TRUE(testing::MatricesNear(in.p_OC, D * m2 / (m1 + m2), 1e-12));
+  // each part about its own centre, plus the two-body parallel-axis term with the reduced
+  // mass m1 m2 / (m1 + m2) and the offset D between the centres.
+  Eigen::Matrix3d expected = Eigen::Vector3d((m1 * (3 * r * r + h * h) + m2 * 2 * b * b) / 12,
+                                             (m1 * (3 * r * r + h * h) + m2 * (a * a + b * b)) / 12,
+                                             m1 * r * r / 2 + m2 * (a * a + b * b) / 12)
+                                 .asDiagonal();
+  const double mu = m1 * m2 / (m1 + m2);
+  expected += mu * (D.squaredNorm() * Eigen::Matrix3d::Identity() - D * D.transpose());
+  EXPECT_TRUE(testing::MatricesNear(in.I_C, expected, 1e-14));
+  EXPECT_NEAR(in.I_C(0, 0), 1.19817e-3, 1e-8);  // the figures of models/README.md
+  EXPECT_NEAR(in.I_C(2, 2), 5.33095e-3, 1e-8);
+}
+
 // The pan built from meshes: its prism body (64 sides) and mesh handle give the pan's mass,
 // rest height and centre of mass, and its inertia within the prism's 0.2% area deficit.
 TEST(ObjectModel, ShippedMeshPanHasThePansMassProperties) {
@@ -106,7 +135,7 @@ TEST(ObjectModel, EveryShippedObjectLoads) {
     EXPECT_GT(o.rest_height, 0.0);
     ++count;
   }
-  EXPECT_GE(count, 2);
+  EXPECT_GE(count, 3);
 }
 
 TEST(ObjectModel, ShippedPanIsTheInlinePanOfSceneFormat1) {

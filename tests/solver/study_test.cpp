@@ -278,6 +278,25 @@ TEST(StudyReportMarkdown, StatesTheHeadlinesTablesAndFailureReasons) {
                             "turned with the object"));
 }
 
+// An object that is not the paper's pan: its own Table I, no comparison with the paper's.
+TEST(StudyReportMarkdown, AnotherObjectHasItsOwnTableIAndNoPaperColumns) {
+  StudyResult result = HandMadeResult();
+  result.options.paper_object = false;
+  OrientationStats row;
+  row.theta_deg = 45.0;
+  row.n = 3;
+  row.grasp.d = 0.2;
+  row.grasp.eta_deg = -110.0;
+  row.pregrasp.d = 0.41;
+  row.pregrasp.eta_deg = -60.0;
+  result.analysis.table.orientations = {row};
+  const std::string md = StudyReportMarkdown(result);
+  EXPECT_THAT(md, HasSubstr("- Table I: 1 orientations (the paper has no table for this object)"));
+  EXPECT_THAT(md, HasSubstr("| 45 | 3 | 0.410 | -60.0 | 0.200 | -110.0 |"));
+  EXPECT_THAT(md, Not(HasSubstr("d_PG paper")));
+  EXPECT_THAT(md, Not(HasSubstr("of the paper's orientations within")));
+}
+
 TEST(StudyReportMarkdown, SectionsComeInOrder) {
   StudyResult result = HandMadeResult();
   ReachabilityRow reach;
