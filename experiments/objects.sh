@@ -8,7 +8,7 @@
 # replays, the physics perturbed). Writes experiments/results/objects/NAME/ (analysis.json,
 # generalization.csv and .md) and the comparison table experiments/results/objects.md (and
 # objects.csv): per object, the line and radial RMS, and per method the nominal success and
-# the mean robustness. Deterministic from --seed 1. About 5 minutes per object on 2 cores.
+# the mean robustness. Deterministic from --seed 1. 20-30 minutes per object on 2 cores.
 #
 #   experiments/objects.sh [BUILD_DIR] [OBJECT ...]     (default: build, every object with a library)
 set -euo pipefail
