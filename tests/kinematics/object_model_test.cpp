@@ -82,15 +82,15 @@ TEST(ObjectModel, ShippedPanHasTheHandComputedMassInertiaAndRestHeight) {
 // The saucepan: a 0.64 kg cylinder (r 0.07, h 0.08) at O and a 0.12 kg bar 0.22 x 0.022 x
 // 0.022 m centred at (0.18, 0, 0.025); the inertia written out part by part.
 TEST(ObjectModel, ShippedSaucepanHasTheHandComputedMassInertiaAndRestHeight) {
-  const ObjectModel pan = LoadObjectModel(ShippedObject("saucepan"));
-  EXPECT_FALSE(pan.paper_object);
+  const ObjectModel saucepan = LoadObjectModel(ShippedObject("saucepan"));
+  EXPECT_FALSE(saucepan.paper_object);
   EXPECT_TRUE(LoadObjectModel(ShippedObject("pan")).paper_object);
-  EXPECT_DOUBLE_EQ(pan.rest_height, 0.04);  // its foot, 0.08 m high, centred on O
-  ASSERT_TRUE(pan.handle);
-  EXPECT_DOUBLE_EQ(pan.handle->start_radius, 0.07);
-  EXPECT_DOUBLE_EQ(pan.handle->end_radius, 0.29);
-  EXPECT_DOUBLE_EQ(pan.handle->axis_height, 0.065);
-  const ObjectInertia in = pan.Inertia();
+  EXPECT_DOUBLE_EQ(saucepan.rest_height, 0.04);  // its foot, 0.08 m high, centred on O
+  ASSERT_TRUE(saucepan.handle);
+  EXPECT_DOUBLE_EQ(saucepan.handle->start_radius, 0.07);
+  EXPECT_DOUBLE_EQ(saucepan.handle->end_radius, 0.29);
+  EXPECT_DOUBLE_EQ(saucepan.handle->axis_height, 0.065);
+  const ObjectInertia in = saucepan.Inertia();
   const double m1 = 0.64, r = 0.07, h = 0.08, m2 = 0.12, a = 0.22, b = 0.022;
   const Eigen::Vector3d D(0.18, 0.0, 0.025);  // the bar's centre from the body's
   EXPECT_DOUBLE_EQ(in.mass, 0.76);

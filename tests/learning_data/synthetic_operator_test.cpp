@@ -38,6 +38,16 @@ OperatorOptions OneOrientation(double theta_deg, int trials) {
   return options;
 }
 
+// Every trial's log is, byte for byte, the file of its name in `shipped`.
+void ExpectTheShippedLogs(const std::vector<OperatorTrial>& trials, const fs::path& shipped) {
+  for (const OperatorTrial& t : trials) {
+    std::ifstream in(shipped / t.log.source, std::ios::binary);
+    ASSERT_TRUE(in) << t.log.source;
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(FormatDemoLog(t.log), text) << t.log.source;
+  }
+}
+
 TEST(SyntheticOperator, TrialsAreCompleteLogsLabelledByTheSimulation) {
   const SimulationModel model = LoadDefaultSimulationModel();
   const OperatorOptions options = OneOrientation(100.0, 3);
@@ -139,13 +149,7 @@ TEST(SyntheticOperator, TheShippedSetIsReproducedByteForByte) {
   if (testing::Scaled(0, 1) == 1) options = OneOrientation(80.0, 0);
   const std::vector<OperatorTrial> trials = GenerateDemonstrations(model, options, 2);
   ASSERT_FALSE(trials.empty());
-  const fs::path shipped = DefaultOperatorOptionsPath().parent_path();
-  for (const OperatorTrial& t : trials) {
-    std::ifstream in(shipped / t.log.source, std::ios::binary);
-    ASSERT_TRUE(in) << t.log.source;
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    EXPECT_EQ(FormatDemoLog(t.log), text) << t.log.source;
-  }
+  ExpectTheShippedLogs(trials, DefaultOperatorOptionsPath().parent_path());
 }
 
 // Another object's shipped set (learning_data/objects/saucepan/demos) comes out of its own
@@ -160,13 +164,7 @@ TEST(SyntheticOperator, TheShippedSaucepanSetIsReproducedByteForByte) {
   if (testing::Scaled(0, 1) == 1) options.plans.front().trials = 2;
   const std::vector<OperatorTrial> trials = GenerateDemonstrations(model, options, 2);
   ASSERT_FALSE(trials.empty());
-  const fs::path shipped = DefaultOperatorOptionsPath("saucepan").parent_path();
-  for (const OperatorTrial& t : trials) {
-    std::ifstream in(shipped / t.log.source, std::ios::binary);
-    ASSERT_TRUE(in) << t.log.source;
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    EXPECT_EQ(FormatDemoLog(t.log), text) << t.log.source;
-  }
+  ExpectTheShippedLogs(trials, DefaultOperatorOptionsPath("saucepan").parent_path());
 }
 
 TEST(SyntheticOperator, InvalidOptionsAreRejected) {
