@@ -167,8 +167,8 @@ void AddAnalyzeCommand(CLI::App& app, int* exit_code) {
                   "and grasp positions per orientation, the wrist line, the grasp region and "
                   "the object outline, object-centred, equal axes");
   cmd->add_option("--table", opts->table,
-                  "Also write the comparison with the paper's Table I (markdown) to this file; "
-                  "rows beyond 5 mm / 2 deg are marked");
+                  "Also write the Table I (markdown) to this file: for the paper's pan beside "
+                  "the paper's, rows beyond 5 mm / 2 deg marked; for another object its own");
   cmd->add_option("--scene", opts->scene,
                   "Scene description (graspsynth-scene/2) for the default grasp region and the "
                   "object outline; default: models/scene.json");

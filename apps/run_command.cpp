@@ -180,9 +180,10 @@ void AddRunCommand(CLI::App& app, int* exit_code) {
   CLI::App* run = app.add_subcommand(
       "run",
       "The main job: the end-to-end study on the shipped demonstrations.\n"
-      "1. analysis: segment every log of --demos, build the paper's Table I and compare it\n"
-      "   with the paper (5 mm / 2 deg), fit the wrist line and the radial strategy, draw\n"
-      "   Fig. 8 (gnuplot), and check that the paper's grasp wrist poses are reachable;\n"
+      "1. analysis: segment every log of --demos, build the paper's Table I (for the paper's\n"
+      "   pan: compare it with the paper, 5 mm / 2 deg, and check that the paper's grasp\n"
+      "   wrist poses are reachable), fit the wrist line and the radial strategy, draw\n"
+      "   Fig. 8 (gnuplot);\n"
       "2. selection: score every successful demonstration by perturbed replays in ODE and\n"
       "   pick the most robust per orientation (the study's grasp library);\n"
       "3. synthesis: a grasp for every orientation (default 20, 25, ..., 100 deg) by each\n"

@@ -183,6 +183,10 @@ const HandleAxis& ObjectModel::Handle(std::string_view needed_by) const {
   return *handle;
 }
 
+Eigen::Vector3d ObjectModel::HandleDirection(const Eigen::Isometry3d& X_WO) const {
+  return X_WO.linear() * (handle ? handle->Along() : Eigen::Vector3d::UnitX());
+}
+
 ObjectInertia ObjectModel::Inertia() const {
   ObjectInertia out;
   Eigen::Vector3d moment = Eigen::Vector3d::Zero();
@@ -291,11 +295,12 @@ ObjectModel ParseObjectModel(std::string_view json_text, const std::string& sour
   o.rest_height = -lowest;
   if (top.Has("handle")) {
     const JsonReader h = top.Object("handle");
-    h.RejectUnknownKeys({"start_radius", "end_radius", "axis_height", "comment"});
+    h.RejectUnknownKeys({"start_radius", "end_radius", "axis_height", "direction_deg", "comment"});
     HandleAxis a;
-    a.start_radius = h.NumberIn("start_radius", 0.0, 5.0);
-    a.end_radius = h.NumberIn("end_radius", 1e-3, 5.0);
+    a.start_radius = h.NumberIn("start_radius", -5.0, 5.0);
+    a.end_radius = h.NumberIn("end_radius", -5.0, 5.0);
     a.axis_height = h.NumberIn("axis_height", 0.0, 5.0);
+    if (h.Has("direction_deg")) a.direction = h.NumberIn("direction_deg", -360.0, 360.0) * kDeg;
     if (a.end_radius <= a.start_radius) h.Field("end_radius").Fail("a radius above start_radius");
     o.handle = a;
   }

@@ -13,6 +13,8 @@
 /// orientation theta is the scene's (kinematics/scene_model.hpp).
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cmath>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -42,14 +44,22 @@ struct ObjectPart {
   bool touches_robot() const { return touches != PartContact::kTable; }
 };
 
-/// A handle's axis, for objects grasped by a handle: a horizontal segment along the object's
-/// x axis, from start_radius to end_radius from the object centre, axis_height above the
-/// table when the object rests. The grip placement of the synthetic operator, the line
+/// The grip axis, for objects grasped across a line: a handle's bar, or a line through the
+/// body of an object held by it (a box pinched across its thickness). A horizontal segment
+/// along `direction` in the object's xy plane, from start_radius to end_radius from the object
+/// centre along it (negative behind the centre), axis_height above the table when the object
+/// rests. The hand closes across it: the grip placement of the synthetic operator, the line
 /// principle and the refinement aim at it.
 struct HandleAxis {
-  double start_radius = 0.0;  ///< m from the object centre
-  double end_radius = 0.0;    ///< m from the object centre
+  double start_radius = 0.0;  ///< m from the object centre along the axis
+  double end_radius = 0.0;    ///< m from the object centre along the axis
   double axis_height = 0.0;   ///< m above the table
+  double direction = 0.0;     ///< rad from the object's x axis about z; 0 for the pan's handle
+
+  /// The unit vector along the axis, in the object frame.
+  Eigen::Vector3d Along() const {
+    return Eigen::Vector3d(std::cos(direction), std::sin(direction), 0.0);
+  }
 };
 
 /// Mass properties of an object.
@@ -80,6 +90,9 @@ struct ObjectModel {
   const HandleAxis& Handle(std::string_view needed_by) const;
   /// Mass, centre of mass and inertia from the parts (uniform density within each part).
   ObjectInertia Inertia() const;
+  /// The grip axis's direction in the world for the object at pose X_WO: the object's x axis
+  /// for an object without one.
+  Eigen::Vector3d HandleDirection(const Eigen::Isometry3d& X_WO) const;
 };
 
 /// Parses an object description (format graspsynth-object/1). `source` names it in messages;

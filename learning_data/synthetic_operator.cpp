@@ -58,7 +58,7 @@ PlannedTrial PlanTrial(const SceneModel& scene, const HandModel& hand, const Ope
   const GraspStyle& style = strategy.grasp ? *strategy.grasp : o.grasp;
   const Eigen::Isometry3d X_WO = scene.ObjectPose(plan.theta_deg * kDeg);
   const Eigen::Vector2d c = scene.object_centre_xy;
-  const Eigen::Vector3d h = X_WO.linear().col(0);
+  const Eigen::Vector3d h = scene.object.HandleDirection(X_WO);
   const Eigen::Vector3d n = Eigen::Vector3d::UnitZ().cross(h);
   const double handle_z =
       scene.table.top_z + scene.object.Handle("the synthetic operator's grip").axis_height;

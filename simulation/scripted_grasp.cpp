@@ -102,7 +102,7 @@ bool ScriptedGraspOptions::IsValid(std::string* why) const {
 
 Eigen::Isometry3d GraspWristPose(const SceneModel& scene, const ScriptedGraspOptions& options) {
   const Eigen::Isometry3d X_WO = scene.ObjectPose(options.theta_deg * kDeg);
-  const Eigen::Vector3d h = X_WO.linear().col(0);  // along the handle, horizontal
+  const Eigen::Vector3d h = scene.object.HandleDirection(X_WO);  // along the handle, horizontal
   const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
   // z_H across the handle (from the wrist's side toward it), x_H down, y_H = z_H x x_H.
   const Eigen::Vector3d across = options.side * up.cross(h);

@@ -46,7 +46,7 @@ const char* ToString(BracketKind kind) {
 int HandleSide(const SceneModel& scene, double theta, const Eigen::Vector3d& p_WH,
                double dead_band) {
   const Eigen::Isometry3d X_WO = scene.ObjectPose(theta);
-  const Eigen::Vector3d h = X_WO.linear().col(0);
+  const Eigen::Vector3d h = scene.object.HandleDirection(X_WO);
   const Eigen::Vector3d right = h.cross(Eigen::Vector3d::UnitZ()).normalized();
   const double lateral = right.dot(p_WH - X_WO.translation());
   if (std::abs(lateral) <= dead_band) return 0;

@@ -38,14 +38,15 @@ Eigen::Matrix3d FromRotationVector(const Eigen::Vector3d& r) {
   return Eigen::AngleAxisd(angle, r / angle).matrix();
 }
 
-// The world yaw of the handle of the object at pose X_WO.
-double HandleAngle(const Eigen::Isometry3d& X_WO) {
-  const Eigen::Vector3d h = X_WO.linear().col(0);
+// The world yaw of the grip axis, `along` in the object frame, of the object at pose X_WO.
+double HandleAngle(const Eigen::Isometry3d& X_WO, const Eigen::Vector3d& along) {
+  const Eigen::Vector3d h = X_WO.linear() * along;
   return std::atan2(h.y(), h.x());
 }
 
 double HandleAngle(const SceneModel& scene, double theta) {
-  return HandleAngle(scene.ObjectPose(theta));
+  const Eigen::Vector3d h = scene.object.HandleDirection(scene.ObjectPose(theta));
+  return std::atan2(h.y(), h.x());
 }
 
 LinearFit FitLinear(const std::vector<double>& x, const std::vector<double>& y) {
@@ -139,7 +140,7 @@ SideKnot KnotOf(const SceneModel& scene, const GraspingMotion& motion,
   // wrist when the hand lies (nearly) along the handle. In H.
   const ObjectModel& o = scene.object;
   const HandleAxis& handle = o.Handle("the line principle");
-  const Eigen::Vector3d h = X_WO.linear().col(0);
+  const Eigen::Vector3d h = o.HandleDirection(X_WO);
   const Eigen::Vector3d a0 =
       X_WO.translation() + (handle.axis_height - o.rest_height) * Eigen::Vector3d::UnitZ();
   const Eigen::Vector2d u = R_G.col(2).head<2>().normalized();
@@ -172,6 +173,7 @@ SideKnot KnotOf(const SceneModel& scene, const GraspingMotion& motion,
 LinePrincipleModel FitLinePrinciple(const GraspLibrary& library, const SceneModel& scene,
                                     const LinePrincipleOptions& options) {
   LinePrincipleModel model;
+  if (scene.object.handle) model.handle_along = scene.object.handle->Along();
   const auto& entries = library.entries;
   if (entries.size() < 2) {
     model.message = "the line principle needs at least two library entries";
@@ -273,7 +275,7 @@ Eigen::Isometry3d GraspPose(const LinePrincipleModel& model, double theta,
   const Line2d& line = own.has_line ? own.line : model.wrist_line.line;
   const double s = own.has_line ? own.s(theta) : model.s(theta);
   const Eigen::Vector2d p_xy = line.point + s * line.direction;
-  const double yaw = HandleAngle(X_WO) + k.yaw + turn;
+  const double yaw = HandleAngle(X_WO, model.handle_along) + k.yaw + turn;
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
   X.linear() = Rz(yaw) * CanonicalHand() * FromRotationVector(k.residual);
   X.translation() = X_WO.translation() + Eigen::Vector3d(p_xy.x(), p_xy.y(), k.height);

@@ -107,6 +107,7 @@ struct LinePrincipleModel {
   LinearFit s;         ///< position along wrist_line.line from its point, m
   SideModel sides[2];  ///< [0]: side -1, [1]: side +1
   Eigen::Vector3d handle_in_hand = Eigen::Vector3d::Zero();  ///< m, frame H
+  Eigen::Vector3d handle_along = Eigen::Vector3d::UnitX();   ///< the grip axis, object frame
   double theta_min = 0.0, theta_max = 0.0;                   ///< library range, rad
   std::vector<int> entry_sides;                              ///< side of each entry
   int fitted_entries = 0;  ///< entries the models were fitted over (the robust ones)

@@ -72,7 +72,7 @@ CheckedStates ChooseStates(const GraspingMotion& m, const RefinementOptions& o) 
 double HandleAxisDistance(const ObjectModel& o, const Eigen::Isometry3d& X_WO,
                           const Eigen::Vector3d& p_W) {
   const HandleAxis& handle = o.Handle("the refinement");
-  const Eigen::Vector3d h = X_WO.linear().col(0);
+  const Eigen::Vector3d h = o.HandleDirection(X_WO);
   const Eigen::Vector3d a0 =
       X_WO.translation() + (handle.axis_height - o.rest_height) * Eigen::Vector3d::UnitZ();
   const double along = std::clamp((p_W - a0).dot(h), handle.start_radius, handle.end_radius);
