@@ -18,6 +18,10 @@
 #include <string>
 #include <vector>
 
+#include "learning_data/demo_directory.hpp"
+#include "learning_data/demo_log.hpp"
+#include "learning_data/demo_replay.hpp"
+#include "learning_data/grasp_library.hpp"
 #include "motion/joint_trajectory.hpp"
 #include "simulation/robustness.hpp"
 #include "simulation/trial.hpp"
@@ -47,14 +51,15 @@ const JointTrajectory& Example() {
 // One trial per iteration. Counters: x real time (simulated s per CPU s of the thread), dynamic
 // steps per CPU second, the world's size, and where the time went (shares of the wall time).
 void RunTrials(benchmark::State& state, const TrialOptions& options,
-               const SimulationModel& model = Model()) {
+               const SimulationModel& model = Model(),
+               const JointTrajectory& trajectory = Example()) {
   double simulated = 0.0, wall = 0.0, cpu = 0.0, collision = 0.0, solver = 0.0;
   long dynamic_steps = 0, kinematic_steps = 0;
   int max_contacts = 0;
   WorldCounts counts;
   bool all_succeeded = true;
   for (auto _ : state) {
-    const TrialResult r = RunTrial(model, Example(), options);
+    const TrialResult r = RunTrial(model, trajectory, options);
     all_succeeded = all_succeeded && r.success();
     simulated += r.simulated_time;
     wall += r.wall_time;
@@ -66,7 +71,7 @@ void RunTrials(benchmark::State& state, const TrialOptions& options,
     max_contacts = std::max(max_contacts, r.statistics.max_contacts);
     counts = r.counts;
   }
-  if (!all_succeeded) state.SkipWithError("a trial of the example failed");
+  if (!all_succeeded) state.SkipWithError("a trial failed");
   state.counters["x_real_time"] = simulated / cpu;
   state.counters["dyn_steps_per_s"] = dynamic_steps / cpu;
   state.counters["dyn_steps"] = static_cast<double>(dynamic_steps) / state.iterations();
@@ -90,6 +95,38 @@ void BM_TrialFastMeshPan(benchmark::State& state) {
   RunTrials(state, TrialOptions{}, MeshPanModel());
 }
 BENCHMARK(BM_TrialFastMeshPan)->Unit(benchmark::kMillisecond)->MinTime(3.0);
+
+// Every shipped object with demonstrations, and the mesh pan with the pan's: the demonstration
+// that object's library chose at 60 deg (rest, reach, grasp, lift, hold), replayed through the
+// IK, so that the objects' trials compare like for like.
+struct ObjectTrial {
+  const char* object;
+  const char* demos;  // the object whose demonstration it replays
+};
+constexpr ObjectTrial kObjectTrials[] = {{"pan", "pan"},
+                                         {"pan_mesh", "pan"},
+                                         {"saucepan", "saucepan"},
+                                         {"sugar_box", "sugar_box"},
+                                         {"mug", "mug"}};
+
+void BM_TrialFastObject(benchmark::State& state) {
+  const ObjectTrial& o = kObjectTrials[state.range(0)];
+  state.SetLabel(o.object);
+  const SimulationModel model(LoadRobotModel(DefaultRobotDescriptionPath()),
+                              LoadSceneModel(DefaultSceneModelPath(), o.object));
+  std::string file;
+  for (const LibraryEntry& e : ReadGraspLibrary(DefaultGraspLibraryPath(o.demos)).entries) {
+    if (e.theta_deg == 60.0) file = e.file;
+  }
+  const DemoReplay replay =
+      ReplayDemoLog(model.robot(), ReadDemoLog(DefaultDemoDirectory(o.demos) / file));
+  if (!replay.ok) {
+    state.SkipWithError(replay.message.c_str());
+    return;
+  }
+  RunTrials(state, TrialOptions{}, model, replay.trajectory);
+}
+BENCHMARK(BM_TrialFastObject)->DenseRange(0, 4)->Unit(benchmark::kMillisecond)->MinTime(3.0);
 
 // The fast path at other steps (arg: step in microseconds).
 void BM_TrialFastStep(benchmark::State& state) {

@@ -7,7 +7,7 @@
 # the line principle with refinement), each validated in physics (nominal + 10 perturbed
 # replays, the physics perturbed). Writes experiments/results/objects/NAME/ (analysis.json,
 # generalization.csv and .md) and the comparison table experiments/results/objects.md (and
-# objects.csv): per object, the line and radial RMS, and per method the nominal success and
+# objects.csv) of every object with results there (this run's and earlier ones'): per object, the line and radial RMS, and per method the nominal success and
 # the mean robustness. Deterministic from --seed 1. 20-30 minutes per object on 2 cores.
 #
 #   experiments/objects.sh [BUILD_DIR] [OBJECT ...]     (default: build, every object with a library)
@@ -44,9 +44,13 @@ for name in "${objects[@]}"; do
     --name generalization --out "${dir}"
 done
 
-python3 - "${out}" "${objects[@]}" <<'EOF'
+# the table: every object with results (this run's and earlier runs'), the pan first.
+python3 - "${out}" <<'EOF'
 import csv, json, os, sys
-out, names = sys.argv[1], sys.argv[2:]
+out = sys.argv[1]
+names = sorted((n for n in os.listdir(os.path.join(out, "objects"))
+                if os.path.exists(os.path.join(out, "objects", n, "generalization.csv"))),
+               key=lambda n: (n != "pan", n))
 methods = ["nearest", "interp", "interp+refine", "line+refine"]
 rows = []
 for name in names:

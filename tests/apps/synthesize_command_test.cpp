@@ -4,6 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -22,9 +23,10 @@ using testing::RunGraspsynth;
 class SynthesizeCommand : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("graspsynth_synth_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    std::replace(test.begin(), test.end(), '/', '_');  // a parameterised test's "Name/0"
+    dir_ =
+        fs::temp_directory_path() / ("graspsynth_synth_" + std::to_string(::getpid()) + "_" + test);
     fs::create_directories(dir_);
     library_ = (dir_ / "library.json").string();
     WriteGraspLibrary(testing::Library406080(), library_);
@@ -56,21 +58,31 @@ TEST_F(SynthesizeCommand, WritesAValidatedGraspFileThatSimulatePlays) {
   EXPECT_TRUE(nlohmann::json::parse(ReadFileText(report))["nominal"]["success"].get<bool>());
 }
 
-// Another shipped object: with --object NAME the default library is that object's own
-// (learning_data/objects/saucepan/library.json); at an orientation it has no demonstration of
-// the grasp passes the gate, and simulate lifts the saucepan again with it.
-TEST_F(SynthesizeCommand, ShippedSaucepanGraspPassesTheGateAndLiftsAgain) {
-  const testing::CommandOutput r = RunGraspsynth("synthesize --object saucepan --theta 45 --out " +
-                                                 out_ + " --perturb 2 --threads 2");
+// Every other shipped object: with --object NAME the default library is that object's own
+// (learning_data/objects/NAME/library.json); at an orientation it has no demonstration of
+// (65 deg) the grasp passes the gate, and simulate lifts the object again with it. Not every
+// orientation's does: the mug's at 45 deg held 7 of 10 perturbed replays (it swings about the
+// pinch when the hand's friction is low; experiments/results/objects.md has every orientation's).
+class ShippedObjectGrasp : public SynthesizeCommand,
+                           public ::testing::WithParamInterface<std::string> {};
+
+TEST_P(ShippedObjectGrasp, PassesTheGateAndLiftsAgain) {
+  const std::string object = GetParam();
+  const testing::CommandOutput r = RunGraspsynth(
+      "synthesize --object " + object + " --theta 65 --out " + out_ + " --perturb 2 --threads 2");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(ReadFileText(out_));
   EXPECT_TRUE(j["validation"]["passed"].get<bool>());
   const std::string report = (dir_ / "report.json").string();
   const testing::CommandOutput sim =
-      RunGraspsynth("simulate " + out_ + " --object saucepan --out " + report);
+      RunGraspsynth("simulate " + out_ + " --object " + object + " --out " + report);
   EXPECT_EQ(sim.exit_code, 0) << sim.err;
   EXPECT_TRUE(nlohmann::json::parse(ReadFileText(report))["nominal"]["success"].get<bool>());
 }
+
+INSTANTIATE_TEST_SUITE_P(SynthesizeCommand, ShippedObjectGrasp,
+                         ::testing::Values("saucepan", "sugar_box", "mug"),
+                         [](const auto& info) { return info.param; });
 
 TEST_F(SynthesizeCommand, LineMethodGoesBeyondTheRange) {
   const testing::CommandOutput r = RunGraspsynth(Args("--theta 100 --method line --no-refine"));

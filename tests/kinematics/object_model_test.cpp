@@ -33,14 +33,23 @@ class ObjectFiles : public ::testing::Test {
     return dir_ / name;
   }
   // A one-part object: `part` is the JSON of that part.
-  fs::path WriteObject(const nlohmann::json& part) {
+  fs::path WriteObject(const nlohmann::json& part, const nlohmann::json& handle = nullptr) {
     nlohmann::json j = {{"format", "graspsynth-object/1"}, {"name", "thing"}, {"parts", {part}}};
+    if (!handle.is_null()) j["handle"] = handle;
     return Write("thing.json", j.dump());
   }
 
   const testing::TestFolder folder_;
   const fs::path& dir_ = folder_.path();
 };
+
+// The object's grip axis runs from `start` to `end` m from its centre, `height` m up.
+void ExpectGripAxis(const ObjectModel& o, double start, double end, double height) {
+  ASSERT_TRUE(o.handle) << o.name;
+  EXPECT_DOUBLE_EQ(o.handle->start_radius, start) << o.name;
+  EXPECT_DOUBLE_EQ(o.handle->end_radius, end) << o.name;
+  EXPECT_DOUBLE_EQ(o.handle->axis_height, height) << o.name;
+}
 
 // A closed unit tetrahedron scaled by `s`, outward, as OBJ.
 std::string Tetrahedron(double s) {
@@ -59,10 +68,7 @@ TEST(ObjectModel, ShippedPanHasTheHandComputedMassInertiaAndRestHeight) {
   EXPECT_EQ(pan.parts[2].mass, 0.0);
   // it rests on its foot, 0.05 m high, centred on O.
   EXPECT_DOUBLE_EQ(pan.rest_height, 0.025);
-  ASSERT_TRUE(pan.handle);
-  EXPECT_DOUBLE_EQ(pan.handle->start_radius, 0.08);
-  EXPECT_DOUBLE_EQ(pan.handle->end_radius, 0.38);
-  EXPECT_DOUBLE_EQ(pan.handle->axis_height, 0.045);
+  ExpectGripAxis(pan, 0.08, 0.38, 0.045);
   // body 0.20 kg at O; handle 0.07 kg at (0.23, 0, 0.02): centre of mass 0.07 / 0.27 of the
   // way to the handle's centre.
   const ObjectInertia in = pan.Inertia();
@@ -86,10 +92,7 @@ TEST(ObjectModel, ShippedSaucepanHasTheHandComputedMassInertiaAndRestHeight) {
   EXPECT_FALSE(saucepan.paper_object);
   EXPECT_TRUE(LoadObjectModel(ShippedObject("pan")).paper_object);
   EXPECT_DOUBLE_EQ(saucepan.rest_height, 0.04);  // its foot, 0.08 m high, centred on O
-  ASSERT_TRUE(saucepan.handle);
-  EXPECT_DOUBLE_EQ(saucepan.handle->start_radius, 0.07);
-  EXPECT_DOUBLE_EQ(saucepan.handle->end_radius, 0.29);
-  EXPECT_DOUBLE_EQ(saucepan.handle->axis_height, 0.065);
+  ExpectGripAxis(saucepan, 0.07, 0.29, 0.065);
   const ObjectInertia in = saucepan.Inertia();
   const double m1 = 0.64, r = 0.07, h = 0.08, m2 = 0.12, a = 0.22, b = 0.022;
   const Eigen::Vector3d D(0.18, 0.0, 0.025);  // the bar's centre from the body's
@@ -106,6 +109,81 @@ TEST(ObjectModel, ShippedSaucepanHasTheHandComputedMassInertiaAndRestHeight) {
   EXPECT_TRUE(testing::MatricesNear(in.I_C, expected, 1e-14));
   EXPECT_NEAR(in.I_C(0, 0), 1.19817e-3, 1e-8);  // the figures of models/README.md
   EXPECT_NEAR(in.I_C(2, 2), 5.33095e-3, 1e-8);
+}
+
+// The sugar box (YCB 004): one 0.514 kg box 0.038 x 0.089 x 0.175 m at O, standing on its
+// end; its grip axis runs along y through the body, 30 mm below the top.
+TEST(ObjectModel, ShippedSugarBoxHasTheHandComputedMassInertiaAndRestHeight) {
+  const ObjectModel box = LoadObjectModel(ShippedObject("sugar_box"));
+  EXPECT_FALSE(box.paper_object);
+  EXPECT_DOUBLE_EQ(box.rest_height, 0.0875);
+  ExpectGripAxis(box, -0.03, 0.03, 0.145);
+  EXPECT_TRUE(testing::MatricesNear(box.handle->Along(), Eigen::Vector3d::UnitY(), 1e-15));
+  // turned 30 deg about z, the axis is turned with it.
+  const Eigen::Isometry3d X_WO(Eigen::AngleAxisd(30.0 * kDeg, Eigen::Vector3d::UnitZ()));
+  EXPECT_TRUE(testing::MatricesNear(box.HandleDirection(X_WO),
+                                    Eigen::Vector3d(-0.5, std::sqrt(3.0) / 2.0, 0.0), 1e-15));
+  const ObjectInertia in = box.Inertia();
+  const double m = 0.514, a = 0.038, b = 0.089, c = 0.175;
+  EXPECT_DOUBLE_EQ(in.mass, m);
+  EXPECT_TRUE(testing::MatricesNear(in.p_OC, Eigen::Vector3d::Zero(), 1e-15));
+  const Eigen::Matrix3d expected =
+      Eigen::Vector3d(m * (b * b + c * c) / 12, m * (a * a + c * c) / 12, m * (a * a + b * b) / 12)
+          .asDiagonal();
+  EXPECT_TRUE(testing::MatricesNear(in.I_C, expected, 1e-15));
+  EXPECT_NEAR(in.I_C(0, 0), 1.65105e-3, 1e-8);  // the figures of models/README.md
+  EXPECT_NEAR(in.I_C(2, 2), 4.01134e-4, 1e-9);
+}
+
+// The mug (meshes from make_meshes.py, 900 kg/m^3): its body a 48-sided cup (outer radius
+// 0.040 m, height 0.090 m, wall 4.5 mm, bottom 6 mm), whose volume and polar moment are the
+// regular polygon's (area N/2 R^2 sin(2 pi/N), polar moment A R^2 (1 + 2 cos^2(pi/N)) / 6) times
+// the heights; its loop handle a 10 x 12 mm band along a half ellipse (semi-axes 0.034 and
+// 0.028 m), whose volume is the band's section times the path's length.
+TEST(ObjectModel, ShippedMugHasTheHandComputedMassInertiaAndRestHeight) {
+  const ObjectModel mug = LoadObjectModel(ShippedObject("mug"));
+  EXPECT_FALSE(mug.paper_object);
+  EXPECT_DOUBLE_EQ(mug.rest_height, 0.045);  // its foot, 0.09 m high, centred on O
+  ASSERT_EQ(mug.parts[0].shape.kind, CollisionShape::Kind::kMesh);
+  ASSERT_EQ(mug.parts[1].shape.kind, CollisionShape::Kind::kMesh);
+  const double rho = 900.0, R = 0.040, Ri = 0.0355, h = 0.090, tb = 0.006;
+  const int N = 48;
+  auto area = [&](double r) { return N / 2.0 * r * r * std::sin(2.0 * M_PI / N); };
+  auto polar = [&](double r) {
+    return area(r) * r * r * (1.0 + 2.0 * std::pow(std::cos(M_PI / N), 2)) / 6.0;
+  };
+  ObjectModel body = mug;
+  body.parts.resize(1);
+  const ObjectInertia b = body.Inertia();
+  // float32 STL vertices: relative errors of about 1e-7.
+  EXPECT_NEAR(b.mass, rho * (area(R) * h - area(Ri) * (h - tb)), 1e-6 * b.mass);
+  EXPECT_NEAR(b.I_C(2, 2), rho * (polar(R) * h - polar(Ri) * (h - tb)), 1e-5 * b.I_C(2, 2));
+  // the cavity (centred 3 mm above O) takes mass from the top: the centre of mass is below O.
+  const double cavity = area(Ri) * (h - tb);
+  EXPECT_NEAR(b.p_OC.z(), -cavity * 0.5 * tb / (area(R) * h - cavity), 1e-6);
+  ObjectModel handle = mug;
+  handle.parts = {mug.parts[1]};
+  double length = 0.0;  // the half ellipse's length, summed finely
+  for (int k = 0; k < 10000; ++k) {
+    const double a0 = M_PI * k / 10000, a1 = M_PI * (k + 1) / 10000;
+    length +=
+        std::hypot(0.034 * (std::sin(a1) - std::sin(a0)), 0.028 * (std::cos(a1) - std::cos(a0)));
+  }
+  EXPECT_NEAR(handle.Inertia().mass, rho * 0.010 * 0.012 * length, 0.01 * handle.Inertia().mass);
+  // the whole: 0.118 kg, the YCB mug's (models/README.md).
+  EXPECT_NEAR(mug.Inertia().mass, 0.118, 0.0005);
+}
+
+// An object without a grip axis turns its x axis; the pan's axis is its x axis exactly, so
+// that every module that follows the axis computes the pan's numbers as before it had one.
+TEST(ObjectModel, HandleDirectionIsTheObjectsXAxisForThePan) {
+  const ObjectModel pan = LoadObjectModel(ShippedObject("pan"));
+  const Eigen::Isometry3d X_WO(Eigen::AngleAxisd(-1.234, Eigen::Vector3d::UnitZ()));
+  const Eigen::Vector3d h = pan.HandleDirection(X_WO);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(h[i], X_WO.linear()(i, 0)) << i;
+  ObjectModel bare = pan;
+  bare.handle.reset();
+  EXPECT_EQ(bare.HandleDirection(X_WO), h);
 }
 
 // The pan built from meshes: its prism body (64 sides) and mesh handle give the pan's mass,
@@ -242,6 +320,17 @@ TEST_F(ObjectFiles, BadObjectFilesNameTheFileAndTheField) {
       LoadObjectModel(WriteObject({{"name", "b"}, {"type", "box"}, {"radius", 1}, {"mass", 1}})),
       InputError,
       where + ": field 'parts[0].radius': expected no 'radius' on a part of type \"box\"");
+  const nlohmann::json box = {{"name", "b"}, {"type", "box"}, {"size", {1, 1, 1}}, {"mass", 1}};
+  GS_EXPECT_THROW_WITH(
+      LoadObjectModel(
+          WriteObject(box, {{"start_radius", 0.1}, {"end_radius", -0.1}, {"axis_height", 0.5}})),
+      InputError, where + ": field 'handle.end_radius': expected a radius above start_radius");
+  GS_EXPECT_THROW_WITH(LoadObjectModel(WriteObject(box, {{"start_radius", -0.1},
+                                                         {"end_radius", 0.1},
+                                                         {"axis_height", 0.5},
+                                                         {"direction_deg", 400}})),
+                       InputError, where + ": field 'handle.direction_deg': expected a number in",
+                       "found 400");
   GS_EXPECT_THROW_WITH(LoadObjectModel(dir_ / "none.json"), InputError,
                        "cannot open object description '" + (dir_ / "none.json").string() + "'");
 }
