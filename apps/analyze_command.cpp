@@ -124,12 +124,8 @@ int RunAnalyze(const AnalyzeOptions& o) {
     throw InputError("analyze: no demonstration logs (*.csv) in '" + o.directory + "'");
   }
   const DemonstrationAnalysis analysis = AnalyzeDemonstrations(demos, options);
-  WriteFileAtomically(
-      o.out, comparison ? AnalysisReportJson(analysis, *comparison) : AnalysisReportJson(analysis));
-  if (!o.table.empty()) {
-    WriteFileAtomically(o.table, comparison ? PaperComparisonMarkdown(analysis.table, *comparison)
-                                            : TableIMarkdown(analysis.table));
-  }
+  WriteFileAtomically(o.out, AnalysisReportJson(analysis, comparison));
+  if (!o.table.empty()) WriteFileAtomically(o.table, TableIMarkdown(analysis.table, comparison));
   PrintSummary(analysis, comparison, std::cout);
   std::cout << "wrote " << o.out << "\n";
   if (!o.table.empty()) std::cout << "wrote " << o.table << "\n";

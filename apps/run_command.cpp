@@ -92,9 +92,7 @@ StudyOptions StudyOptionsOf(const RunOptions& o, const SceneModel& scene) {
 void WriteStudyFiles(const SceneModel& scene, const std::string& gnuplot, const fs::path& out,
                      StudyResult* result) {
   WriteFileAtomically(out / "analysis.json",
-                      result->options.paper_object
-                          ? AnalysisReportJson(result->analysis, result->options.comparison)
-                          : AnalysisReportJson(result->analysis));
+                      AnalysisReportJson(result->analysis, result->options.PaperComparison()));
   WriteGraspLibrary(result->selection.library, out / "library.json");
   WriteFileAtomically(out / "synthesis.json", StudySynthesisJson(*result));
   WriteFileAtomically(out / "synthesis.csv", StudySynthesisCsv(result->rows));

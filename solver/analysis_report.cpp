@@ -224,7 +224,8 @@ std::string PaperComparisonMarkdown(const TableAnalysis& table,
   return md;
 }
 
-std::string TableIMarkdown(const TableAnalysis& table) {
+std::string TableIMarkdown(const TableAnalysis& table, const PaperComparisonOptions* comparison) {
+  if (comparison) return PaperComparisonMarkdown(table, *comparison);
   std::string md =
       "Table I of these demonstrations: average pre-grasp (PG) and grasp (G) wrist positions "
       "relative to the object centre, top view (d in m, eta in deg from world +x; the paper has "
@@ -287,9 +288,10 @@ json PaperComparisonJson(const TableAnalysis& table, const PaperComparisonOption
           {"rows", rows}};
 }
 
-// The report, with the comparison with the paper when `comparison` is given (null otherwise).
-std::string AnalysisReport(const DemonstrationAnalysis& analysis,
-                           const PaperComparisonOptions* comparison) {
+}  // namespace
+
+std::string AnalysisReportJson(const DemonstrationAnalysis& analysis,
+                               const PaperComparisonOptions* comparison) {
   const AnalysisOptions& o = analysis.options;
   const TableAnalysis& table = analysis.table;
   json report;
@@ -357,17 +359,6 @@ std::string AnalysisReport(const DemonstrationAnalysis& analysis,
   }
   report["skipped"] = skipped;
   return report.dump(2) + "\n";
-}
-
-}  // namespace
-
-std::string AnalysisReportJson(const DemonstrationAnalysis& analysis,
-                               const PaperComparisonOptions& comparison) {
-  return AnalysisReport(analysis, &comparison);
-}
-
-std::string AnalysisReportJson(const DemonstrationAnalysis& analysis) {
-  return AnalysisReport(analysis, nullptr);
 }
 
 }  // namespace graspsynth

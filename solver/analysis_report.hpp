@@ -116,17 +116,16 @@ std::vector<PaperComparisonRow> CompareWithPaper(const TableAnalysis& table,
 std::string PaperComparisonMarkdown(const TableAnalysis& table,
                                     const PaperComparisonOptions& options);
 
-/// Our Table I alone, for an object the paper has no table of: per orientation the trials
-/// averaged and the mean pre-grasp (PG) and grasp (G) wrist positions relative to the object
-/// centre (d in m, eta in deg from world +x), as a markdown table.
-std::string TableIMarkdown(const TableAnalysis& table);
+/// Table I as markdown: for the paper's pan (`comparison` given) PaperComparisonMarkdown();
+/// for an object the paper has no table of (`comparison` null), our table alone: per
+/// orientation the trials averaged and the mean pre-grasp (PG) and grasp (G) wrist positions
+/// relative to the object centre (d in m, eta in deg from world +x).
+std::string TableIMarkdown(const TableAnalysis& table, const PaperComparisonOptions* comparison);
 
 /// The `graspsynth-analysis/1` report of `analysis` (format in this file's description), as
-/// indented JSON text.
+/// indented JSON text. `comparison` is null for an object that is not the paper's
+/// (ObjectModel::paper_object): then `paper_comparison` is null.
 std::string AnalysisReportJson(const DemonstrationAnalysis& analysis,
-                               const PaperComparisonOptions& comparison);
-/// The same report for an object that is not the paper's (ObjectModel::paper_object):
-/// `paper_comparison` is null.
-std::string AnalysisReportJson(const DemonstrationAnalysis& analysis);
+                               const PaperComparisonOptions* comparison);
 
 }  // namespace graspsynth

@@ -102,6 +102,11 @@ struct StudyOptions {
   /// paper_comparison is null.
   bool paper_object = true;
 
+  /// The comparison with the paper's Table I: null for an object that is not the paper's.
+  const PaperComparisonOptions* PaperComparison() const {
+    return paper_object ? &comparison : nullptr;
+  }
+
   /// 20, 25, ..., 100 deg.
   static std::vector<double> DefaultStudyOrientations();
 

@@ -387,9 +387,7 @@ void TableISection(const StudyResult& result, std::ostringstream& md) {
   md << a.files << " logs read (" << a.rejected.size() << " rejected); " << t.used
      << " trials used, " << t.unsuccessful.size() << " unsuccessful, " << t.unsegmentable.size()
      << " unsegmentable.\n\n";
-  md << (result.options.paper_object ? PaperComparisonMarkdown(t, result.options.comparison)
-                                     : TableIMarkdown(t))
-     << "\n";
+  md << TableIMarkdown(t, result.options.PaperComparison()) << "\n";
   for (const RejectedDemoFile& r : a.rejected) {
     md << "- rejected `" << r.file << "`: " << Cell(r.reason) << "\n";
   }

@@ -14,6 +14,9 @@
 namespace graspsynth {
 namespace {
 
+// The paper's tolerances: the reports of the paper's pan compare with its Table I.
+const PaperComparisonOptions kPaper;
+
 using nlohmann::json;
 using ::testing::HasSubstr;
 using ::testing::Not;
@@ -74,7 +77,7 @@ TEST(AnalysisReport, ReproducesTableIFromExactDemonstrations) {
 
 TEST(AnalysisReport, JsonHasTheDocumentedFields) {
   const DemonstrationAnalysis a = AnalyzeDemonstrations(TableIDirectory(), {});
-  const json r = json::parse(AnalysisReportJson(a, {}));
+  const json r = json::parse(AnalysisReportJson(a, &kPaper));
   EXPECT_EQ(r.at("format"), "graspsynth-analysis/1");
   EXPECT_EQ(r.at("directory"), "demos");
   EXPECT_EQ(r.at("options").at("region").at("shape"), "cylinder");
@@ -144,7 +147,7 @@ TEST(AnalysisReport, JsonOfAnEmptyAnalysisIsStillComplete) {
   DemoDirectory demos;
   demos.directory = "empty";
   demos.rejected.push_back({"empty/x.csv", "empty/x.csv: empty file"});
-  const json r = json::parse(AnalysisReportJson(AnalyzeDemonstrations(demos, {}), {}));
+  const json r = json::parse(AnalysisReportJson(AnalyzeDemonstrations(demos, {}), &kPaper));
   EXPECT_TRUE(r.at("orientations").empty());
   EXPECT_EQ(r.at("wrist_line").at("status"), "insufficient data");
   EXPECT_FALSE(r.at("wrist_line").contains("point"));
