@@ -201,7 +201,9 @@ void WriteGraspLibrary(const GraspLibrary& library, const std::filesystem::path&
 }
 
 GraspLibrary ReadGraspLibrary(const std::filesystem::path& path) {
-  return ReadLibrary(JsonReader::Load(path));
+  GraspLibrary library = ReadLibrary(JsonReader::Load(path));
+  library.source = path.string();
+  return library;
 }
 
 std::filesystem::path DefaultGraspLibraryPath(const std::string& object_name) {

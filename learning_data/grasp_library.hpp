@@ -51,6 +51,9 @@ struct LibraryEntry {
 
 /// A grasp library.
 struct GraspLibrary {
+  /// The file it was read from (ReadGraspLibrary), for error messages; empty when the library
+  /// was built in memory. Not written.
+  std::string source;
   std::string demo_directory;         ///< the directory the demonstrations were read from
   uint64_t seed = 0;                  ///< seed of the selection
   int perturbations = 0;              ///< perturbed replays per demonstration

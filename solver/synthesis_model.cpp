@@ -31,20 +31,23 @@ SynthesisModel::SynthesisModel(RobotModel robot, SceneModel scene, GraspLibrary 
       scene_(std::move(scene)),
       library_(std::move(library)),
       collision_(robot_, scene_) {
-  if (library_.entries.empty()) throw InputError("the grasp library has no entry");
+  // the file's checks (ReadGraspLibrary) again, for a library built in memory.
+  const std::string where =
+      library_.source.empty() ? std::string("grasp library") : library_.source;
+  if (library_.entries.empty()) {
+    throw InputError(where +
+                     ": entries: the grasp library has no entry (its selection found no "
+                     "orientation with a successful demonstration); nothing to synthesize from");
+  }
   for (size_t i = 0; i < library_.entries.size(); ++i) {
     const LibraryEntry& e = library_.entries[i];
+    const std::string field = where + ": entries[" + std::to_string(i) + "]";
     std::string why;
-    if (!std::isfinite(e.theta_deg)) {
-      throw InputError("grasp library: entries[" + std::to_string(i) + "].theta_deg is not finite");
-    }
+    if (!std::isfinite(e.theta_deg)) throw InputError(field + ".theta_deg is not finite");
     if (i > 0 && !(e.theta_deg > library_.entries[i - 1].theta_deg)) {
-      throw InputError("grasp library: entries[" + std::to_string(i) +
-                       "].theta_deg = " + Degrees(e.theta_deg) + " does not increase");
+      throw InputError(field + ".theta_deg = " + Degrees(e.theta_deg) + " does not increase");
     }
-    if (!IsWellFormed(e.motion, &why)) {
-      throw InputError("grasp library: entries[" + std::to_string(i) + "].motion: " + why);
-    }
+    if (!IsWellFormed(e.motion, &why)) throw InputError(field + ".motion: " + why);
   }
   std::string why;
   if (!line_options.IsValid(&why)) throw InputError("invalid line-principle option: " + why);

@@ -130,6 +130,18 @@ TEST_F(SynthesizeCommand, WrongVersionAndCorruptLibrariesAreErrors) {
   EXPECT_FALSE(fs::exists(out_));
 }
 
+// A library whose selection kept no orientation is a valid file (select writes it), but there is
+// nothing to synthesize from: the error names the file and the field, and writes nothing.
+TEST_F(SynthesizeCommand, LibraryWithoutEntriesIsAnErrorNamingTheFile) {
+  GraspLibrary empty = testing::Library406080();
+  empty.entries.clear();
+  WriteGraspLibrary(empty, library_);
+  const testing::CommandOutput r = RunGraspsynth(Args("--theta 50"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, ::testing::HasSubstr(library_ + ": entries: the grasp library has no entry"));
+  EXPECT_FALSE(fs::exists(out_));
+}
+
 // An object without a handle is refused before any work: the synthesis aims at the handle.
 TEST_F(SynthesizeCommand, ObjectWithoutAHandleIsRefusedUpFront) {
   const std::string box = (dir_ / "box.json").string();
