@@ -163,7 +163,9 @@ int RunView(const ViewOptions& opts) {
                                   : "stopped (--exit-after)")
             << "; " << figures.published << " frames published, " << counters.frame_requests
             << " sent to the page, " << counters.requests << " requests (" << counters.bad_requests
-            << " bad)" << std::endl;
+            << " bad); " << counters.connections << " connections (" << counters.timed_out
+            << " timed out, " << counters.evicted << " closed to make room, " << counters.refused
+            << " refused)" << std::endl;
   return 0;
 }
 

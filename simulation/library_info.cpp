@@ -10,11 +10,18 @@
 
 namespace graspsynth {
 
-std::string SimulationLibraryInfo() {
+void RequireDoublePrecisionOde() {
   // the header's precision must match the library's, or every call corrupts memory.
   if (!dCheckConfiguration("ODE_double_precision")) {
-    throw std::runtime_error("libode is not the double-precision build; install libode-dev");
+    throw std::runtime_error(
+        "the ODE library loaded is not the double-precision build that graspsynth was compiled "
+        "for (ODE reports: " +
+        std::string(dGetConfiguration()) + "); install Debian's libode-dev and rebuild");
   }
+}
+
+std::string SimulationLibraryInfo() {
+  RequireDoublePrecisionOde();
   return std::string("ODE (") + dGetConfiguration() + ")";
 }
 

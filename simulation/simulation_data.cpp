@@ -17,6 +17,7 @@
 #include "common/errors.hpp"
 #include "kinematics/pose_math.hpp"
 #include "kinematics/triangle_mesh.hpp"
+#include "simulation/library_info.hpp"
 
 #ifndef dDOUBLE
 #error "graspsynth needs ODE built in double precision (Debian's libode-dev is)"
@@ -165,6 +166,7 @@ int CollideGeoms(dGeomID a, dGeomID b, int max_contacts, dContactGeom* contacts)
 void EnsureOdeThread() {
   static std::once_flag init;
   std::call_once(init, [] {
+    RequireDoublePrecisionOde();  // throws, and the next call checks again
     dInitODE2(0);
     dSetErrorHandler(&ThrowOdeError);
     dSetDebugHandler(&ThrowOdeError);

@@ -184,6 +184,8 @@ bool ViewerServerOptions::IsValid(std::string* why) const {
     reason = "max_connections " + std::to_string(max_connections) + " is not positive";
   } else if (!(idle_timeout_s > 0.0)) {
     reason = "idle_timeout_s " + std::to_string(idle_timeout_s) + " is not positive";
+  } else if (!(request_timeout_s > 0.0)) {
+    reason = "request_timeout_s " + std::to_string(request_timeout_s) + " is not positive";
   }
   if (why != nullptr) *why = reason;
   return reason.empty();
@@ -197,6 +199,7 @@ struct ViewerServer::Connection {
   size_t sent = 0;                          // bytes of head + body sent
   bool close_after_write = false;
   Clock::time_point last_activity = Clock::now();
+  Clock::time_point request_started;  // when the first byte of `in` arrived (if any)
 
   size_t pending() const { return head.size() + (body ? body->size() : 0) - sent; }
 };
@@ -246,7 +249,7 @@ ViewerServer::ViewerServer(std::string scene_json, const ViewerServerOptions& op
   const int one = 1;
   ::setsockopt(listen_fd_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof(one));
   if (::bind(listen_fd_, reinterpret_cast<const sockaddr*>(&addr), sizeof(addr)) != 0 ||
-      ::listen(listen_fd_, 64) != 0) {
+      ::listen(listen_fd_, SOMAXCONN) != 0) {
     const std::string message = SystemError("viewer server: cannot listen on " + where);
     ::close(listen_fd_);
     listen_fd_ = -1;
@@ -340,8 +343,9 @@ void ViewerServer::Serve() {
         } else {
           const ssize_t n = ::recv(c.fd, buffer, sizeof(buffer), 0);
           if (n > 0) {
-            c.in.append(buffer, static_cast<size_t>(n));
             c.last_activity = Clock::now();
+            if (c.in.empty()) c.request_started = c.last_activity;
+            c.in.append(buffer, static_cast<size_t>(n));
             HandleInput(&c);
           } else if (n == 0 || (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR)) {
             keep = false;  // closed by the peer, or broken
@@ -355,13 +359,19 @@ void ViewerServer::Serve() {
         c.fd = -1;
       }
     }
-    // idle connections (no complete request, or a reader that stopped reading) are closed.
+    // idle connections (no request, or a reader that stopped reading) and requests that do
+    // not arrive whole in time (a client that trickles bytes) are closed.
     const Clock::time_point now = Clock::now();
     const auto idle = std::chrono::duration<double>(options_.idle_timeout_s);
+    const auto deadline = std::chrono::duration<double>(options_.request_timeout_s);
     for (Connection& c : connections) {
-      if (c.fd >= 0 && now - c.last_activity > idle) {
+      if (c.fd < 0) continue;
+      const bool late = c.pending() == 0 && !c.in.empty() && now - c.request_started > deadline;
+      if (late || now - c.last_activity > idle) {
         ::close(c.fd);
         c.fd = -1;
+        const std::lock_guard<std::mutex> lock(counters_mutex_);
+        ++counters_.timed_out;
       }
     }
     std::erase_if(connections, [](const Connection& c) { return c.fd < 0; });
@@ -375,8 +385,24 @@ void ViewerServer::Accept(std::vector<Connection>* connections) {
     const int fd = ::accept4(listen_fd_, nullptr, nullptr, SOCK_NONBLOCK | SOCK_CLOEXEC);
     if (fd < 0) return;  // EAGAIN: none left (or a transient error: poll again)
     if (static_cast<int>(connections->size()) >= options_.max_connections) {
-      ::close(fd);
-      continue;
+      // the new connection takes the place of the one that has been silent the longest; one
+      // whose answer is being sent is kept.
+      auto victim = connections->end();
+      for (auto c = connections->begin(); c != connections->end(); ++c) {
+        if (c->pending() == 0 &&
+            (victim == connections->end() || c->last_activity < victim->last_activity)) {
+          victim = c;
+        }
+      }
+      const std::lock_guard<std::mutex> lock(counters_mutex_);
+      if (victim == connections->end()) {
+        ::close(fd);
+        ++counters_.refused;
+        continue;
+      }
+      ::close(victim->fd);
+      connections->erase(victim);
+      ++counters_.evicted;
     }
     Connection c;
     c.fd = fd;
@@ -398,6 +424,7 @@ void ViewerServer::HandleInput(Connection* c) {
   } else {
     const std::string head = c->in.substr(0, end);
     c->in.erase(0, end);
+    c->request_started = Clock::now();  // a pipelined request's deadline starts now
     const RequestHead request = ParseRequestHead(head);
     method = request.method;
     const bool valid = request.valid, keep_alive = request.keep_alive, has_body = request.has_body;

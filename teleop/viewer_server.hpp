@@ -16,12 +16,18 @@
 ///   /scene.json         the scene document given to the constructor
 ///   /frame              the latest published frame (JSON); 204 before the first
 ///
-/// Anything else is 404; another method 405. A request line or header that does not parse is
-/// 400 and the connection is closed; a request head longer than max_request_bytes, or a request
-/// with a body, is dropped (the connection is closed, with a 431 or 400 when it can be sent).
-/// Connections are kept alive (HTTP/1.1) and closed after idle_timeout_s without a request. A
-/// vendored file that is missing is answered with 503 and a text that says how to get it.
-/// Nothing is ever printed: the owner reads missing_assets() and the counters.
+/// Anything else is 404; another method 405; only these paths are served, never a file named by
+/// the request. A request line or header that does not parse is 400 and the connection is
+/// closed; a request head longer than max_request_bytes, or a request with a body, is dropped
+/// (the connection is closed, with a 431 or 400 when it can be sent). Connections are kept
+/// alive (HTTP/1.1) and closed after idle_timeout_s without a request. A vendored file that is
+/// missing is answered with 503 and a text that says how to get it. Nothing is ever printed:
+/// the owner reads missing_assets() and the counters.
+///
+/// Slow and hostile clients cannot starve a normal one: a request head must arrive whole within
+/// request_timeout_s of its first byte (a client that trickles bytes is closed), and when
+/// max_connections are open a new connection takes the place of the one that has been silent
+/// the longest (never one whose answer is being sent).
 
 #include <atomic>
 #include <cstdint>
@@ -53,9 +59,11 @@ struct ViewerServerOptions {
   int max_connections = 64;
   /// A connection without a complete request for this long (s) is closed.
   double idle_timeout_s = 10.0;
+  /// A request head not complete this long (s) after its first byte is dropped (closed).
+  double request_timeout_s = 2.0;
 
-  /// False (and why) when the port is outside 0..65535, a limit is not positive or the
-  /// address is empty.
+  /// False (and why) when the port is outside 0..65535, a limit or a timeout is not positive
+  /// or the address is empty.
   bool IsValid(std::string* why) const;
 };
 
@@ -65,6 +73,9 @@ struct ViewerServerCounters {
   uint64_t requests = 0;        ///< answered, any status
   uint64_t frame_requests = 0;  ///< answered on /frame with a frame (200)
   uint64_t bad_requests = 0;    ///< 400, 405 or 431, or dropped for their size
+  uint64_t timed_out = 0;       ///< closed: idle, or a request head not complete in time
+  uint64_t evicted = 0;         ///< closed to make room for a new connection
+  uint64_t refused = 0;         ///< new connections closed: every open one was being answered
 };
 
 /// The server. Construction binds and starts the thread; destruction stops it.

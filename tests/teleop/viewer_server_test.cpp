@@ -13,6 +13,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <thread>
 #include <vector>
 
@@ -43,6 +44,7 @@ class Client {
   Client& operator=(const Client&) = delete;
 
   bool connected() const { return connected_; }
+  int fd() const { return fd_; }
   void Send(const std::string& bytes) {
     ASSERT_EQ(::send(fd_, bytes.data(), bytes.size(), MSG_NOSIGNAL),
               static_cast<ssize_t>(bytes.size()));
@@ -213,6 +215,44 @@ TEST(ViewerServer, AnIdleConnectionDoesNotHoldOthersUp) {
   const auto start = std::chrono::steady_clock::now();
   EXPECT_THAT(Get(server.port(), "/scene.json"), StartsWith("HTTP/1.1 200 OK\r\n"));
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(1));
+}
+
+// 200 clients that send half a request and stop (more than max_connections) cannot starve a
+// normal client: new connections take the places of the silent ones.
+TEST(ViewerServer, HalfOpenClientsDoNotStarveANormalRequest) {
+  ViewerServer server("{}");
+  std::vector<std::unique_ptr<Client>> slow;
+  for (int i = 0; i < 200; ++i) {
+    slow.push_back(std::make_unique<Client>(server.port()));
+    ASSERT_TRUE(slow.back()->connected());
+    slow.back()->Send("GET /index.html HTTP/1.1\r\nHost: loc");
+  }
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_THAT(Get(server.port(), "/scene.json"), StartsWith("HTTP/1.1 200 OK\r\n"));
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(1));
+  EXPECT_GE(server.counters().evicted, 200u - 64u);
+}
+
+// A client that trickles its request, a byte at a time, is closed at the request deadline,
+// although it is never idle.
+TEST(ViewerServer, ARequestThatTricklesInIsClosedAtItsDeadline) {
+  ViewerServerOptions options;
+  options.request_timeout_s = 0.3;
+  ViewerServer server("{}", options);
+  Client trickle(server.port());
+  ASSERT_TRUE(trickle.connected());
+  const std::string request = "GET /scene.json HTTP/1.1\r\nHost: localhost\r\n\r\n";
+  const auto start = std::chrono::steady_clock::now();
+  bool closed = false;
+  for (size_t i = 0; i + 1 < request.size() && !closed; ++i) {
+    closed = ::send(trickle.fd(), request.data() + i, 1, MSG_NOSIGNAL) != 1;
+    std::this_thread::sleep_for(std::chrono::milliseconds(40));
+  }
+  EXPECT_EQ(trickle.ReadAll(), "");  // closed without an answer
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(3));
+  EXPECT_EQ(server.counters().timed_out, 1u);
+  options.request_timeout_s = 0.0;
+  GS_EXPECT_THROW_WITH(ViewerServer("{}", options), InputError, "request_timeout_s");
 }
 
 TEST(ViewerServer, PublishesFromAnotherThreadWhileServing) {
