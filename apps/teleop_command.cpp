@@ -6,6 +6,8 @@
 
 #include "apps/teleop_command.hpp"
 
+#include <arpa/inet.h>
+
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -27,6 +29,7 @@
 #include "learning_data/demo_log.hpp"
 #include "simulation/simulation_model.hpp"
 #include "teleop/calibration.hpp"
+#include "teleop/packet_key.hpp"
 #include "teleop/protocol.hpp"
 #include "teleop/teleop_session.hpp"
 #include "teleop/udp_link.hpp"
@@ -53,7 +56,25 @@ struct ServerOptions {
   double end_hold_s = 1.0;
   std::string operator_name;
   double exit_after_s = 0.0;
+  std::string key_file;
+  bool insecure = false;
 };
+
+// The link's key of --key-file (with a warning when others can read the file); none without.
+std::optional<teleop::PacketKey> LoadLinkKey(const std::string& key_file, const char* command) {
+  if (key_file.empty()) return std::nullopt;
+  teleop::PacketKey key = teleop::PacketKey::Load(key_file);
+  if (const auto warning = teleop::KeyFilePermissionWarning(key_file)) {
+    std::cerr << "graspsynth " << command << ": warning: " << *warning << "\n";
+  }
+  return key;
+}
+
+// 127.0.0.0/8: only this machine can reach the address.
+bool IsLoopback(const std::string& address) {
+  in_addr a{};
+  return inet_pton(AF_INET, address.c_str(), &a) == 1 && (ntohl(a.s_addr) >> 24) == 127;
+}
 
 teleop::TeleopOptions SessionOptions(const ServerOptions& opts) {
   if (!(opts.timeout_ms > 0.0) || !std::isfinite(opts.timeout_ms)) {
@@ -70,6 +91,14 @@ teleop::TeleopOptions SessionOptions(const ServerOptions& opts) {
   options.calibration =
       teleop::LoadTeleopCalibration(opts.config.empty() ? teleop::DefaultTeleopCalibrationPath()
                                                         : std::filesystem::path(opts.config));
+  options.key = LoadLinkKey(opts.key_file, "teleop");
+  if (!options.key && !opts.insecure && !IsLoopback(opts.bind)) {
+    throw InputError("--bind " + opts.bind +
+                     " opens the link beyond this machine, and without a key anyone who reaches "
+                     "the port could drive the robot: give --key-file FILE (graspsynth "
+                     "teleop-keygen --out FILE writes one; the client takes the same file) or, "
+                     "on a network you trust, --insecure");
+  }
   return options;
 }
 
@@ -168,7 +197,8 @@ int RunServer(const ServerOptions& opts) {
   if (!opts.port_file.empty()) WriteFileAtomically(opts.port_file, std::to_string(link.port()));
   std::unique_ptr<teleop::ViewerServer> viewer = StartViewer(model, opts);
   std::cerr << "graspsynth teleop: listening on udp " << opts.bind << ":" << link.port() << " at "
-            << options.rate_hz << " Hz (" << session.steps_per_tick() << " physics steps of "
+            << options.rate_hz << " Hz (" << (options.key ? "authenticated" : "not authenticated")
+            << "; " << session.steps_per_tick() << " physics steps of "
             << session.physics_step() * 1e3 << " ms per tick); theta " << session.theta_deg()
             << " deg; Ctrl-C ends the session" << std::endl;
 
@@ -193,6 +223,7 @@ struct ClientOptions {
   double speed = 1.0;
   std::string config;
   double linger_s = 2.0;
+  std::string key_file;
 };
 
 // The operator command of a log sample: the wrist pose in the tracker's frame, the fingers as
@@ -242,6 +273,8 @@ int RunClient(const ClientOptions& opts) {
   const teleop::TeleopCalibration calibration =
       teleop::LoadTeleopCalibration(opts.config.empty() ? teleop::DefaultTeleopCalibrationPath()
                                                         : std::filesystem::path(opts.config));
+  const std::optional<teleop::PacketKey> key = LoadLinkKey(opts.key_file, "teleop-client");
+  const teleop::PacketKey* key_ptr = key ? &*key : nullptr;
   const uint64_t server = teleop::ParsePeer(opts.host, opts.port);
   teleop::UdpLinkOptions link_options;
   link_options.address = "0.0.0.0";
@@ -255,7 +288,7 @@ int RunClient(const ClientOptions& opts) {
     incoming.clear();
     link.Receive(&incoming);
     for (const teleop::Datagram& d : incoming) {
-      const teleop::DecodeResult r = teleop::Decode(d.bytes);
+      const teleop::DecodeResult r = teleop::Decode(d.bytes, key_ptr);
       if (r.packet && r.packet->kind == teleop::PacketKind::kState) {
         ++states;
         last = r.packet->state;
@@ -276,13 +309,13 @@ int RunClient(const ClientOptions& opts) {
       drain();
       link.WaitReadable(std::chrono::duration<double>(due - Clock::now()).count());
     }
-    link.Send(teleop::EncodeCommand(CommandOf(s, calibration, sequence++)), server);
+    link.Send(teleop::EncodeCommand(CommandOf(s, calibration, sequence++), key_ptr), server);
   }
   const uint64_t commands = sequence;
   // end of session, three times (a lost datagram must not leave the server waiting).
   const double t_end = log.samples.back().t;
   for (int k = 0; k < 3; ++k) {
-    link.Send(teleop::EncodeEndOfSession(sequence++, t_end), server);
+    link.Send(teleop::EncodeEndOfSession(sequence++, t_end, key_ptr), server);
     drain();
   }
   // the states of the server's last ticks (it judges the trial before it ends).
@@ -304,7 +337,7 @@ void AddServerCommand(CLI::App& app, int* exit_code) {
   CLI::App* teleop = app.add_subcommand(
       "teleop",
       "Live teleoperation: runs the ODE scene in real time at --rate and takes operator\n"
-      "commands over UDP (wire format GSTP v1, README 'Teleoperation'): a wrist pose in the\n"
+      "commands over UDP (wire format GSTP, README 'Teleoperation'): a wrist pose in the\n"
       "tracker's frame, mapped to the robot by the calibration file (--config), and 14 glove\n"
       "values or 16 finger joints; buttons grasp, end of trial, next orientation. The arm\n"
       "follows through the analytic IK with a continuous arm angle (an unreachable target\n"
@@ -314,14 +347,23 @@ void AddServerCommand(CLI::App& app, int* exit_code) {
       "With --record DIR every trial is judged after a 1 s hold (object centre >= 5 cm up,\n"
       "touching only the hand) and written as a v1 demonstration log. An end-of-session\n"
       "packet, Ctrl-C or SIGTERM end the session; --summary then gets a\n"
-      "graspsynth-teleop-session/1 report (packet counters by reason, trials and outcomes).");
+      "graspsynth-teleop-session/1 report (packet counters by reason, trials and outcomes).\n"
+      "With --key-file every packet is authenticated (HMAC-SHA256, GSTP v2) and replays are\n"
+      "refused by their sequence numbers; binding beyond 127.0.0.1 needs a key or --insecure.");
   teleop->add_option("--port", opts->port, "UDP port to listen on; 0 picks a free one")
       ->check(CLI::Range(0, 65535))
       ->capture_default_str();
   teleop
       ->add_option("--bind", opts->bind,
-                   "IPv4 address to listen on; 0.0.0.0 accepts operators from the network")
+                   "IPv4 address to listen on; 0.0.0.0 accepts operators from the network "
+                   "(then with --key-file, or --insecure)")
       ->capture_default_str();
+  teleop->add_option("--key-file", opts->key_file,
+                     "Shared key (graspsynth teleop-keygen): take only packets authenticated "
+                     "with it, and authenticate the states sent back");
+  teleop->add_flag("--insecure", opts->insecure,
+                   "Allow --bind beyond this machine without a key (anyone who reaches the port "
+                   "can then drive the robot)");
   teleop
       ->add_option("--orientations", opts->orientations,
                    "Object orientations theta (deg), in the order the session walks through "
@@ -387,6 +429,8 @@ void AddClientCommand(CLI::App& app, int* exit_code) {
                    "Calibration file (graspsynth-teleop-config/1); default: "
                    "examples/teleop_calibration.json")
       ->check(CLI::ExistingFile);
+  client->add_option("--key-file", copts->key_file,
+                     "The server's shared key: authenticate every packet with it (GSTP v2)");
   client
       ->add_option("--linger", copts->linger_s,
                    "After the end of session, listen for states until none came for this long (s)")
@@ -394,11 +438,27 @@ void AddClientCommand(CLI::App& app, int* exit_code) {
   client->callback([copts, exit_code] { *exit_code = RunClient(*copts); });
 }
 
+void AddKeygenCommand(CLI::App& app, int* exit_code) {
+  auto out = std::make_shared<std::string>();
+  CLI::App* keygen = app.add_subcommand(
+      "teleop-keygen",
+      "Writes a new shared key for the teleoperation link: 32 random bytes (OpenSSL) in hex, in\n"
+      "a file readable by its owner only (mode 0600). Give the same file to 'teleop --key-file'\n"
+      "and 'teleop-client --key-file'. An existing file is never overwritten.");
+  keygen->add_option("--out", *out, "Key file to create")->required();
+  keygen->callback([out, exit_code] {
+    teleop::WriteNewPacketKey(*out);
+    std::cerr << "graspsynth teleop-keygen: wrote a new key to " << *out << std::endl;
+    *exit_code = 0;
+  });
+}
+
 }  // namespace
 
 void AddTeleopCommands(CLI::App& app, int* exit_code) {
   AddServerCommand(app, exit_code);
   AddClientCommand(app, exit_code);
+  AddKeygenCommand(app, exit_code);
 }
 
 }  // namespace graspsynth::apps

@@ -24,6 +24,9 @@ graspsynth_require(CLI11_FOUND "CLI11" libcli11-dev)
 find_package(nlohmann_json 3 QUIET)
 graspsynth_require(nlohmann_json_FOUND "nlohmann-json" nlohmann-json3-dev)
 find_package(Threads REQUIRED)
+# HMAC-SHA256 of the teleoperation link's authenticated packets (teleop/packet_key.hpp).
+find_package(OpenSSL 3 QUIET COMPONENTS Crypto)
+graspsynth_require(OpenSSL_FOUND "OpenSSL 3 (libcrypto)" libssl-dev)
 
 # ODE ships no CMake config on Debian; pkg-config 'ode'. graspsynth needs the double-precision
 # build, which is what Debian's libode-dev is (checked in simulation/ at compile time).

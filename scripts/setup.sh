@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 packages=(
   build-essential cmake ninja-build ccache pkg-config clang-format gnuplot-nox
   libeigen3-dev libceres-dev libnlopt-cxx-dev libfcl-dev libode-dev libcgal-dev
-  liburdfdom-dev libcli11-dev nlohmann-json3-dev libspdlog-dev
+  liburdfdom-dev libcli11-dev nlohmann-json3-dev libspdlog-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev liborocos-kdl-dev
   python3 chromium
 )

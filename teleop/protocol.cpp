@@ -27,8 +27,12 @@ class Writer {
   void PutVector(const double* values, int count) {
     for (int i = 0; i < count; ++i) Put(values[i]);
   }
-  std::vector<uint8_t> Finish() {
+  std::vector<uint8_t> Finish(const PacketKey* key) {
     Put(Crc32(bytes_));
+    if (key != nullptr) {
+      const std::array<uint8_t, kTagBytes> tag = key->Tag(bytes_);
+      bytes_.insert(bytes_.end(), tag.begin(), tag.end());
+    }
     return std::move(bytes_);
   }
 
@@ -55,9 +59,10 @@ class Reader {
   size_t pos_;
 };
 
-void PutHeader(Writer& w, PacketKind kind, uint32_t sequence, uint32_t payload, double time) {
+void PutHeader(Writer& w, PacketKind kind, uint32_t sequence, uint32_t payload, double time,
+               const PacketKey* key) {
   for (uint8_t b : kMagic) w.Put(b);
-  w.Put(kVersion);
+  w.Put(key != nullptr ? kAuthenticatedVersion : kVersion);
   w.Put(static_cast<uint16_t>(kind));
   w.Put(sequence);
   w.Put(payload);
@@ -112,6 +117,10 @@ std::string_view ToString(DropReason reason) {
       return "duplicate";
     case DropReason::kOutOfOrder:
       return "out_of_order";
+    case DropReason::kUnauthenticated:
+      return "unauthenticated";
+    case DropReason::kBadTag:
+      return "bad_tag";
   }
   return "unknown";
 }
@@ -131,9 +140,9 @@ uint32_t Crc32(std::span<const uint8_t> bytes) {
   return crc ^ 0xFFFFFFFFu;
 }
 
-std::vector<uint8_t> EncodeCommand(const OperatorCommand& c) {
-  Writer w(kHeaderBytes + kCommandPayloadBytes + kCrcBytes);
-  PutHeader(w, PacketKind::kCommand, c.sequence, kCommandPayloadBytes, c.sender_time);
+std::vector<uint8_t> EncodeCommand(const OperatorCommand& c, const PacketKey* key) {
+  Writer w(kHeaderBytes + kCommandPayloadBytes + kCrcBytes + kTagBytes);
+  PutHeader(w, PacketKind::kCommand, c.sequence, kCommandPayloadBytes, c.sender_time, key);
   w.PutVector(c.p_TW.data(), 3);
   const double q[4] = {c.q_TW.w(), c.q_TW.x(), c.q_TW.y(), c.q_TW.z()};
   w.PutVector(q, 4);
@@ -141,12 +150,12 @@ std::vector<uint8_t> EncodeCommand(const OperatorCommand& c) {
   w.Put(c.buttons);
   w.Put(static_cast<uint16_t>(0));
   w.PutVector(c.fingers.data(), kHandDof);
-  return w.Finish();
+  return w.Finish(key);
 }
 
-std::vector<uint8_t> EncodeState(const RobotStateMessage& s) {
-  Writer w(kHeaderBytes + kStatePayloadBytes + kCrcBytes);
-  PutHeader(w, PacketKind::kState, s.sequence, kStatePayloadBytes, s.sender_time);
+std::vector<uint8_t> EncodeState(const RobotStateMessage& s, const PacketKey* key) {
+  Writer w(kHeaderBytes + kStatePayloadBytes + kCrcBytes + kTagBytes);
+  PutHeader(w, PacketKind::kState, s.sequence, kStatePayloadBytes, s.sender_time, key);
   w.PutVector(s.arm.data(), kArmDof);
   w.PutVector(s.hand.data(), kHandDof);
   w.PutVector(s.p_WO.data(), 3);
@@ -155,21 +164,30 @@ std::vector<uint8_t> EncodeState(const RobotStateMessage& s) {
   w.Put(s.theta_deg);
   w.Put(s.trial);
   w.Put(s.flags);
-  return w.Finish();
+  return w.Finish(key);
 }
 
-std::vector<uint8_t> EncodeEndOfSession(uint32_t sequence, double sender_time) {
-  Writer w(kHeaderBytes + kCrcBytes);
-  PutHeader(w, PacketKind::kEndOfSession, sequence, 0, sender_time);
-  return w.Finish();
+std::vector<uint8_t> EncodeEndOfSession(uint32_t sequence, double sender_time,
+                                        const PacketKey* key) {
+  Writer w(kHeaderBytes + kCrcBytes + kTagBytes);
+  PutHeader(w, PacketKind::kEndOfSession, sequence, 0, sender_time, key);
+  return w.Finish(key);
 }
 
-DecodeResult Decode(std::span<const uint8_t> d) {
-  if (d.size() < kHeaderBytes + kCrcBytes) return Drop(DropReason::kShort);
-  if (!std::equal(kMagic.begin(), kMagic.end(), d.begin())) return Drop(DropReason::kBadMagic);
-  Reader header(d, 4);
+DecodeResult Decode(std::span<const uint8_t> datagram, const PacketKey* key) {
+  if (datagram.size() < kHeaderBytes + kCrcBytes) return Drop(DropReason::kShort);
+  if (!std::equal(kMagic.begin(), kMagic.end(), datagram.begin())) {
+    return Drop(DropReason::kBadMagic);
+  }
+  Reader header(datagram, 4);
   const auto version = header.Get<uint16_t>();
-  if (version != kVersion) return Drop(DropReason::kBadVersion);
+  if (version != kVersion && version != kAuthenticatedVersion) {
+    return Drop(DropReason::kBadVersion);
+  }
+  const size_t tag_bytes = version == kAuthenticatedVersion ? kTagBytes : 0;
+  if (datagram.size() < kHeaderBytes + kCrcBytes + tag_bytes) return Drop(DropReason::kShort);
+  // d: the packet up to its checksum (the tag follows in version 2).
+  const std::span<const uint8_t> d = datagram.first(datagram.size() - tag_bytes);
   const auto kind = header.Get<uint16_t>();
   const auto sequence = header.Get<uint32_t>();
   const auto payload = header.Get<uint32_t>();
@@ -180,6 +198,10 @@ DecodeResult Decode(std::span<const uint8_t> d) {
   uint32_t crc;
   std::memcpy(&crc, d.data() + d.size() - kCrcBytes, kCrcBytes);
   if (crc != Crc32(d.first(d.size() - kCrcBytes))) return Drop(DropReason::kBadChecksum);
+  if (key != nullptr && tag_bytes == 0) return Drop(DropReason::kUnauthenticated);
+  if (tag_bytes != 0 && (key == nullptr || !key->Verifies(d, datagram.last(kTagBytes)))) {
+    return Drop(DropReason::kBadTag);
+  }
 
   DecodedPacket p;
   p.sequence = sequence;

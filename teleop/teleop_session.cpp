@@ -269,7 +269,7 @@ struct TeleopSession::Impl {
     state.flags = flags;
     if (peer) {
       state.sequence = state_sequence++;
-      result.state_packet = EncodeState(state);
+      result.state_packet = EncodeState(state, options.key ? &*options.key : nullptr);
       result.peer = peer;
       ++counters.states_sent;
     }
@@ -303,7 +303,7 @@ struct TeleopSession::Impl {
     Received in;
     for (const Datagram& d : datagrams) {
       ++counters.received;
-      const DecodeResult decoded = Decode(d.bytes);
+      const DecodeResult decoded = Decode(d.bytes, options.key ? &*options.key : nullptr);
       if (!decoded.packet) {
         ++counters.dropped[static_cast<int>(decoded.reason)];
         continue;
@@ -503,6 +503,7 @@ std::string TeleopSession::SummaryJson(const std::string& end, double wall_s) co
       {"timeout_s", s.options.timeout_s},
       {"end_hold_s", s.options.end_hold_s},
       {"orientations_deg", s.options.orientations_deg},
+      {"authenticated", s.options.key.has_value()},
       {"record_dir",
        s.options.record_dir.empty() ? json(nullptr) : json(s.options.record_dir.string())},
       {"ticks", s.ticks},

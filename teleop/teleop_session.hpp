@@ -87,6 +87,9 @@ struct TeleopOptions {
   TeleopCalibration calibration;  ///< tracker frame and wrist offset
   /// Glove-to-joint map; std::nullopt: GloveMap::Default of the model's hand.
   std::optional<GloveMap> glove_map;
+  /// The link's shared key: with one, only authenticated commands (version 2, a tag that
+  /// verifies) are taken and the states are sent authenticated; without, only version 1.
+  std::optional<PacketKey> key;
 
   /// True when every value is finite and in range; otherwise false with the reason.
   bool IsValid(std::string* why) const;

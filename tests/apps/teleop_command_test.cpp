@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <thread>
 
@@ -90,6 +91,40 @@ TEST(TeleopCommand, BadOptionsAreNamed) {
   EXPECT_NE(t.err.find("--timeout-ms"), std::string::npos) << t.err;
 }
 
+// The link beyond this machine needs a key (or --insecure); keygen writes one that the server
+// and the client share.
+TEST(TeleopCommand, BindingBeyondLoopbackNeedsAKeyOrInsecure) {
+  const fs::path dir = TempDir("bind");
+  const testing::CommandOutput open = RunGraspsynth("teleop --bind 0.0.0.0 --port 0");
+  EXPECT_EQ(open.exit_code, 2);
+  EXPECT_NE(open.err.find("--bind 0.0.0.0 opens the link beyond this machine"), std::string::npos)
+      << open.err;
+  EXPECT_NE(open.err.find("--key-file"), std::string::npos) << open.err;
+  const testing::CommandOutput keygen =
+      RunGraspsynth("teleop-keygen --out " + (dir / "link.key").string());
+  EXPECT_EQ(keygen.exit_code, 0) << keygen.err;
+  const testing::CommandOutput again =
+      RunGraspsynth("teleop-keygen --out " + (dir / "link.key").string());
+  EXPECT_EQ(again.exit_code, 2);
+  EXPECT_NE(again.err.find("never overwritten"), std::string::npos) << again.err;
+  std::ofstream(dir / "bad.key") << "xyz\n";
+  const testing::CommandOutput bad =
+      RunGraspsynth("teleop --bind 0.0.0.0 --port 0 --key-file " + (dir / "bad.key").string());
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find((dir / "bad.key").string() + ": line 1"), std::string::npos) << bad.err;
+  // with the key, and with --insecure, the server starts (and --exit-after ends it).
+  for (const std::string& how :
+       {"--key-file " + (dir / "link.key").string(), std::string("--insecure")}) {
+    const testing::CommandOutput r =
+        RunGraspsynth("teleop --bind 0.0.0.0 --port 0 --orientations 60 --exit-after 0.3 " + how);
+    EXPECT_EQ(r.exit_code, 0) << how << ": " << r.err;
+    EXPECT_NE(r.err.find(how == "--insecure" ? "Hz (not authenticated" : "Hz (authenticated"),
+              std::string::npos)
+        << r.err;
+  }
+  fs::remove_all(dir);
+}
+
 TEST(TeleopCommand, SignalEndsTheSessionWithASummary) {
   const fs::path dir = TempDir("signal");
   const pid_t server =
@@ -113,15 +148,34 @@ TEST(TeleopCommand, SignalEndsTheSessionWithASummary) {
 // Replays `original` (a successful trial at theta_deg) into a recording server and checks that
 // the recorded trial has the same outcome and grasp pose.
 void ExpectRecordedAgain(const DemoLog& original, const std::string& theta_deg,
-                         const std::string& name) {
+                         const std::string& name, bool authenticated = false) {
   const fs::path dir = TempDir(name);
+  std::string key_option;  // with `authenticated`, both ends take a new key
+  if (authenticated) {
+    const std::string key = (dir / "link.key").string();
+    ASSERT_EQ(RunGraspsynth("teleop-keygen --out " + key).exit_code, 0);
+    key_option = " --key-file " + key;
+  }
   const SegmentedTrial original_segmented = Segment(original, SegmentationOptions{});
   ASSERT_TRUE(original_segmented.success);
   WriteDemoLog(dir / "original.csv", original);
 
-  const pid_t server = Spawn({"teleop", "--port", "0", "--port-file", (dir / "port").string(),
-                              "--orientations", theta_deg, "--record", (dir / "recorded").string(),
-                              "--summary", (dir / "summary.json").string(), "--exit-after", "120"});
+  std::vector<std::string> server_args = {"teleop",
+                                          "--port",
+                                          "0",
+                                          "--port-file",
+                                          (dir / "port").string(),
+                                          "--orientations",
+                                          theta_deg,
+                                          "--record",
+                                          (dir / "recorded").string(),
+                                          "--summary",
+                                          (dir / "summary.json").string(),
+                                          "--exit-after",
+                                          "120"};
+  if (authenticated)
+    server_args.insert(server_args.end(), {"--key-file", (dir / "link.key").string()});
+  const pid_t server = Spawn(server_args);
   for (int k = 0; k < 1500 && !fs::exists(dir / "port"); ++k) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
@@ -129,9 +183,9 @@ void ExpectRecordedAgain(const DemoLog& original, const std::string& theta_deg,
   const std::string port = testing::ReadFileText(dir / "port");
   // slower under the sanitizers, so that the server keeps its rate.
   const double speed = testing::Scaled(1, 0) == 1 ? 1.0 : 0.5;
-  const testing::CommandOutput client =
-      RunGraspsynth("teleop-client --replay " + (dir / "original.csv").string() + " --port " +
-                    port + " --speed " + (speed == 1.0 ? "1" : "0.5") + " --linger 1.5");
+  const testing::CommandOutput client = RunGraspsynth(
+      "teleop-client --replay " + (dir / "original.csv").string() + " --port " + port +
+      " --speed " + (speed == 1.0 ? "1" : "0.5") + " --linger 1.5" + key_option);
   EXPECT_EQ(client.exit_code, 0) << client.err;
   EXPECT_EQ(WaitFor(server, 60.0), 0);
 
@@ -143,6 +197,7 @@ void ExpectRecordedAgain(const DemoLog& original, const std::string& theta_deg,
 
   const nlohmann::json summary = nlohmann::json::parse(testing::ReadFileText(dir / "summary.json"));
   EXPECT_EQ(summary["end"], "end_of_session");
+  EXPECT_EQ(summary["authenticated"], authenticated);
   EXPECT_EQ(summary["packets"]["dropped_total"], 0);
   EXPECT_EQ(summary["packets"]["accepted"], original.samples.size() + 3);
   ASSERT_EQ(summary["trials"].size(), 1u) << summary.dump(2);
@@ -173,12 +228,13 @@ TEST(TeleopCommand, AReplayedTrialIsRecordedAgainWithTheSameOutcome) {
   ExpectRecordedAgain(original, "60", "loop");
 }
 
-TEST(TeleopCommand, AShippedSyntheticTrialIsRecordedAgainWithTheSameOutcome) {
+TEST(TeleopCommand, AShippedSyntheticTrialIsRecordedAgainOverAnAuthenticatedLink) {
   // a trial of the synthetic operator (learning_data/demos), made by a different path than the
   // scripted grasp: its own rest pose, reach and hook grip.
   const DemoLog original = ReadDemoLog(fs::path(::testing::SourceDir()) / "learning_data" /
                                        "demos" / "theta100_trial01.csv");
-  ExpectRecordedAgain(original, "100", "synthetic");
+  // over an authenticated link (teleop-keygen, --key-file at both ends).
+  ExpectRecordedAgain(original, "100", "synthetic", true);
 }
 
 }  // namespace

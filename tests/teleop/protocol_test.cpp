@@ -92,7 +92,7 @@ TEST(Protocol, EachDefectHasItsReason) {
   EXPECT_EQ(Decode(b).reason, DropReason::kBadMagic);
 
   b = good;
-  b[4] = 2;
+  b[4] = 3;  // 1 is plain, 2 authenticated
   EXPECT_EQ(Decode(Reseal(b)).reason, DropReason::kBadVersion);
 
   b = good;
@@ -128,6 +128,69 @@ TEST(Protocol, EachDefectHasItsReason) {
   EXPECT_EQ(Decode(EncodeCommand(c)).reason, DropReason::kBadValue);
 }
 
+// RFC 4231's first test case of HMAC-SHA256: 20 bytes 0x0b, the text "Hi There".
+TEST(PacketKey, MatchesTheStandardHmacSha256TestVector) {
+  const PacketKey key(std::vector<uint8_t>(20, 0x0b));
+  const std::string text = "Hi There";
+  const std::array<uint8_t, kTagBytes> tag =
+      key.Tag({reinterpret_cast<const uint8_t*>(text.data()), text.size()});
+  const std::array<uint8_t, kTagBytes> expected = {0xb0, 0x34, 0x4c, 0x61, 0xd8, 0xdb, 0x38, 0x53,
+                                                   0x5c, 0xa8, 0xaf, 0xce, 0xaf, 0x0b, 0xf1, 0x2b,
+                                                   0x88, 0x1d, 0xc2, 0x00, 0xc9, 0x83, 0x3d, 0xa7,
+                                                   0x26, 0xe9, 0x37, 0x6c, 0x2e, 0x32, 0xcf, 0xf7};
+  EXPECT_EQ(tag, expected);
+}
+
+// re-seals a modified version 2 packet with a valid checksum and its old tag: what an attacker
+// without the key can do.
+std::vector<uint8_t> ResealKeepingTheTag(std::vector<uint8_t> bytes) {
+  const std::vector<uint8_t> tag(bytes.end() - kTagBytes, bytes.end());
+  bytes.resize(bytes.size() - kTagBytes);
+  bytes = Reseal(std::move(bytes));
+  bytes.insert(bytes.end(), tag.begin(), tag.end());
+  return bytes;
+}
+
+TEST(Protocol, AuthenticatedPacketsRoundTripAndEverythingElseIsRefused) {
+  const PacketKey key(std::vector<uint8_t>(20, 0x0b));
+  const PacketKey other(std::vector<uint8_t>(20, 0x0c));
+  const std::vector<uint8_t> good = EncodeCommand(SampleCommand(), &key);
+  EXPECT_EQ(good.size(), kHeaderBytes + kCommandPayloadBytes + kCrcBytes + kTagBytes);
+  EXPECT_EQ(good[4], kAuthenticatedVersion);
+  const DecodeResult r = Decode(good, &key);
+  ASSERT_TRUE(r.packet);
+  EXPECT_EQ(r.packet->command.sequence, 42u);
+  EXPECT_TRUE(testing::MatricesNear(r.packet->command.fingers, SampleCommand().fingers, 0.0));
+  RobotStateMessage s;
+  s.trial = 4;
+  const DecodeResult state = Decode(EncodeState(s, &key), &key);
+  ASSERT_TRUE(state.packet);
+  EXPECT_EQ(state.packet->state.trial, 4u);
+  EXPECT_TRUE(Decode(EncodeEndOfSession(3, 1.0, &key), &key).packet);
+
+  // a plain packet where a key is required; another key; no key to check the tag with.
+  EXPECT_EQ(Decode(EncodeCommand(SampleCommand()), &key).reason, DropReason::kUnauthenticated);
+  EXPECT_EQ(Decode(good, &other).reason, DropReason::kBadTag);
+  EXPECT_EQ(Decode(good).reason, DropReason::kBadTag);
+  // any change, its checksum made right again: the sequence number, a finger, the tag itself.
+  for (size_t at : {size_t{8}, size_t{100}, good.size() - 1}) {
+    std::vector<uint8_t> forged = good;
+    forged[at] ^= 0x01;
+    if (at < good.size() - kTagBytes) forged = ResealKeepingTheTag(forged);
+    EXPECT_EQ(Decode(forged, &key).reason, DropReason::kBadTag) << at;
+  }
+  // a plain packet relabelled as version 2, with a made-up tag.
+  std::vector<uint8_t> relabelled = EncodeCommand(SampleCommand());
+  relabelled[4] = kAuthenticatedVersion;
+  relabelled = Reseal(relabelled);
+  relabelled.insert(relabelled.end(), kTagBytes, 0);
+  EXPECT_EQ(Decode(relabelled, &key).reason, DropReason::kBadTag);
+  // the tag cut off.
+  EXPECT_NE(Decode(std::span(good).first(good.size() - kTagBytes), &key).reason,
+            DropReason::kBadTag);
+  EXPECT_FALSE(Decode(std::span(good).first(good.size() - kTagBytes), &key).packet);
+}
+
 TEST(Protocol, RandomBytesNeverCrashAndNeverDecode) {
   std::mt19937_64 rng(11);
   std::uniform_int_distribution<int> byte(0, 255);
@@ -144,6 +207,15 @@ TEST(Protocol, RandomBytesNeverCrashAndNeverDecode) {
       for (int j = 0; j < 3; ++j) b[static_cast<size_t>(length(rng)) % b.size()] = byte(rng);
     }
     decoded += Decode(b).packet.has_value() && b != good;
+  }
+  EXPECT_EQ(decoded, 0);
+  // the same with a key, on authenticated packets.
+  const PacketKey key(std::vector<uint8_t>(16, 0x5a));
+  const std::vector<uint8_t> signed_good = EncodeCommand(SampleCommand(), &key);
+  for (int k = 0; k < 20000; ++k) {
+    std::vector<uint8_t> b = signed_good;
+    for (int j = 0; j < 3; ++j) b[static_cast<size_t>(length(rng)) % b.size()] = byte(rng);
+    decoded += Decode(b, &key).packet.has_value() && b != signed_good;
   }
   EXPECT_EQ(decoded, 0);
 }

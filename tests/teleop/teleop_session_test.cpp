@@ -431,5 +431,49 @@ TEST(TeleopSession, AnEndOfSessionPacketFinishesTheSession) {
   EXPECT_EQ(summary["trials"][0]["outcome"], "abandoned");
 }
 
+// With a key, only authenticated commands drive the robot: plain ones, forged ones and
+// replays of recorded authenticated ones are counted by reason and never applied; the states
+// go back authenticated.
+TEST(TeleopSession, WithAKeyOnlyFreshAuthenticatedCommandsDriveTheRobot) {
+  TeleopOptions options = SixtyDegrees();
+  options.key = PacketKey(std::vector<uint8_t>(32, 0x42));
+  const PacketKey& key = *options.key;
+  const PacketKey stranger(std::vector<uint8_t>(32, 0x43));
+  TeleopSession session(ShippedSimulationModel(), options);
+  const HandVector f = TeleopSession::RestHand();
+  const Eigen::Isometry3d target = RestWrist(Eigen::Vector3d(0.05, 0.0, -0.04));
+  const Eigen::Isometry3d wild = RestWrist(Eigen::Vector3d(0.0, 0.0, -0.3));
+  std::vector<std::vector<uint8_t>> recorded;
+  const int ticks = 60;
+  TickResult r;
+  for (int k = 0; k < ticks; ++k) {
+    const uint32_t seq = 1000 + static_cast<uint32_t>(k);
+    std::vector<Datagram> in;
+    in.push_back(Wrap(EncodeCommand(JointCommand(seq + 500, wild, f))));  // plain
+    in.push_back(Wrap(EncodeCommand(JointCommand(seq + 500, wild, f), &stranger)));
+    recorded.push_back(EncodeCommand(JointCommand(seq, target, f), &key));
+    in.push_back(Wrap(recorded.back()));
+    if (k >= 2) in.push_back(Wrap(recorded[k - 2]));  // a replay of an older packet
+    in.push_back(Wrap(recorded.back()));              // and of this one
+    r = session.Step(in, k * kTick);
+  }
+  const PacketCounters& c = session.counters();
+  const auto dropped = [&](DropReason reason) { return c.dropped[static_cast<int>(reason)]; };
+  EXPECT_EQ(c.commands_applied, static_cast<uint64_t>(ticks));
+  EXPECT_EQ(dropped(DropReason::kUnauthenticated), static_cast<uint64_t>(ticks));
+  EXPECT_EQ(dropped(DropReason::kBadTag), static_cast<uint64_t>(ticks));
+  EXPECT_EQ(dropped(DropReason::kDuplicate), static_cast<uint64_t>(ticks));
+  EXPECT_EQ(dropped(DropReason::kOutOfOrder), static_cast<uint64_t>(ticks - 2));
+  EXPECT_EQ(c.received, c.accepted + c.dropped_total());
+  EXPECT_LT((session.wrist_pose().translation() - target.translation()).norm(), 2e-3);
+  ASSERT_FALSE(r.state_packet.empty());
+  EXPECT_TRUE(Decode(r.state_packet, &key).packet);
+  EXPECT_EQ(Decode(r.state_packet).reason, DropReason::kBadTag);
+  const nlohmann::json summary = nlohmann::json::parse(session.SummaryJson("test", 1.0));
+  EXPECT_TRUE(summary["authenticated"].get<bool>());
+  EXPECT_EQ(summary["packets"]["dropped"]["unauthenticated"], ticks);
+  EXPECT_EQ(summary["packets"]["dropped"]["bad_tag"], ticks);
+}
+
 }  // namespace
 }  // namespace graspsynth::teleop

@@ -1,4 +1,5 @@
 graspsynth_test(teleop/protocol_test.cpp LIBS graspsynth::teleop)
+graspsynth_test(teleop/packet_key_test.cpp LIBS graspsynth::teleop)
 graspsynth_test(teleop/glove_map_test.cpp LIBS graspsynth::teleop)
 graspsynth_test(teleop/viewer_scene_test.cpp LIBS graspsynth::teleop nlohmann_json::nlohmann_json)
 graspsynth_test(teleop/viewer_server_test.cpp LIBS graspsynth::teleop)

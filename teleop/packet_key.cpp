@@ -1,0 +1,170 @@
+#include "teleop/packet_key.hpp"
+
+#include <fcntl.h>
+#include <openssl/crypto.h>
+#include <openssl/evp.h>
+#include <openssl/hmac.h>
+#include <openssl/rand.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cctype>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <stdexcept>
+
+#include "common/errors.hpp"
+#include "common/text_input.hpp"
+
+namespace graspsynth::teleop {
+namespace {
+
+int HexDigit(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+
+std::string SizeProblem(size_t size) {
+  if (size < kMinKeyBytes) {
+    return "the key has " + std::to_string(size) + " bytes; at least " +
+           std::to_string(kMinKeyBytes) +
+           " are needed (graspsynth teleop-keygen --out FILE writes a 32-byte key)";
+  }
+  if (size > kMaxKeyBytes) {
+    return "the key has " + std::to_string(size) + " bytes; at most " +
+           std::to_string(kMaxKeyBytes) + " are taken";
+  }
+  return "";
+}
+
+}  // namespace
+
+PacketKey::PacketKey(std::vector<uint8_t> bytes) : bytes_(std::move(bytes)) {
+  const std::string problem = SizeProblem(bytes_.size());
+  if (!problem.empty()) throw InputError("teleoperation key: " + problem);
+}
+
+PacketKey PacketKey::Load(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    throw InputError("key file " + path.string() +
+                     ": cannot read the file (missing or unreadable)");
+  }
+  const std::string where = "key file " + path.string();
+  std::vector<uint8_t> key;
+  int key_line = 0;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    const std::string_view text = TrimBlanks(line);
+    if (text.empty() || text.front() == '#') continue;
+    const std::string at = where + ": line " + std::to_string(number);
+    if (key_line != 0) {
+      throw InputError(at + ": a second key line (the key is on line " + std::to_string(key_line) +
+                       "; one key per file)");
+    }
+    key_line = number;
+    for (size_t i = 0; i < text.size(); ++i) {
+      if (HexDigit(text[i]) < 0) {
+        throw InputError(at + ": character " + std::to_string(i + 1) +
+                         " is not a hexadecimal digit (the key is written in hex, 0-9 a-f)");
+      }
+    }
+    if (text.size() % 2 != 0) {
+      throw InputError(at + ": an odd number of hexadecimal digits (" +
+                       std::to_string(text.size()) + "); each byte takes two");
+    }
+    for (size_t i = 0; i < text.size(); i += 2) {
+      key.push_back(static_cast<uint8_t>(HexDigit(text[i]) * 16 + HexDigit(text[i + 1])));
+    }
+    const std::string problem = SizeProblem(key.size());
+    if (!problem.empty()) throw InputError(at + ": " + problem);
+  }
+  if (key_line == 0) {
+    throw InputError(where +
+                     ": no key line (only blank lines and comments); "
+                     "graspsynth teleop-keygen --out FILE writes a key");
+  }
+  return PacketKey(std::move(key));
+}
+
+PacketKey PacketKey::Generate() {
+  std::vector<uint8_t> bytes(32);
+  if (RAND_bytes(bytes.data(), static_cast<int>(bytes.size())) != 1) {
+    throw std::runtime_error("OpenSSL's random generator failed to make a key");
+  }
+  return PacketKey(std::move(bytes));
+}
+
+std::string PacketKey::FileText() const {
+  static const char kHex[] = "0123456789abcdef";
+  std::string text =
+      "# graspsynth teleoperation key (HMAC-SHA256); keep it secret, give it to the client and "
+      "the server only\n";
+  for (uint8_t b : bytes_) {
+    text += kHex[b >> 4];
+    text += kHex[b & 0xF];
+  }
+  return text + "\n";
+}
+
+std::array<uint8_t, kTagBytes> PacketKey::Tag(std::span<const uint8_t> bytes) const {
+  std::array<uint8_t, kTagBytes> tag{};
+  unsigned int length = 0;
+  const unsigned char* done = HMAC(EVP_sha256(), bytes_.data(), static_cast<int>(bytes_.size()),
+                                   bytes.data(), bytes.size(), tag.data(), &length);
+  if (done == nullptr || length != kTagBytes) {
+    throw std::runtime_error("OpenSSL's HMAC-SHA256 failed");
+  }
+  return tag;
+}
+
+bool PacketKey::Verifies(std::span<const uint8_t> bytes, std::span<const uint8_t> tag) const {
+  if (tag.size() != kTagBytes) return false;
+  std::array<uint8_t, kTagBytes> expected;
+  try {
+    expected = Tag(bytes);
+  } catch (const std::exception&) {
+    return false;  // never thrown in practice; a packet that cannot be checked is refused
+  }
+  return CRYPTO_memcmp(expected.data(), tag.data(), kTagBytes) == 0;
+}
+
+std::optional<std::string> KeyFilePermissionWarning(const std::filesystem::path& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return std::nullopt;
+  if ((st.st_mode & (S_IRGRP | S_IROTH)) == 0) return std::nullopt;
+  return "key file " + path.string() +
+         " can be read by other users (chmod 600 it to keep the key secret)";
+}
+
+void WriteNewPacketKey(const std::filesystem::path& path) {
+  const std::string text = PacketKey::Generate().FileText();
+  const std::filesystem::path parent = path.has_parent_path() ? path.parent_path() : ".";
+  // built by appending: GCC 12 warns falsely (-Wrestrict) on "." + string.
+  std::string tmp_name(1, '.');
+  tmp_name += path.filename().string();
+  tmp_name += ".tmp.";
+  tmp_name += std::to_string(::getpid());
+  const std::filesystem::path tmp = parent / tmp_name;
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+  if (fd < 0) {
+    throw InputError("cannot write '" + tmp.string() + "': " + std::strerror(errno));
+  }
+  const bool written = ::write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size());
+  const bool closed = ::close(fd) == 0;
+  // link() refuses an existing destination: an existing key is never replaced.
+  const bool linked = written && closed && ::link(tmp.c_str(), path.c_str()) == 0;
+  const int link_errno = errno;
+  ::unlink(tmp.c_str());
+  if (!written || !closed) throw InputError("error while writing '" + tmp.string() + "'");
+  if (!linked) {
+    throw InputError(link_errno == EEXIST
+                         ? "'" + path.string() + "' exists; a key file is never overwritten"
+                         : "cannot write '" + path.string() + "': " + std::strerror(link_errno));
+  }
+}
+
+}  // namespace graspsynth::teleop

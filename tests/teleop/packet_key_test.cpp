@@ -1,0 +1,102 @@
+// The teleoperation link's key files: reading (every defect named by file and line, the key
+// never shown), writing a new one (owner-only, never over an existing file).
+
+#include "teleop/packet_key.hpp"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "common/errors.hpp"
+#include "tests/utils/eigen_matchers.hpp"
+
+namespace graspsynth::teleop {
+namespace {
+
+namespace fs = std::filesystem;
+
+class KeyFile : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("graspsynth_key_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path Write(const std::string& text) {
+    const fs::path path = dir_ / "link.key";
+    std::ofstream(path) << text;
+    return path;
+  }
+  fs::path dir_;
+};
+
+constexpr const char* kKeyHex = "00112233445566778899AaBbCcDdEeFf";  // 16 bytes
+
+TEST_F(KeyFile, ReadsTheHexLineBetweenCommentsAndBlankLines) {
+  const PacketKey key = PacketKey::Load(Write(std::string("# a comment\n\n  ") + kKeyHex + "  \n"));
+  std::vector<uint8_t> bytes;
+  for (int i = 0; i < 16; ++i) bytes.push_back(static_cast<uint8_t>(0x11 * i));
+  const PacketKey same(bytes);
+  const std::vector<uint8_t> text = {1, 2, 3};
+  EXPECT_EQ(key.Tag(text), same.Tag(text));
+  EXPECT_TRUE(key.Verifies(text, same.Tag(text)));
+  const std::vector<uint8_t> changed = {1, 2, 4};
+  EXPECT_FALSE(key.Verifies(changed, same.Tag(text)));
+  // its file text reads back as the same key.
+  const PacketKey back = PacketKey::Load(Write(key.FileText()));
+  EXPECT_EQ(back.Tag(text), key.Tag(text));
+}
+
+TEST_F(KeyFile, EachDefectIsNamedWithTheFileAndLineButNotTheKey) {
+  const std::string file = (dir_ / "link.key").string();
+  GS_EXPECT_THROW_WITH(PacketKey::Load(Write("# key\n0011zz33445566778899aabbccddeeff\n")),
+                       InputError, file, "line 2", "character 5 is not a hexadecimal digit");
+  GS_EXPECT_THROW_WITH(PacketKey::Load(Write(std::string(kKeyHex) + "0\n")), InputError, file,
+                       "line 1", "odd number");
+  GS_EXPECT_THROW_WITH(PacketKey::Load(Write("0011223344\n")), InputError, file, "line 1",
+                       "5 bytes; at least 16", "teleop-keygen");
+  GS_EXPECT_THROW_WITH(PacketKey::Load(Write(std::string(kKeyHex) + "\n" + kKeyHex + "\n")),
+                       InputError, file, "line 2", "a second key line");
+  GS_EXPECT_THROW_WITH(PacketKey::Load(Write("# only a comment\n\n")), InputError, file,
+                       "no key line");
+  GS_EXPECT_THROW_WITH(PacketKey::Load(dir_ / "none.key"), InputError, "none.key", "cannot read");
+  try {
+    PacketKey::Load(Write(std::string(kKeyHex) + "0\n"));
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).find("8899"), std::string::npos) << e.what();
+  }
+  GS_EXPECT_THROW_WITH(PacketKey(std::vector<uint8_t>(15, 1)), InputError, "15 bytes");
+}
+
+TEST_F(KeyFile, ANewKeyIsOwnerOnlyRandomAndNeverOverwritten) {
+  const fs::path a = dir_ / "a.key", b = dir_ / "b.key";
+  WriteNewPacketKey(a);
+  WriteNewPacketKey(b);
+  struct stat st {};
+  ASSERT_EQ(::stat(a.c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 0777, 0600u);
+  EXPECT_FALSE(KeyFilePermissionWarning(a));
+  const std::vector<uint8_t> text = {7};
+  EXPECT_NE(PacketKey::Load(a).Tag(text), PacketKey::Load(b).Tag(text));  // two random keys
+  const std::string before = [&] {
+    std::ifstream in(a);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }();
+  GS_EXPECT_THROW_WITH(WriteNewPacketKey(a), InputError, a.string(), "never overwritten");
+  std::ifstream in(a);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), before);
+  // no temporary file is left behind.
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 2);
+  fs::permissions(a, fs::perms::group_read, fs::perm_options::add);
+  EXPECT_TRUE(KeyFilePermissionWarning(a));
+}
+
+}  // namespace
+}  // namespace graspsynth::teleop
