@@ -222,7 +222,7 @@ void AddCommonOptions(CLI::App* cmd, DemosOptions* o) {
   cmd->add_option("--threads", o->threads,
                   "Worker threads (0: all cores); the output does not "
                   "depend on it")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, 1024));
   cmd->add_option("--robot", o->robot, "Robot description (URDF)");
   cmd->add_option("--scene", o->scene, "Scene description (JSON)");
   AddObjectFlag(cmd, &o->object);

@@ -192,7 +192,7 @@ void AddGeneralizeCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--seed", opts->seed, "Seed of the perturbed replays")->capture_default_str();
   cmd->add_option("--threads", opts->threads, "Worker threads (0: all cores); changes no result")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, 1024));
   cmd->add_option("--name", opts->name, "Stem of the output files")->capture_default_str();
   cmd->add_option("--out", opts->out, "Output folder")->required();
   AddPhysicsFallbackFlag(cmd, &opts->no_physics_fallback);

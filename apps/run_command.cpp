@@ -208,7 +208,7 @@ void AddRunCommand(CLI::App& app, int* exit_code) {
   run->add_option("--seed", opts->seed, "Seed of the whole study")->capture_default_str();
   run->add_option("--threads", opts->threads, "Worker threads (0: all cores); changes no result")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, 1024));
   run->add_flag("--quick", opts->quick,
                 "Reduced study: orientations 40,45,60,85, 2 selection and 3 gate replays");
   run->add_option("--perturb", opts->perturb,

@@ -158,7 +158,7 @@ void AddSelectCommand(CLI::App& app, int* exit_code) {
   select->add_option("--seed", opts->seed, "Seed of the perturbations")->capture_default_str();
   select->add_option("--threads", opts->threads, "Worker threads for the replays (0: all cores)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, 1024));
   select->add_option("--robot", opts->robot, "Robot description (URDF); default: the shipped one");
   AddAllReplaysFlag(select, &opts->all_replays);
   AddPhysicsPerturbationFlags(select, &opts->physics);

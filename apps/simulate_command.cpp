@@ -293,7 +293,7 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
   sim->add_option("--seed", opts->seed, "Seed of the perturbations")->capture_default_str();
   sim->add_option("--threads", opts->threads, "Worker threads for the replays (0: all cores)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, 1024));
   sim->add_option("--record", opts->record,
                   "Write the nominal trial's simulated states as CSV: t, arm q1..q7 (rad), hand "
                   "f0..f15 (rad), object and wrist pose (m, quaternion w first)");

@@ -181,7 +181,8 @@ void AddSynthesizeCommand(CLI::App& app, int* exit_code) {
                   "Perturbed trials of the physics gate (0: nominal only)")
       ->capture_default_str();
   cmd->add_option("--threads", opts->threads, "Worker threads of the gate (0: all cores)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1024));
   cmd->add_option("--min-robustness", opts->min_robustness,
                   "Success fraction the gate needs under perturbation")
       ->capture_default_str();

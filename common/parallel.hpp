@@ -11,6 +11,7 @@
 #include <limits>
 #include <mutex>
 #include <string>
+#include <system_error>
 #include <thread>
 #include <utility>
 #include <vector>
@@ -67,7 +68,13 @@ inline void ParallelFor(int count, int threads, const std::function<void(int)>& 
     }
   };
   std::vector<std::thread> pool;
-  for (int w = 1; w < WorkerCount(threads, count); ++w) pool.emplace_back(work);
+  for (int w = 1; w < WorkerCount(threads, count); ++w) {
+    try {
+      pool.emplace_back(work);
+    } catch (const std::system_error&) {
+      break;  // the system has no more threads to give: the ones started do the work
+    }
+  }
   work();
   for (std::thread& t : pool) t.join();
   if (error) std::rethrow_exception(error);

@@ -98,6 +98,11 @@ Eigen::Vector3d ParseMetadataPosition(const MetadataLine& m, const std::string& 
       throw InputError(At(source, line) + "metadata '" + m.key + "': component " +
                        std::to_string(i + 1) + " is not a finite number: " + Quoted(fields[i]));
     }
+    if (std::abs(*value) > kDemoMaxPosition) {
+      throw InputError(At(source, line) + "metadata '" + m.key + "': component " +
+                       std::to_string(i + 1) + " = " + Quoted(TrimBlanks(fields[i])) +
+                       " m is beyond +-" + FormatNumber(kDemoMaxPosition) + " m");
+    }
     p[i] = *value;
   }
   return p;
@@ -203,6 +208,20 @@ DemoSample ParseSampleRow(std::string_view text, const std::string& source, size
     if (!value) {
       throw InputError(AtColumn(source, line, i) +
                        "not a finite number: " + Quoted(TrimBlanks(fields[i])));
+    }
+    // bounds far beyond any robot's, so that every sum and mean of the analysis stays finite.
+    const bool position = (i >= kColWrist && i < kColQuat) || i >= kColObject;
+    const bool finger = i >= kColFingers && i < kColEvent;
+    const double bound = i == kColT ? kDemoMaxTime
+                         : position ? kDemoMaxPosition
+                         : finger   ? kDemoMaxJoint
+                                    : INFINITY;  // the quaternion and the event: checked below
+    if (std::abs(*value) > bound) {
+      throw InputError(AtColumn(source, line, i) + Quoted(TrimBlanks(fields[i])) + " is beyond +-" +
+                       FormatNumber(bound) +
+                       (i == kColT ? " s"
+                        : position ? " m"
+                                   : " rad"));
     }
     v[i] = *value;
   }

@@ -17,7 +17,9 @@
 ///   no blank or comment line between sample rows (blank lines at the end of the file are
 ///   allowed);
 /// - `t` strictly increases; the wrist quaternion has norm 1 within kDemoQuaternionTolerance;
-///   `event` is 0, 1 or 2;
+///   `event` is 0, 1 or 2; positions (the wrist, the object, `object_position`) lie within
+///   kDemoMaxPosition of the origin, times within kDemoMaxTime, finger joints within
+///   kDemoMaxJoint (bounds far beyond any robot's, that keep every sum and mean finite);
 /// - exactly one grasp event (1) and exactly one end event (2), and the end event is on the last
 ///   row (a log without it is a truncated recording: the operator never pressed the final key).
 ///
@@ -46,6 +48,12 @@ const std::vector<std::string>& DemoColumns();
 
 /// Tolerance on | |q| - 1 | of a wrist quaternion read from a log.
 inline constexpr double kDemoQuaternionTolerance = 1e-3;
+/// Largest |coordinate| of a position in a log, m.
+inline constexpr double kDemoMaxPosition = 100.0;
+/// Largest |t| in a log, s.
+inline constexpr double kDemoMaxTime = 1e6;
+/// Largest |f_i| of a finger joint in a log, rad.
+inline constexpr double kDemoMaxJoint = 10.0;
 
 /// The button event of a sample.
 enum class DemoEvent : int {

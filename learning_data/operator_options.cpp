@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "common/atomic_file.hpp"
 #include "common/data_dir.hpp"
@@ -188,6 +189,15 @@ bool OperatorOptions::IsValid(std::string* why) const {
         close_duration, settle_duration, lift_duration, hold_duration}) {
     if (!(d > 0.0)) return fail("every duration must be > 0");
   }
+  // the log's grasp mark needs a sample of its own before the last one (the end event).
+  if ((lift_duration + hold_duration) * (1.0 - timing_spread) < 2.0 / sample_rate_hz) {
+    std::ostringstream why;
+    why << "lift_duration + hold_duration (" << lift_duration << " + " << hold_duration
+        << " s, times 1 - timing_spread at the shortest) must last at least two samples (2 / "
+           "sample_rate_hz = "
+        << 2.0 / sample_rate_hz << " s), so that the grasp comes before the end of the trial";
+    return fail(why.str());
+  }
   for (const OrientationPlan& p : plans) {
     const std::string at = "plan theta " + std::to_string(p.theta_deg);
     if (!std::isfinite(p.theta_deg) || !std::isfinite(p.pregrasp_eta_deg)) {
@@ -208,8 +218,10 @@ bool OperatorOptions::IsValid(std::string* why) const {
   return true;
 }
 
-OperatorOptions ReadOperatorOptions(const std::filesystem::path& path) {
-  const JsonReader root = JsonReader::Load(path).AsObject();
+namespace {
+
+OperatorOptions ReadOperator(const JsonReader& document) {
+  const JsonReader root = document.AsObject();
   root.ExpectString("format", kOperatorFormat);
   OperatorOptions o;
   if (root.Has("seed")) o.seed = root.Unsigned("seed");
@@ -223,6 +235,16 @@ OperatorOptions ReadOperatorOptions(const std::filesystem::path& path) {
   std::string why;
   if (!o.IsValid(&why)) throw InputError(root.source() + ": invalid operator options: " + why);
   return o;
+}
+
+}  // namespace
+
+OperatorOptions ReadOperatorOptions(const std::filesystem::path& path) {
+  return ReadOperator(JsonReader::Load(path));
+}
+
+OperatorOptions ParseOperatorOptions(std::string_view json_text, const std::string& source) {
+  return ReadOperator(JsonReader::Parse(json_text, source));
 }
 
 void WriteOperatorOptions(const OperatorOptions& o, const std::filesystem::path& path) {

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "kinematics/types.hpp"
@@ -117,6 +118,8 @@ struct OperatorOptions {
 /// max_pitch_deg, yaw_offset_deg, roll_deg, open_hand_deg, closed_hand_deg); the ones it leaves
 /// out come from the top level. Throws InputError naming the file and the field.
 OperatorOptions ReadOperatorOptions(const std::filesystem::path& path);
+/// The same from the text of an operator file; `source` names it in messages.
+OperatorOptions ParseOperatorOptions(std::string_view json_text, const std::string& source);
 /// Writes them (atomically), every field included.
 void WriteOperatorOptions(const OperatorOptions& options, const std::filesystem::path& path);
 /// Path of the shipped, calibrated operator of `object_name`: demos/operator.json in its

@@ -81,6 +81,18 @@ inline std::vector<MalformedCase> MalformedDemoCases() {
        meta + DemoHeader() + DemoRow("0", "0") + DemoRow("0.1", "0", 0.1, "1", "0.1") +
            DemoRow("0.2", "1") + DemoRow("0.3", "2"),
        {":6:", "columns 5-8 'wrist_qw'..'wrist_qz'", "norm 1.00498", "not 1"}},
+      {"position_beyond_bound",  // finite, but its sums would overflow
+       meta + DemoHeader() + DemoRow("0", "0") + DemoRow("0.1", "0", 1e300) + DemoRow("0.2", "1") +
+           DemoRow("0.3", "2"),
+       {":6:", "column 2 'wrist_x'", "is beyond +-100 m"}},
+      {"time_beyond_bound",
+       meta + DemoHeader() + DemoRow("0", "0") + DemoRow("0.1", "0") + DemoRow("0.2", "1") +
+           DemoRow("2e6", "2"),
+       {":8:", "column 1 't'", "'2e6' is beyond +-1e+06 s"}},
+      {"object_position_beyond_bound",
+       "# format: graspsynth-demo/1\n# theta_deg: 40\n# object_position: -0.25, -1e200, 0\n" +
+           DemoHeader() + good_rows,
+       {":3:", "metadata 'object_position'", "component 2", "'-1e200'", "beyond +-100 m"}},
       {"time_going_back",
        meta + DemoHeader() + DemoRow("0", "0") + DemoRow("0.1", "0") + DemoRow("0.05", "1") +
            DemoRow("0.3", "2"),

@@ -97,6 +97,11 @@ TEST(OperatorOptions, BadFilesNameTheFileAndTheField) {
       "pregrasp_eta_deg": -70, "strategies": [{"weight": 1, "d": 0.3, "eta_deg": -70,
       "grasp": {"max_pitch_deg": 95}}]}]})",
                "max_pitch_deg must be in [0, 90)");
+  // a lift and hold shorter than two samples would put the grasp mark on the end sample.
+  expect_error(R"({"format": "graspsynth-operator/1", "lift_duration": 1e-6,
+      "hold_duration": 1e-6, "plans": [{"theta_deg": 20, "pregrasp_eta_deg": -70,
+      "strategies": [{"weight": 1, "d": 0.3, "eta_deg": -70}]}]})",
+               "lift_duration + hold_duration");
   GS_EXPECT_THROW_WITH(ReadOperatorOptions(TempFile("missing.json")), InputError,
                        "missing.json: cannot read the file");
   fs::remove(path);
