@@ -34,6 +34,10 @@ find_package(PkgConfig QUIET)
 graspsynth_require(PkgConfig_FOUND "pkg-config" pkg-config)
 pkg_check_modules(ODE QUIET IMPORTED_TARGET ode>=0.16)
 graspsynth_require(ODE_FOUND "ODE 0.16 (double precision)" libode-dev)
+# TinyXML (urdfdom's XML parser, installed with it): the robot description's joint graph is
+# checked before urdfdom reads it (kinematics/robot_description.cpp).
+pkg_check_modules(TINYXML QUIET IMPORTED_TARGET tinyxml)
+graspsynth_require(TINYXML_FOUND "TinyXML" libtinyxml-dev)
 
 if(GRASPSYNTH_BUILD_TESTS)
   find_package(GTest QUIET)

@@ -1,6 +1,15 @@
 # Compiler flags shared by every graspsynth target, applied through graspsynth_options.
 add_library(graspsynth_options INTERFACE)
 target_compile_options(graspsynth_options INTERFACE -Wall -Wextra -Wpedantic)
+if(GRASPSYNTH_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    message(FATAL_ERROR "GRASPSYNTH_FUZZ needs clang (libFuzzer): configure with "
+                        "-DCMAKE_CXX_COMPILER=clang++ (scripts/fuzz.sh does)")
+  endif()
+  # libFuzzer's coverage in every library; the fuzz targets link its driver (fuzz/).
+  target_compile_options(graspsynth_options INTERFACE -fsanitize=fuzzer-no-link)
+  set(GRASPSYNTH_SANITIZE ON)
+endif()
 if(GRASPSYNTH_SANITIZE)
   target_compile_options(graspsynth_options INTERFACE
     -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)

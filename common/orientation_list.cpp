@@ -9,6 +9,8 @@
 namespace graspsynth {
 namespace {
 
+constexpr size_t kMaxOrientations = 100000;
+
 // The number in `item`, or nullopt-like NaN when it is not a finite number.
 double Number(const std::string& item) {
   char* end = nullptr;
@@ -41,11 +43,16 @@ std::vector<double> ParseOrientationList(const std::string& text, const std::str
         throw bad("is not a range FROM:TO:STEP of finite numbers");
       }
       if (!(step > 0.0) || to < from) throw bad("needs FROM <= TO and STEP > 0");
-      const int n = static_cast<int>(std::floor((to - from) / step + 1e-9));
-      if (n > 100000) throw bad("has more than 100000 orientations");
-      for (int k = 0; k <= n; ++k) thetas.push_back(from + k * step);
+      // counted in double first: the count of a wide range does not fit an int (to - from
+      // can even overflow to infinity).
+      const double n = std::floor((to - from) / step + 1e-9);
+      if (!(n < kMaxOrientations)) throw bad("has more than 100000 orientations");
+      for (int k = 0; k <= static_cast<int>(n); ++k) thetas.push_back(from + k * step);
     } else {
       throw bad("is neither a number nor a range FROM:TO:STEP");
+    }
+    if (thetas.size() > kMaxOrientations) {
+      throw InputError(option + ": more than 100000 orientations in all (in '" + text + "')");
     }
   }
   if (thetas.empty()) throw InputError(option + ": no orientation in '" + text + "'");

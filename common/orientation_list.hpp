@@ -10,7 +10,7 @@
 namespace graspsynth {
 
 /// Parses a comma-separated list of orientations (deg); each item is a finite number or a
-/// range FROM:TO:STEP (inclusive, FROM <= TO, STEP > 0, at most 100000 values), e.g.
+/// range FROM:TO:STEP (inclusive, FROM <= TO, STEP > 0), at most 100000 values in all, e.g.
 /// "0:20:1,100:120:5" or "40,45". Throws InputError naming `option` (e.g. "--orientations"),
 /// the item and the whole text when an item is malformed or the list is empty.
 std::vector<double> ParseOrientationList(const std::string& text, const std::string& option);

@@ -1,6 +1,7 @@
 #include "kinematics/robot_description.hpp"
 
 #include <console_bridge/console.h>
+#include <tinyxml.h>
 #include <urdf_parser/urdf_parser.h>
 
 #include <Eigen/Eigenvalues>
@@ -9,6 +10,7 @@
 #include <exception>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <mutex>
 #include <set>
 #include <sstream>
@@ -52,9 +54,54 @@ class CapturingOutputHandler : public console_bridge::OutputHandler {
   std::string warnings_;
 };
 
+// The joint graph of a URDF: every joint joins two different links, no link is the child of
+// two joints, and no chain of parents comes back to where it started. urdfdom builds its link
+// tree with shared pointers before it checks this, and leaks the tree of a graph with a cycle
+// (found by fuzz/urdf_fuzz.cpp); what it cannot parse as XML is left to it. Throws InputError
+// naming the source, the joint and the links.
+void CheckJointGraph(std::string_view urdf_xml, const std::string& source) {
+  TiXmlDocument document;
+  document.Parse(std::string(urdf_xml).c_str());
+  const TiXmlElement* robot = document.Error() ? nullptr : document.FirstChildElement("robot");
+  if (robot == nullptr) return;
+  std::map<std::string, std::pair<std::string, std::string>> parent_of;  // child: parent, joint
+  for (const TiXmlElement* joint = robot->FirstChildElement("joint"); joint != nullptr;
+       joint = joint->NextSiblingElement("joint")) {
+    const auto link_of = [&](const char* tag) -> std::string {
+      const TiXmlElement* e = joint->FirstChildElement(tag);
+      const char* link = e == nullptr ? nullptr : e->Attribute("link");
+      return link == nullptr ? std::string() : std::string(link);
+    };
+    const char* name_attribute = joint->Attribute("name");
+    const std::string name = name_attribute == nullptr ? "" : name_attribute;
+    const std::string parent = link_of("parent"), child = link_of("child");
+    if (parent.empty() || child.empty()) continue;  // urdfdom names what is missing
+    const std::string at = source + ": joint '" + name + "'";
+    if (parent == child) {
+      throw InputError(at + ": its parent and its child are the same link '" + child + "'");
+    }
+    const auto [it, added] = parent_of.emplace(child, std::make_pair(parent, name));
+    if (!added) {
+      throw InputError(at + ": link '" + child + "' is already the child of joint '" +
+                       it->second.second + "' (a link has one parent)");
+    }
+  }
+  for (const auto& [start, unused] : parent_of) {
+    std::string link = start;
+    for (size_t steps = 0; parent_of.count(link) != 0; ++steps) {
+      if (steps > parent_of.size()) {
+        throw InputError(source + ": the joints make a loop through link '" + start +
+                         "' (a robot description is a tree)");
+      }
+      link = parent_of.at(link).first;
+    }
+  }
+}
+
 // console_bridge's handler and log level are process-wide: one parse at a time swaps them.
 urdf::ModelInterfaceSharedPtr ParseWithUrdfdom(std::string_view urdf_xml,
                                                const std::string& source) {
+  CheckJointGraph(urdf_xml, source);
   static std::mutex parse_mutex;
   // never destroyed: console_bridge may keep a pointer to it as its "previous" handler.
   static CapturingOutputHandler* const handler_ptr = new CapturingOutputHandler;

@@ -200,6 +200,12 @@ void WriteGraspLibrary(const GraspLibrary& library, const std::filesystem::path&
   WriteFileAtomically(path, text);
 }
 
+GraspLibrary ParseGraspLibrary(std::string_view json_text, const std::string& source) {
+  GraspLibrary library = ReadLibrary(JsonReader::Parse(json_text, source));
+  library.source = source;
+  return library;
+}
+
 GraspLibrary ReadGraspLibrary(const std::filesystem::path& path) {
   GraspLibrary library = ReadLibrary(JsonReader::Load(path));
   library.source = path.string();

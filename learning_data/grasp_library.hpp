@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "motion/grasping_motion.hpp"
@@ -80,6 +81,8 @@ SelectionReplays CountSelectionReplays(const GraspLibrary& library);
 /// non-unit quaternions, a motion that breaks IsWellFormed, or entries whose theta does not
 /// strictly increase.
 GraspLibrary ReadGraspLibrary(const std::filesystem::path& path);
+/// The same from the text of a library; `source` names it in messages.
+GraspLibrary ParseGraspLibrary(std::string_view json_text, const std::string& source);
 
 /// Path of the shipped library of `object_name`: library.json in its learning-data folder
 /// (learning_data/library.json for the pan; ObjectLearningDataDirectory), in the source tree or

@@ -10,9 +10,9 @@ cd "$(dirname "$0")/.."
 packages=(
   build-essential cmake ninja-build ccache pkg-config clang-format gnuplot-nox
   libeigen3-dev libceres-dev libnlopt-cxx-dev libfcl-dev libode-dev libcgal-dev
-  liburdfdom-dev libcli11-dev nlohmann-json3-dev libspdlog-dev libssl-dev
+  liburdfdom-dev libtinyxml-dev libcli11-dev nlohmann-json3-dev libspdlog-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev liborocos-kdl-dev
-  python3 chromium
+  python3 chromium clang libclang-rt-14-dev
 )
 # node and npm vendor three.js for the browser viewer (viewer/package.json). Debian's nodejs and
 # npm are used only when no npm is on the PATH: a node from elsewhere (NodeSource) ships its own

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# Runs the whole test suite: the Release build in build/ and the same tests built with
-# AddressSanitizer + UndefinedBehaviorSanitizer in build-asan/. Any failure or sanitizer
-# report fails the run.
+# Runs the whole test suite: the Release build in build/, the same tests built with
+# AddressSanitizer + UndefinedBehaviorSanitizer in build-asan/, and the fuzz regression: every
+# libFuzzer target of fuzz/ (clang, ASan + UBSan, build-fuzz/) replays its seed corpus and
+# fuzzes 2000 inputs more. Any failure or sanitizer report fails the run.
 #
-#   scripts/test.sh          both builds
+#   scripts/test.sh          all three
 #   scripts/test.sh --fast   the Release build only
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -25,3 +26,7 @@ cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGRASPSYNTH
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DGRASPSYNTH_BUILD_BENCHMARKS=OFF
 cmake --build build-asan
 ctest --test-dir build-asan --output-on-failure -j "$jobs"
+
+# the fuzz regression (scripts/fuzz.sh fuzzes for longer).
+scripts/fuzz.sh --build-only
+ctest --test-dir build-fuzz --output-on-failure -j "$jobs"

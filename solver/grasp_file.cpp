@@ -184,15 +184,28 @@ void WriteGraspFile(const std::filesystem::path& path, const SynthesisResult& sy
   WriteFileAtomically(path, GraspFileToJson(synthesis, gate, forced));
 }
 
-JointTrajectory LoadTrajectoryOrGraspFile(const std::filesystem::path& path, const ArmModel& arm,
-                                          const HandModel& hand) {
-  const JsonReader doc = JsonReader::Load(path);
+namespace {
+
+JointTrajectory ReadTrajectoryOrGrasp(const JsonReader& doc, const ArmModel& arm,
+                                      const HandModel& hand) {
   const bool grasp_file =
       doc.IsObject() && doc.Field("format").IsString() && doc.String("format") == kGraspFileFormat;
   const JsonReader object = grasp_file ? doc.Object("trajectory") : doc;
   const JointTrajectory t = ReadJointTrajectory(object);
-  CheckJointLimits(t, arm, hand, path.string(), 1e-9, grasp_file ? "trajectory." : "");
+  CheckJointLimits(t, arm, hand, doc.source(), 1e-9, grasp_file ? "trajectory." : "");
   return t;
+}
+
+}  // namespace
+
+JointTrajectory LoadTrajectoryOrGraspFile(const std::filesystem::path& path, const ArmModel& arm,
+                                          const HandModel& hand) {
+  return ReadTrajectoryOrGrasp(JsonReader::Load(path), arm, hand);
+}
+
+JointTrajectory ParseTrajectoryOrGraspFile(std::string_view json_text, const std::string& source,
+                                           const ArmModel& arm, const HandModel& hand) {
+  return ReadTrajectoryOrGrasp(JsonReader::Parse(json_text, source), arm, hand);
 }
 
 }  // namespace graspsynth

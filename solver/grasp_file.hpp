@@ -55,5 +55,8 @@ void WriteGraspFile(const std::filesystem::path& path, const SynthesisResult& sy
 /// InputError naming the file and the field (`trajectory.samples[3].t` in a grasp file).
 JointTrajectory LoadTrajectoryOrGraspFile(const std::filesystem::path& path, const ArmModel& arm,
                                           const HandModel& hand);
+/// The same from the text of such a file; `source` names it in messages.
+JointTrajectory ParseTrajectoryOrGraspFile(std::string_view json_text, const std::string& source,
+                                           const ArmModel& arm, const HandModel& hand);
 
 }  // namespace graspsynth

@@ -17,6 +17,7 @@
 #include <string_view>
 
 #include "common/errors.hpp"
+#include "teleop/http_request.hpp"
 
 namespace graspsynth::teleop {
 namespace {
@@ -48,50 +49,6 @@ std::shared_ptr<const std::string> ReadWholeFile(const std::filesystem::path& pa
   return std::make_shared<const std::string>(std::move(text).str());
 }
 
-std::string Lowercase(std::string_view text) {
-  std::string out(text);
-  std::transform(out.begin(), out.end(), out.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return out;
-}
-
-// RFC 9110 token characters (method and header names).
-bool IsToken(std::string_view text) {
-  if (text.empty()) return false;
-  return std::all_of(text.begin(), text.end(), [](unsigned char c) {
-    return std::isalnum(c) || std::strchr("!#$%&'*+-.^_`|~", c) != nullptr;
-  });
-}
-
-// the end of the request head (after its blank line), or npos; lines may end in CRLF or LF.
-size_t HeadEnd(const std::string& in) {
-  for (size_t i = in.find('\n'); i != std::string::npos; i = in.find('\n', i + 1)) {
-    if (i + 1 < in.size() && in[i + 1] == '\n') return i + 2;
-    if (i + 2 < in.size() && in[i + 1] == '\r' && in[i + 2] == '\n') return i + 3;
-  }
-  return std::string::npos;
-}
-
-std::vector<std::string_view> HeadLines(std::string_view head) {
-  std::vector<std::string_view> lines;
-  while (!head.empty()) {
-    const size_t eol = head.find('\n');
-    std::string_view line = head.substr(0, eol);
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    lines.push_back(line);
-    if (eol == std::string_view::npos) break;
-    head.remove_prefix(eol + 1);
-  }
-  while (!lines.empty() && lines.back().empty()) lines.pop_back();
-  return lines;
-}
-
-std::string_view TrimSpaces(std::string_view text) {
-  while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
-  while (!text.empty() && (text.back() == ' ' || text.back() == '\t')) text.remove_suffix(1);
-  return text;
-}
-
 const char* ReasonPhrase(int status) {
   switch (status) {
     case 200:
@@ -115,57 +72,6 @@ const char* ReasonPhrase(int status) {
 
 std::shared_ptr<const std::string> Text(std::string text) {
   return std::make_shared<const std::string>(std::move(text) + "\n");
-}
-
-// The request line and the headers of a request head, as far as the server needs them.
-struct RequestHead {
-  bool valid = false;  // a request line METHOD SP TARGET SP HTTP/1.x and well-formed headers
-  std::string method;
-  std::string target;
-  bool keep_alive = false;  // HTTP/1.1 without "Connection: close", or "keep-alive"
-  bool has_body = false;    // a non-zero Content-Length or a Transfer-Encoding
-};
-
-RequestHead ParseRequestHead(const std::string& head) {
-  RequestHead request;
-  const std::vector<std::string_view> lines = HeadLines(head);
-  std::string_view version;
-  bool valid = !lines.empty();
-  if (valid) {
-    const std::string_view line = lines[0];
-    const size_t a = line.find(' ');
-    const size_t b = a == std::string_view::npos ? a : line.find(' ', a + 1);
-    valid = b != std::string_view::npos && line.find(' ', b + 1) == std::string_view::npos;
-    if (valid) {
-      const std::string_view method = line.substr(0, a);
-      const std::string_view target = line.substr(a + 1, b - a - 1);
-      version = line.substr(b + 1);
-      valid = IsToken(method) && (version == "HTTP/1.1" || version == "HTTP/1.0") &&
-              !target.empty() && target.front() == '/' &&
-              std::none_of(target.begin(), target.end(),
-                           [](unsigned char ch) { return ch <= 0x20 || ch >= 0x7f; });
-      request.method = method;
-      request.target = target;
-    }
-  }
-  request.keep_alive = version == "HTTP/1.1";
-  for (size_t i = 1; valid && i < lines.size(); ++i) {
-    const size_t colon = lines[i].find(':');
-    if (colon == std::string_view::npos || !IsToken(lines[i].substr(0, colon))) {
-      valid = false;
-      break;
-    }
-    const std::string name = Lowercase(lines[i].substr(0, colon));
-    const std::string value = Lowercase(TrimSpaces(lines[i].substr(colon + 1)));
-    if (name == "connection") {
-      if (value.find("close") != std::string::npos) request.keep_alive = false;
-      if (value.find("keep-alive") != std::string::npos) request.keep_alive = true;
-    } else if ((name == "content-length" && value != "0") || name == "transfer-encoding") {
-      request.has_body = true;
-    }
-  }
-  request.valid = valid;
-  return request;
 }
 
 }  // namespace
@@ -413,7 +319,7 @@ void ViewerServer::Accept(std::vector<Connection>* connections) {
 }
 
 void ViewerServer::HandleInput(Connection* c) {
-  const size_t end = HeadEnd(c->in);
+  const size_t end = HttpHeadEnd(c->in);
   Response response;
   std::string method;
   if (end == std::string::npos) {
@@ -425,7 +331,7 @@ void ViewerServer::HandleInput(Connection* c) {
     const std::string head = c->in.substr(0, end);
     c->in.erase(0, end);
     c->request_started = Clock::now();  // a pipelined request's deadline starts now
-    const RequestHead request = ParseRequestHead(head);
+    const HttpRequestHead request = ParseHttpRequestHead(head);
     method = request.method;
     const bool valid = request.valid, keep_alive = request.keep_alive, has_body = request.has_body;
     if (!valid) {

@@ -35,6 +35,13 @@ TEST(ParseOrientationList, BadItemsNameTheOptionTheItemAndTheText) {
                        "is neither a number nor a range FROM:TO:STEP");
   GS_EXPECT_THROW_WITH(ParseOrientationList("0:1000000:1", "--orientations"), InputError,
                        "more than 100000 orientations");
+  // found by fuzz/text_fuzz.cpp: a count beyond an int, and a width beyond a double.
+  GS_EXPECT_THROW_WITH(ParseOrientationList("20,3:020210113001:002,350,0", "--orientations"),
+                       InputError, "'3:020210113001:002'", "more than 100000 orientations");
+  GS_EXPECT_THROW_WITH(ParseOrientationList("-1e308:1e308:1e-300", "--orientations"), InputError,
+                       "more than 100000 orientations");
+  GS_EXPECT_THROW_WITH(ParseOrientationList("0:60000:1,0:60000:1", "--orientations"), InputError,
+                       "more than 100000 orientations in all");
   GS_EXPECT_THROW_WITH(ParseOrientationList("", "--orientations"), InputError,
                        "--orientations: no orientation in ''");
 }

@@ -331,6 +331,20 @@ TEST(RobotDescriptionErrors, ArmJointOnTheWrongParent) {
       "'S3_link' -> 'E1_link'");
 }
 
+// checked before urdfdom reads the file: urdfdom leaks the link tree of a graph with a cycle
+// (found by fuzz/urdf_fuzz.cpp).
+TEST(RobotDescriptionErrors, JointGraphThatIsNotATree) {
+  GS_EXPECT_THROW_WITH(
+      ParseEdited(EditElement(ShippedText(), Joint("W2"), "\"W1_link\"", "\"W2_link\"")),
+      InputError, "edited.urdf: joint 'W2'", "parent and its child are the same link 'W2_link'");
+  GS_EXPECT_THROW_WITH(
+      ParseEdited(EditElement(ShippedText(), Joint("W2"), "\"W2_link\"", "\"E2_link\"")),
+      InputError, "edited.urdf: joint 'W2'", "link 'E2_link' is already the child of joint 'E2'");
+  GS_EXPECT_THROW_WITH(
+      ParseEdited(EditElement(ShippedText(), Joint("S1"), "\"base_link\"", "\"W2_link\"")),
+      InputError, "edited.urdf", "the joints make a loop through link", "a tree");
+}
+
 TEST(RobotDescriptionErrors, ArmThatIsNotSrs) {
   // the elbow axis moved 2 cm off the upper arm's axis.
   GS_EXPECT_THROW_WITH(ParseEdited(EditElement(ShippedText(), Joint("E1"), "<origin xyz=\"0 0 0\"",
