@@ -5,9 +5,16 @@
 # fuzz/corpus/NAME/), crashes to build-fuzz/findings/NAME/. Prints per target the executions,
 # the coverage reached and the findings; exits 1 when any target found something.
 #
-#   scripts/fuzz.sh [SECONDS] [TARGET ...]     (default: every target; e.g. scripts/fuzz.sh 600 gstp)
+#   scripts/fuzz.sh [--jobs N] [SECONDS] [TARGET ...]
+#       every target by default; --jobs N runs N targets at a time (default 1), e.g.
+#       scripts/fuzz.sh --jobs 2 600      scripts/fuzz.sh 60 gstp http
 #   scripts/fuzz.sh --build-only
 set -euo pipefail
+jobs=1
+if [[ ${1:-} == --jobs ]]; then
+  jobs=$2
+  shift 2
+fi
 cd "$(dirname "$0")/.."
 export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$(cd .. && pwd)}
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
@@ -24,20 +31,35 @@ if ((${#targets[@]} == 0)); then
 fi
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-status=0
-for t in "${targets[@]}"; do
-  corpus=build-fuzz/corpus/${t} findings=build-fuzz/findings/${t}
+# one target: its run, then one line with what it did (and its findings).
+fuzz_one() {
+  local t=$1
+  local corpus=build-fuzz/corpus/${t} findings=build-fuzz/findings/${t}
+  local log=build-fuzz/fuzz_${t}.log result=0
   mkdir -p "${corpus}" "${findings}"
-  log=build-fuzz/fuzz_${t}.log
-  echo "== ${t}: ${seconds} s" >&2
-  if ! "build-fuzz/fuzz/${t}_fuzz" "${corpus}" "fuzz/corpus/${t}" -max_total_time="${seconds}" \
-      -max_len=65536 -timeout=30 -rss_limit_mb=2048 -artifact_prefix="${findings}/" \
-      -print_final_stats=1 > "${log}" 2>&1; then
-    status=1
-    echo "   FOUND a crash: $(ls "${findings}")  (log: ${log})" >&2
-  fi
+  "build-fuzz/fuzz/${t}_fuzz" "${corpus}" "fuzz/corpus/${t}" -max_total_time="${seconds}" \
+    -max_len=65536 -timeout=30 -rss_limit_mb=2048 -artifact_prefix="${findings}/" \
+    -print_final_stats=1 > "${log}" 2>&1 || result=1
+  local runs cov
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "${log}" | tail -1)
   cov=$(grep -o 'cov: [0-9]*' "${log}" | tail -1)
-  echo "   ${runs:-?} executions, ${cov:-cov: ?} edges" >&2
+  echo "== ${t}: ${seconds} s, ${runs:-?} executions, ${cov:-cov: ?} edges, $(ls "${corpus}" | wc -l) inputs kept" >&2
+  if ((result)); then echo "   FOUND: $(ls "${findings}")  (log: ${log})" >&2; fi
+  return ${result}
+}
+
+status=0
+running=0
+for t in "${targets[@]}"; do
+  if ((running >= jobs)); then
+    wait -n || status=1
+    running=$((running - 1))
+  fi
+  fuzz_one "${t}" &
+  running=$((running + 1))
+done
+while ((running > 0)); do
+  wait -n || status=1
+  running=$((running - 1))
 done
 exit ${status}
