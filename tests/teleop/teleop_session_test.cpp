@@ -10,6 +10,7 @@
 #include "kinematics/arm_model.hpp"
 #include "learning_data/segmentation.hpp"
 #include "tests/teleop/teleop_fixtures.hpp"
+#include "tests/utils/eigen_matchers.hpp"
 
 namespace graspsynth::teleop {
 namespace {
@@ -72,6 +73,17 @@ TEST(TeleopOptions, RejectsBadValues) {
   o.judge.lift_threshold = -0.05;
   EXPECT_FALSE(o.IsValid(&why));
   EXPECT_NE(why.find("judge.lift_threshold"), std::string::npos) << why;
+}
+
+// A scene that puts the rest pose out of the arm's reach is a clear error at the start of the
+// session, naming the scene (it once aborted in an invariant check).
+TEST(TeleopSession, AnUnreachableRestPoseIsAnInputErrorNamingTheScene) {
+  SceneModel scene = ShippedSimulationModel().scene();
+  scene.source = "far_table.json";
+  scene.table.top_z += 2.0;
+  const SimulationModel far(ShippedSimulationModel().robot(), scene);
+  GS_EXPECT_THROW_WITH(TeleopSession(far, SixtyDegrees()), InputError, "scene far_table.json",
+                       "rest pose is out of reach");
 }
 
 TEST(TeleopSession, SplitsTheTickIntoEqualPhysicsSteps) {
