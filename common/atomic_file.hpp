@@ -13,4 +13,9 @@ namespace graspsynth {
 /// folders. Throws InputError naming the path when the folder or file cannot be written.
 void WriteFileAtomically(const std::filesystem::path& path, std::string_view contents);
 
+/// Creates `path` with `contents`, readable and writable by its owner only (mode 0600), for
+/// secrets: the file appears whole or not at all, and an existing file is never replaced.
+/// Throws InputError naming the path when it exists or cannot be written.
+void CreateOwnerOnlyFileAtomically(const std::filesystem::path& path, std::string_view contents);
+
 }  // namespace graspsynth

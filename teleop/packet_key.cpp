@@ -1,19 +1,16 @@
 #include "teleop/packet_key.hpp"
 
-#include <fcntl.h>
 #include <openssl/crypto.h>
 #include <openssl/evp.h>
 #include <openssl/hmac.h>
 #include <openssl/rand.h>
 #include <sys/stat.h>
-#include <unistd.h>
 
 #include <cctype>
-#include <cerrno>
-#include <cstring>
 #include <fstream>
 #include <stdexcept>
 
+#include "common/atomic_file.hpp"
 #include "common/errors.hpp"
 #include "common/text_input.hpp"
 
@@ -141,30 +138,7 @@ std::optional<std::string> KeyFilePermissionWarning(const std::filesystem::path&
 }
 
 void WriteNewPacketKey(const std::filesystem::path& path) {
-  const std::string text = PacketKey::Generate().FileText();
-  const std::filesystem::path parent = path.has_parent_path() ? path.parent_path() : ".";
-  // built by appending: GCC 12 warns falsely (-Wrestrict) on "." + string.
-  std::string tmp_name(1, '.');
-  tmp_name += path.filename().string();
-  tmp_name += ".tmp.";
-  tmp_name += std::to_string(::getpid());
-  const std::filesystem::path tmp = parent / tmp_name;
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
-  if (fd < 0) {
-    throw InputError("cannot write '" + tmp.string() + "': " + std::strerror(errno));
-  }
-  const bool written = ::write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size());
-  const bool closed = ::close(fd) == 0;
-  // link() refuses an existing destination: an existing key is never replaced.
-  const bool linked = written && closed && ::link(tmp.c_str(), path.c_str()) == 0;
-  const int link_errno = errno;
-  ::unlink(tmp.c_str());
-  if (!written || !closed) throw InputError("error while writing '" + tmp.string() + "'");
-  if (!linked) {
-    throw InputError(link_errno == EEXIST
-                         ? "'" + path.string() + "' exists; a key file is never overwritten"
-                         : "cannot write '" + path.string() + "': " + std::strerror(link_errno));
-  }
+  CreateOwnerOnlyFileAtomically(path, PacketKey::Generate().FileText());
 }
 
 }  // namespace graspsynth::teleop

@@ -42,5 +42,26 @@ TEST(WriteFileAtomically, ThrowsNamingAnUnwritablePath) {
   fs::remove(blocker);
 }
 
+TEST(CreateOwnerOnlyFileAtomically, CreatesOwnerOnlyNeverReplacesAndLeavesNoTemporary) {
+  const fs::path dir = fs::temp_directory_path() / "graspsynth_atomic_owner_test";
+  fs::remove_all(dir);
+  const fs::path file = dir / "sub" / "secret.key";
+  CreateOwnerOnlyFileAtomically(file, "first");
+  EXPECT_EQ(ReadAll(file), "first");
+  EXPECT_EQ(fs::status(file).permissions(), fs::perms::owner_read | fs::perms::owner_write);
+  try {
+    CreateOwnerOnlyFileAtomically(file, "second");
+    ADD_FAILURE() << "replaced an existing file";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(file.string() + "' exists"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(ReadAll(file), "first");
+  int entries = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir / "sub")) ++entries;
+  EXPECT_EQ(entries, 1);
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace graspsynth
