@@ -3,8 +3,10 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
+#include <utility>
 
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
@@ -210,18 +212,16 @@ DemoSample ParseSampleRow(std::string_view text, const std::string& source, size
                        "not a finite number: " + Quoted(TrimBlanks(fields[i])));
     }
     // bounds far beyond any robot's, so that every sum and mean of the analysis stays finite.
-    const bool position = (i >= kColWrist && i < kColQuat) || i >= kColObject;
-    const bool finger = i >= kColFingers && i < kColEvent;
-    const double bound = i == kColT ? kDemoMaxTime
-                         : position ? kDemoMaxPosition
-                         : finger   ? kDemoMaxJoint
-                                    : INFINITY;  // the quaternion and the event: checked below
+    // (the quaternion and the event have no bound here: they are checked below.)
+    const auto [bound, unit] = i == kColT ? std::pair{kDemoMaxTime, " s"}
+                               : (i >= kColWrist && i < kColQuat) || i >= kColObject
+                                   ? std::pair{kDemoMaxPosition, " m"}
+                               : i >= kColFingers && i < kColEvent
+                                   ? std::pair{kDemoMaxJoint, " rad"}
+                                   : std::pair{std::numeric_limits<double>::infinity(), ""};
     if (std::abs(*value) > bound) {
       throw InputError(AtColumn(source, line, i) + Quoted(TrimBlanks(fields[i])) + " is beyond +-" +
-                       FormatNumber(bound) +
-                       (i == kColT ? " s"
-                        : position ? " m"
-                                   : " rad"));
+                       FormatNumber(bound) + unit);
     }
     v[i] = *value;
   }

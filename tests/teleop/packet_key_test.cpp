@@ -13,6 +13,7 @@
 
 #include "common/errors.hpp"
 #include "tests/utils/eigen_matchers.hpp"
+#include "tests/utils/test_folder.hpp"
 
 namespace graspsynth::teleop {
 namespace {
@@ -21,20 +22,13 @@ namespace fs = std::filesystem;
 
 class KeyFile : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("graspsynth_key_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
   fs::path Write(const std::string& text) {
     const fs::path path = dir_ / "link.key";
     std::ofstream(path) << text;
     return path;
   }
-  fs::path dir_;
+  graspsynth::testing::TestFolder folder_;
+  const fs::path& dir_ = folder_.path();
 };
 
 constexpr const char* kKeyHex = "00112233445566778899AaBbCcDdEeFf";  // 16 bytes
