@@ -13,6 +13,7 @@
 #include "common/orientation_list.hpp"
 #include "kinematics/scene_model.hpp"
 #include "simulation/physics_perturbation.hpp"
+#include "solver/synthesis_model.hpp"
 
 namespace CLI {
 class App;
@@ -37,11 +38,8 @@ void AddObjectFlag(CLI::App* app, std::string* object);
 /// The scene of --scene (models/scene.json when empty) with the object of --object (the
 /// scene's own when empty). With `needs_handle` (what the command does with it), an object
 /// without a handle is refused before any work starts. Throws InputError naming the file at
-/// fault, or the object and what needs its handle.
-/// What a command that synthesizes grasps needs an object's handle for.
-inline constexpr std::string_view kSynthesisNeedsHandle =
-    "the synthesis (its line principle and refinement aim at the handle)";
-
+/// fault, or the object and what needs its handle (kSynthesisNeedsHandle of
+/// solver/synthesis_model.hpp for the commands that synthesize grasps).
 SceneModel LoadScene(const std::string& scene, const std::string& object,
                      std::string_view needs_handle = {});
 

@@ -51,12 +51,6 @@ struct RunOptions {
   bool all_replays = false;
 };
 
-// The reduced study of --quick (tests, a first look).
-const std::vector<double> kQuickOrientations = {40, 45, 60, 85};
-constexpr int kQuickGatePerturbations = 3;
-constexpr int kQuickSelectionPerturbations = 2;
-constexpr int kQuickSensitivityTrials = 0;
-
 // The study's options from the command's flags; throws InputError for invalid ones.
 StudyOptions StudyOptionsOf(const RunOptions& o, const SceneModel& scene) {
   StudyOptions options;
@@ -69,12 +63,7 @@ StudyOptions StudyOptionsOf(const RunOptions& o, const SceneModel& scene) {
   options.perturbation.physics = o.physics;
   options.physics_fallback = !o.no_physics_fallback;
   options.selection_early_stop = !o.all_replays;
-  if (o.quick) {
-    options.orientations = kQuickOrientations;
-    options.gate_perturbations = kQuickGatePerturbations;
-    options.selection_perturbations = kQuickSelectionPerturbations;
-    options.sensitivity_trials = kQuickSensitivityTrials;
-  }
+  if (o.quick) options.UseQuickStudy();
   if (o.sensitivity >= 0) options.sensitivity_trials = o.sensitivity;
   if (o.perturb >= 0) options.gate_perturbations = o.perturb;
   if (o.select_perturb >= 0) options.selection_perturbations = o.select_perturb;
@@ -175,6 +164,8 @@ int RunStudyCommand(const RunOptions& o) {
 void AddRunCommand(CLI::App& app, int* exit_code) {
   auto opts = std::make_shared<RunOptions>();
   const StudyOptions defaults;
+  StudyOptions quick;
+  quick.UseQuickStudy();
   CLI::App* run = app.add_subcommand(
       "run",
       "The main job: the end-to-end study on the shipped demonstrations.\n"
@@ -214,18 +205,18 @@ void AddRunCommand(CLI::App& app, int* exit_code) {
   run->add_option("--perturb", opts->perturb,
                   "Perturbed replays of each synthesized grasp's physics gate (default " +
                       std::to_string(defaults.gate_perturbations) + ", --quick " +
-                      std::to_string(kQuickGatePerturbations) + ")")
+                      std::to_string(quick.gate_perturbations) + ")")
       ->check(CLI::NonNegativeNumber);
   run->add_option("--select-perturb", opts->select_perturb,
                   "Perturbed replays per demonstration in the selection (default " +
                       std::to_string(defaults.selection_perturbations) + ", --quick " +
-                      std::to_string(kQuickSelectionPerturbations) + ")")
+                      std::to_string(quick.selection_perturbations) + ")")
       ->check(PositiveValue());
   run->add_option("--sensitivity", opts->sensitivity,
                   "Replays per end of each physics factor's range in each synthesized grasp's "
                   "sensitivity table (default " +
                       std::to_string(defaults.sensitivity_trials) + ", --quick " +
-                      std::to_string(kQuickSensitivityTrials) + "; 0: none)")
+                      std::to_string(quick.sensitivity_trials) + "; 0: none)")
       ->check(CLI::NonNegativeNumber);
   run->add_option("--orientations", opts->orientations,
                   "Comma-separated object orientations to synthesize, deg, each a number or a "

@@ -193,8 +193,12 @@ SelectionReplays CountSelectionReplays(const GraspLibrary& library) {
   return r;
 }
 
+std::string GraspLibraryToJson(const GraspLibrary& library) {
+  return LibraryJson(library).dump(2) + "\n";
+}
+
 void WriteGraspLibrary(const GraspLibrary& library, const std::filesystem::path& path) {
-  const std::string text = LibraryJson(library).dump(2) + "\n";
+  const std::string text = GraspLibraryToJson(library);
   // what the reader would reject is never written: the same checks on the document.
   ReadLibrary(JsonReader::Parse(text, path.string() + " (being written)"));
   WriteFileAtomically(path, text);

@@ -63,6 +63,10 @@ struct GraspLibrary {
   std::vector<LibraryEntry> entries;  ///< one per orientation, theta strictly increasing
 };
 
+/// The text of `library` as a graspsynth-library/1 file (pretty JSON), what WriteGraspLibrary
+/// writes.
+std::string GraspLibraryToJson(const GraspLibrary& library);
+
 /// Writes `library` as JSON (format graspsynth-library/1) to `path`, atomically.
 void WriteGraspLibrary(const GraspLibrary& library, const std::filesystem::path& path);
 

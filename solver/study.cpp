@@ -62,6 +62,13 @@ std::vector<double> StudyOptions::DefaultStudyOrientations() {
   return thetas;
 }
 
+void StudyOptions::UseQuickStudy() {
+  orientations = {40, 45, 60, 85};
+  gate_perturbations = 3;
+  selection_perturbations = 2;
+  sensitivity_trials = 0;
+}
+
 bool StudyOptions::IsValid(std::string* why) const {
   auto fail = [&](const std::string& reason) {
     if (why) *why = reason;

@@ -110,6 +110,11 @@ struct StudyOptions {
   /// 20, 25, ..., 100 deg.
   static std::vector<double> DefaultStudyOrientations();
 
+  /// Makes these options the reduced study of `graspsynth run --quick` (tests, a first look):
+  /// orientations 40, 45, 60 and 85 deg, 3 perturbed replays per gate, 2 per demonstration in
+  /// the selection, no sensitivity table.
+  void UseQuickStudy();
+
   /// True when every value is in range (and the nested options are valid); otherwise false
   /// with the reason, naming the field and the value, in `why` (if given).
   bool IsValid(std::string* why) const;

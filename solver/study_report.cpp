@@ -76,6 +76,26 @@ json RowJson(const StudyRow& r) {
   return j;
 }
 
+json RowsJson(const std::vector<StudyRow>& rows) {
+  json out = json::array();
+  for (const StudyRow& r : rows) out.push_back(RowJson(r));
+  return out;
+}
+
+json SummaryJson(const std::vector<StudyRow>& rows) {
+  json summary = json::array();
+  for (const StudyMethodSummary& s : SummarizeStudy(rows)) {
+    summary.push_back({{"method", s.method},
+                       {"rows", s.rows},
+                       {"synthesized", s.synthesized},
+                       {"nominal_successes", s.nominal_successes},
+                       {"passed", s.passed},
+                       {"fallbacks", s.fallbacks},
+                       {"mean_robustness", s.mean_robustness}});
+  }
+  return summary;
+}
+
 // Why a row fell short, in one sentence ("" when it passed).
 std::string ShortfallReason(const StudyRow& r) {
   if (r.status != SynthesisStatus::kOk) {
@@ -160,20 +180,15 @@ std::string StudySynthesisJson(const StudyResult& result) {
                                {"servo_force_spread", p.servo_force},
                                {"fine_step_s", p.fine_step},
                                {"fine_step_probability", p.fine_step_probability}};
-  json summary = json::array();
-  for (const StudyMethodSummary& s : SummarizeStudy(result.rows)) {
-    summary.push_back({{"method", s.method},
-                       {"rows", s.rows},
-                       {"synthesized", s.synthesized},
-                       {"nominal_successes", s.nominal_successes},
-                       {"passed", s.passed},
-                       {"fallbacks", s.fallbacks},
-                       {"mean_robustness", s.mean_robustness}});
-  }
-  j["summary"] = summary;
-  json rows = json::array();
-  for (const StudyRow& r : result.rows) rows.push_back(RowJson(r));
-  j["rows"] = rows;
+  j["summary"] = SummaryJson(result.rows);
+  j["rows"] = RowsJson(result.rows);
+  return j.dump(2) + "\n";
+}
+
+std::string StudyRowsJson(const std::vector<StudyRow>& rows) {
+  json j;
+  j["summary"] = SummaryJson(rows);
+  j["rows"] = RowsJson(rows);
   return j.dump(2) + "\n";
 }
 

@@ -69,6 +69,10 @@ std::string StudySynthesisCsv(const std::vector<StudyRow>& rows);
 /// [one per orientation and method, without wall times].
 std::string StudySynthesisJson(const StudyResult& result);
 
+/// The per-method summary and the rows of a synthesis table, as StudySynthesisJson writes them:
+/// {"summary": [...], "rows": [...]} (`graspsynth generalize`'s table for the Python module).
+std::string StudyRowsJson(const std::vector<StudyRow>& rows);
+
 /// The wall times (format kStudyTimingFormat): stages, total, per row synthesis and gate.
 std::string StudyTimingJson(const StudyResult& result);
 

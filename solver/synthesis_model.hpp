@@ -4,6 +4,7 @@
 /// What every stage of the synthesis (synthesis.hpp) shares: the model, built once from the
 /// robot, scene and library, and the task, the object's placement entered once per query.
 
+#include <string_view>
 #include <vector>
 
 #include "collision/collision_scene.hpp"
@@ -14,6 +15,11 @@
 #include "solver/refinement.hpp"
 
 namespace graspsynth {
+
+/// What the synthesis needs an object's handle for, in the words of the error that refuses an
+/// object without one (ObjectModel::Handle).
+inline constexpr std::string_view kSynthesisNeedsHandle =
+    "the synthesis (its line principle and refinement aim at the handle)";
 
 /// Everything the synthesis needs that does not change between queries (STYLE.md's Model):
 /// robot, scene, collision model, library and the line-principle models fitted over it.
