@@ -27,4 +27,13 @@ function(graspsynth_module name)
   target_include_directories(graspsynth_${name} PUBLIC ${PROJECT_SOURCE_DIR})
   target_link_libraries(graspsynth_${name} PUBLIC graspsynth_options ${ARG_PUBLIC_DEPS}
                                            PRIVATE ${ARG_PRIVATE_DEPS})
+  if(GRASPSYNTH_BUILD_PYTHON)
+    # linked into the Python extension, a shared object. Only the libraries: the executables'
+    # objects stay as they were (and in ccache).
+    set_target_properties(graspsynth_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+    # -fPIC alone lets the compiler assume any global function may be replaced at load time,
+    # so it stops inlining them into each other within a file. Nothing here is replaced
+    # (benchmarks/README.md, "Python").
+    target_compile_options(graspsynth_${name} PRIVATE -fno-semantic-interposition)
+  endif()
 endfunction()

@@ -1,0 +1,264 @@
+"""graspsynth: demonstration-seeded grasp synthesis for the PA-10 arm and the Gifu Hand III.
+
+The same C++ library as the ``graspsynth`` command, with numpy arrays in and out:
+
+- models: :class:`Robot` (URDF), :class:`Scene` (table, object, placement);
+- kinematics, batched: :func:`fk`, :func:`ik`, :func:`feasible_arm_angles`, :func:`arm_angle`,
+  :func:`branch_of`;
+- demonstrations: :func:`read_demo_log`, :func:`read_demo_directory`, :func:`segment`,
+  :func:`analyze_demonstrations` (Table I, the wrist line), :func:`fit_wrist_line`;
+- the grasp library: :class:`GraspLibrary`, :func:`select_representatives`;
+- synthesis: :func:`synthesize` (or a :class:`Synthesizer` for many grasps), giving a
+  :class:`Grasp` with its :class:`Trajectory` and its report;
+- simulation: :func:`simulate` (one trial), :func:`robustness` (perturbed replays), or a
+  :class:`Simulation`; both release the GIL, so Python threads run trials in parallel;
+- studies: :func:`run` and :func:`generalize`, whose tables are :class:`Table` objects (lists
+  of dicts, ``to_frame()`` for a pandas DataFrame).
+
+Units: SI, radians, except object orientations (``theta``, deg). Poses are 4 x 4 homogeneous
+matrices in the world frame (the arm's base, z up). Bad input raises :class:`InputError` (a
+``ValueError``) with the C++ message, which names the file, field and value at fault.
+"""
+
+from __future__ import annotations
+
+import enum
+import functools
+import os
+import threading
+from typing import Any, Iterable, Optional, Sequence, Union
+
+import numpy as np
+
+from ._core import (
+    IK_STATUS_NAMES,
+    __version__,
+    DemoLog,
+    Grasp,
+    GraspLibrary,
+    InputError,
+    Robot,
+    Scene,
+    Simulation,
+    Synthesizer,
+    Trajectory,
+    TrialResult,
+    analyze_demonstrations,
+    branch_of,
+    fit_wrist_line,
+    read_demo_directory,
+    read_demo_log,
+    segment,
+    select_representatives,
+)
+from . import _core
+
+__all__ = [
+    "InputError", "IkStatus", "Robot", "Scene", "DemoLog", "Trajectory", "TrialResult",
+    "Simulation", "GraspLibrary", "Synthesizer", "Grasp", "Table", "StudyResult",
+    "default_robot", "default_scene", "fk", "ik", "feasible_arm_angles", "arm_angle",
+    "branch_of", "read_demo_log", "read_demo_directory", "segment", "analyze_demonstrations",
+    "fit_wrist_line", "select_representatives", "synthesize", "simulate", "robustness", "run",
+    "generalize",
+]
+
+PathLike = Union[str, "os.PathLike[str]"]
+
+
+class IkStatus(enum.IntEnum):
+    """Outcome of an IK query; the ``status`` arrays of :func:`ik` hold these values."""
+
+    OK = 0  #: a solution within every joint limit
+    UNREACHABLE = 1  #: the wrist centre is out of the arm's reach
+    SINGULAR = 2  #: the elbow is stretched: the arm angle is undefined
+    ELBOW_LIMIT = 3  #: the elbow angle the target needs is outside its limit
+    OUT_OF_LIMITS = 4  #: a solution at this arm angle and branch breaks a joint limit
+
+    @property
+    def label(self) -> str:
+        """The command line's name of the status, e.g. ``"unreachable"``."""
+        return IK_STATUS_NAMES[self.value]
+
+
+assert [s.label for s in IkStatus] == list(IK_STATUS_NAMES), "IkStatus out of date"
+
+_defaults_lock = threading.RLock()
+
+
+@functools.lru_cache(maxsize=None)
+def _cached_robot() -> Robot:
+    return Robot()
+
+
+@functools.lru_cache(maxsize=None)
+def _cached_scene() -> Scene:
+    return Scene()
+
+
+@functools.lru_cache(maxsize=None)
+def _cached_simulation() -> Simulation:
+    return Simulation(default_robot(), default_scene())
+
+
+def default_robot() -> Robot:
+    """The shipped robot (models/pa10_gifu3.urdf, or below $GRASPSYNTH_DATA_DIR), read once."""
+    with _defaults_lock:
+        return _cached_robot()
+
+
+def default_scene() -> Scene:
+    """The shipped scene (models/scene.json), read once."""
+    with _defaults_lock:
+        return _cached_scene()
+
+
+def fk(q: Any, robot: Optional[Robot] = None) -> np.ndarray:
+    """Flange poses of arm configurations ``q`` (shape (7,) or (N, 7), rad): shape (4, 4) or
+    (N, 4, 4), world frame, metres. ``robot``: the shipped one by default."""
+    return (robot or default_robot()).fk(q)
+
+
+def ik(X: Any, psi: Any, branch: Any = None, q_near: Any = None,
+       robot: Optional[Robot] = None) -> tuple[np.ndarray, np.ndarray]:
+    """Analytic IK of flange targets ``X`` (shape (4, 4) or (N, 4, 4)) at arm angles ``psi``
+    (rad, a number or shape (N,)). Returns ``(q, status)``: with a ``branch`` (three signs
+    GC2, GC4, GC6, or one row each) q has shape (N, 7) and status (N,); without, every branch:
+    q (N, 8, 7) and status (N, 8). ``status`` holds :class:`IkStatus` values; q is NaN where
+    the status is not OK. See :meth:`Robot.ik`."""
+    return (robot or default_robot()).ik(X, psi, branch, q_near)
+
+
+def feasible_arm_angles(X: Any, branch: Any = None, robot: Optional[Robot] = None) -> Any:
+    """The arm angles at which each target is reachable within the joint limits: per target an
+    array of intervals, shape (K, 2), rad (a list of them for a batch)."""
+    return (robot or default_robot()).feasible_arm_angles(X, branch)
+
+
+def arm_angle(q: Any, robot: Optional[Robot] = None) -> Any:
+    """The arm angle psi of configurations ``q`` (shape (7,) or (N, 7)), rad."""
+    return (robot or default_robot()).arm_angle(q)
+
+
+def synthesize(library: Union[GraspLibrary, PathLike, None], theta: float, *,
+               robot: Optional[Robot] = None, scene: Optional[Scene] = None,
+               **options: Any) -> Grasp:
+    """A grasp for object orientation ``theta`` (deg) from ``library`` (a :class:`GraspLibrary`,
+    a file, or None for the shipped one), checked in physics: ``graspsynth synthesize``.
+
+    ``options`` are those of :meth:`Synthesizer.synthesize`: method ("interp", "line",
+    "nearest"), refine, reach, start, clearance_margin, strict_thresholds, perturb, seed,
+    threads, min_robustness, physics, physics_fallback. For many grasps from one library,
+    build a :class:`Synthesizer` once."""
+    synthesizer = Synthesizer(library, robot or default_robot(), scene or default_scene())
+    return synthesizer.synthesize(theta, **options)
+
+
+def _trajectory(trajectory: Union[Trajectory, Grasp, PathLike],
+                robot: Optional[Robot]) -> Trajectory:
+    if isinstance(trajectory, Trajectory):
+        return trajectory
+    if isinstance(trajectory, Grasp):
+        return trajectory.trajectory
+    return Trajectory.load(os.fspath(trajectory), robot or default_robot())
+
+
+def _simulation(robot: Optional[Robot], scene: Optional[Scene]) -> Simulation:
+    if robot is None and scene is None:
+        with _defaults_lock:
+            return _cached_simulation()
+    return Simulation(robot or default_robot(), scene or default_scene())
+
+
+def simulate(trajectory: Union[Trajectory, Grasp, PathLike], *, robot: Optional[Robot] = None,
+             scene: Optional[Scene] = None, **options: Any) -> TrialResult:
+    """One grasp-and-lift trial in ODE of a :class:`Trajectory`, a :class:`Grasp` or a
+    trajectory or grasp file: the nominal trial of ``graspsynth simulate``. ``options``:
+    fidelity, time_step, hold, record_interval (see :meth:`Simulation.trial`). Releases the
+    GIL."""
+    return _simulation(robot, scene).trial(_trajectory(trajectory, robot), **options)
+
+
+def robustness(trajectory: Union[Trajectory, Grasp, PathLike], *,
+               robot: Optional[Robot] = None, scene: Optional[Scene] = None,
+               **options: Any) -> dict:
+    """Perturbed replays of a trajectory: ``graspsynth simulate --perturb N``. ``options``:
+    trials, seed, threads, physics, noise_scale, fidelity (see :meth:`Simulation.robustness`).
+    Releases the GIL."""
+    return _simulation(robot, scene).robustness(_trajectory(trajectory, robot), **options)
+
+
+class Table(list):
+    """Rows of a table as a list of dicts (one dict per row, the keys of the JSON files)."""
+
+    def to_frame(self) -> Any:
+        """The rows as a pandas DataFrame, nested dicts flattened to dotted columns
+        (``robustness.score``). Needs pandas (Debian's python3-pandas)."""
+        try:
+            import pandas
+        except ImportError as e:  # pragma: no cover - depends on the machine
+            raise ImportError("Table.to_frame() needs pandas (Debian: python3-pandas)") from e
+        return pandas.json_normalize(list(self))
+
+
+class StudyResult:
+    """What :func:`run` found: ``analysis`` (the dict of analysis.json: Table I, the wrist
+    line), ``library`` (the selected :class:`GraspLibrary`), ``synthesis`` (the dict of
+    synthesis.json), ``rows`` and ``summary`` (its tables as :class:`Table`), ``timing``."""
+
+    def __init__(self, parts: dict):
+        self.analysis: dict = parts["analysis"]
+        self.library: GraspLibrary = parts["library"]
+        self.synthesis: dict = parts["synthesis"]
+        self.timing: dict = parts["timing"]
+        self.rows = Table(self.synthesis["rows"])
+        self.summary = Table(self.synthesis["summary"])
+        self.table_i = Table(self.analysis["orientations"])
+
+    def __repr__(self) -> str:
+        methods = ", ".join(f"{s['method']} {s['nominal_successes']}/{s['rows']}"
+                            for s in self.summary)
+        return f"<StudyResult: {len(self.library)} library entries; {methods}>"
+
+
+def run(demos: Optional[PathLike] = None, *, quick: bool = False,
+        orientations: Union[str, Sequence[float], None] = None, seed: int = 1,
+        threads: int = 0, perturb: Optional[int] = None, select_perturb: Optional[int] = None,
+        sensitivity: Optional[int] = None, physics: bool = True, physics_fallback: bool = True,
+        all_replays: bool = False, robot: Optional[Robot] = None,
+        scene: Optional[Scene] = None) -> StudyResult:
+    """The end-to-end study of ``graspsynth run`` on a folder of demonstrations (the shipped
+    ones by default): Table I, the representative selection, and a grasp for every orientation
+    by each method, validated in physics. ``quick`` is ``run --quick``; the other options are
+    the command's flags. The same options give the same analysis, library and synthesis
+    tables as the command, whatever ``threads`` is. Takes minutes (``quick``: about one)."""
+    if orientations is not None and not isinstance(orientations, str):
+        orientations = [float(t) for t in orientations]
+    parts = _core.run(None if demos is None else os.fspath(demos), quick, orientations, seed,
+                      threads, perturb, select_perturb, sensitivity, physics, physics_fallback,
+                      all_replays, robot, scene)
+    return StudyResult(parts)
+
+
+def generalize(library: Union[GraspLibrary, PathLike, None] = None, *,
+               orientations: Union[str, Sequence[float]] = "20:100:1",
+               methods: Union[str, Iterable[str]] = ("nearest", "interp", "interp+refine",
+                                                     "line+refine"),
+               leave_one_out: bool = False, perturb: int = 20, sensitivity: int = 0,
+               noise_scale: float = 1.0, seed: int = 1, threads: int = 0, physics: bool = True,
+               physics_fallback: bool = True, robot: Optional[Robot] = None,
+               scene: Optional[Scene] = None) -> tuple[Table, Table]:
+    """Grasps for many orientations from a library by several methods, each validated in
+    physics (``graspsynth generalize``). Returns ``(rows, summary)`` as :class:`Table` objects:
+    one row per orientation and method (the keys of synthesis.json's rows), one summary row
+    per method."""
+    if isinstance(methods, str):
+        methods = methods.split(",")
+    if not isinstance(orientations, str):
+        orientations = [float(t) for t in orientations]
+    if library is not None and not isinstance(library, GraspLibrary):
+        library = os.fspath(library)
+    result = _core.generalize(library, orientations, list(methods), leave_one_out, perturb,
+                              sensitivity, noise_scale, seed, threads, physics,
+                              physics_fallback, robot, scene)
+    return Table(result["rows"]), Table(result["summary"])
+

@@ -1,0 +1,252 @@
+"""Type stubs of graspsynth._core, the C++ extension behind the package graspsynth.
+
+The docstrings of the compiled module (help(graspsynth.Robot.ik), ...) say more; these stubs
+give editors and type checkers the signatures."""
+
+import os
+from typing import Any, Optional, Sequence, Union
+
+import numpy as np
+import numpy.typing as npt
+
+ArrayLike = npt.ArrayLike
+FloatArray = npt.NDArray[np.float64]
+Int8Array = npt.NDArray[np.int8]
+PathLike = Union[str, os.PathLike[str]]
+
+__version__: str
+IK_STATUS_NAMES: tuple[str, str, str, str, str]
+
+class InputError(ValueError):
+    """Bad input: the message names the file, line, field and value at fault."""
+
+# --- models and kinematics -----------------------------------------------------------------
+
+class Robot:
+    """The PA-10 arm and the Gifu Hand III, read from a URDF (the shipped one by default)."""
+    def __init__(self, path: Optional[str] = None) -> None: ...
+    @property
+    def source(self) -> str: ...
+    @property
+    def joint_lower(self) -> FloatArray:
+        """(7,) rad"""
+    @property
+    def joint_upper(self) -> FloatArray:
+        """(7,) rad"""
+    @property
+    def hand_lower(self) -> FloatArray:
+        """(16,) rad"""
+    @property
+    def hand_upper(self) -> FloatArray:
+        """(16,) rad"""
+    @property
+    def X_FH(self) -> FloatArray:
+        """(4, 4): the hand mount (wrist) in the flange frame"""
+    @property
+    def lengths(self) -> dict[str, float]:
+        """d_bs, d_se, d_ew, d_wt, m"""
+    def fk(self, q: ArrayLike) -> FloatArray:
+        """q (7,) or (N, 7) rad -> flange poses (4, 4) or (N, 4, 4)"""
+    def ik(self, X: ArrayLike, psi: ArrayLike, branch: Optional[ArrayLike] = None,
+           q_near: Optional[ArrayLike] = None) -> tuple[FloatArray, Int8Array]:
+        """-> (q, status): (N, 7), (N,) with a branch; (N, 8, 7), (N, 8) without"""
+    def feasible_arm_angles(self, X: ArrayLike,
+                            branch: Optional[ArrayLike] = None) -> Union[FloatArray, list[FloatArray]]:
+        """-> intervals (K, 2) rad per target"""
+    def arm_angle(self, q: ArrayLike) -> Union[float, FloatArray]: ...
+
+def branch_of(q: ArrayLike) -> Int8Array:
+    """-> signs (GC2, GC4, GC6), shape (3,) or (N, 3)"""
+
+class Scene:
+    """The table, the object and where it stands (models/scene.json by default)."""
+    def __init__(self, path: Optional[str] = None, object: Optional[str] = None) -> None: ...
+    @property
+    def source(self) -> str: ...
+    @property
+    def object_name(self) -> str: ...
+    @property
+    def object_source(self) -> str: ...
+    @property
+    def object_mass(self) -> float: ...
+    @property
+    def object_centre_xy(self) -> FloatArray: ...
+    @property
+    def table(self) -> dict[str, Any]: ...
+    @property
+    def grasp_region(self) -> dict[str, Any]: ...
+    def object_pose(self, theta_deg: float) -> FloatArray:
+        """(4, 4): the object resting at orientation theta_deg"""
+
+# --- demonstrations ------------------------------------------------------------------------
+
+class DemoLog:
+    """A graspsynth-demo/1 log; the arrays are copies, one row per sample."""
+    @property
+    def source(self) -> str: ...
+    @property
+    def theta_deg(self) -> float: ...
+    @property
+    def trial(self) -> Optional[str]: ...
+    @property
+    def operator_name(self) -> Optional[str]: ...
+    @property
+    def sample_rate_hz(self) -> Optional[float]: ...
+    @property
+    def metadata_extra(self) -> dict[str, str]: ...
+    def __len__(self) -> int: ...
+    @property
+    def t(self) -> FloatArray: ...
+    @property
+    def wrist_position(self) -> FloatArray: ...
+    @property
+    def wrist_quaternion(self) -> FloatArray:
+        """(N, 4), w x y z"""
+    @property
+    def fingers(self) -> FloatArray: ...
+    @property
+    def events(self) -> Int8Array:
+        """0 none, 1 grasp button, 2 end"""
+    @property
+    def object_position(self) -> FloatArray: ...
+
+def read_demo_log(path: str) -> DemoLog: ...
+def read_demo_directory(directory: Optional[str] = None) -> tuple[list[DemoLog], list[dict[str, str]]]:
+    """-> (logs, rejected [{"file", "reason"}])"""
+def segment(log: DemoLog, scene: Optional[Scene] = None, success_lift: float = 0.05) -> dict[str, Any]: ...
+def analyze_demonstrations(directory: Optional[str] = None, scene: Optional[Scene] = None) -> dict[str, Any]:
+    """-> the graspsynth-analysis/1 report: Table I, the wrist line, the radial model"""
+def fit_wrist_line(points: ArrayLike, loss: str = "none", loss_scale: float = 0.01) -> dict[str, Any]: ...
+
+# --- trajectories and simulation -----------------------------------------------------------
+
+class Trajectory:
+    """A graspsynth-trajectory/1 joint trajectory; t, arm, hand are read-only views."""
+    def __init__(self, t: ArrayLike, arm: ArrayLike, hand: ArrayLike, theta_deg: float = 0.0,
+                 robot: Optional[Robot] = None) -> None: ...
+    @staticmethod
+    def load(path: str, robot: Optional[Robot] = None) -> Trajectory: ...
+    @property
+    def theta_deg(self) -> float: ...
+    @property
+    def duration(self) -> float: ...
+    def __len__(self) -> int: ...
+    @property
+    def t(self) -> FloatArray: ...
+    @property
+    def arm(self) -> FloatArray: ...
+    @property
+    def hand(self) -> FloatArray: ...
+    @property
+    def waypoints(self) -> dict[str, FloatArray]: ...
+    def to_json(self) -> str: ...
+    def save(self, path: str) -> None: ...
+
+class TrialResult:
+    @property
+    def success(self) -> bool: ...
+    @property
+    def outcome(self) -> str: ...
+    @property
+    def reason(self) -> str: ...
+    @property
+    def lift(self) -> float: ...
+    @property
+    def report(self) -> dict[str, Any]: ...
+    @property
+    def states(self) -> dict[str, FloatArray]:
+        """t (N,), arm (N, 7), hand (N, 16), object_pose and wrist_pose (N, 4, 4); {} unless recorded"""
+
+class Simulation:
+    """The ODE world; trial() and robustness() release the GIL."""
+    def __init__(self, robot: Optional[Robot] = None, scene: Optional[Scene] = None) -> None: ...
+    def trial(self, trajectory: Trajectory, fidelity: str = "fast", time_step: float = 0.0,
+              hold: float = ..., record_interval: float = 0.0) -> TrialResult: ...
+    def robustness(self, trajectory: Trajectory, trials: int = 20, seed: int = 1,
+                   threads: int = 0, physics: bool = True, noise_scale: float = 1.0,
+                   fidelity: str = "fast") -> dict[str, Any]: ...
+
+# --- the grasp library and the synthesis ---------------------------------------------------
+
+class GraspLibrary:
+    def __init__(self, path: Optional[str] = None, object: str = "pan") -> None: ...
+    @property
+    def source(self) -> str: ...
+    @property
+    def demo_directory(self) -> str: ...
+    @property
+    def seed(self) -> int: ...
+    @property
+    def perturbations(self) -> int: ...
+    @property
+    def tie_rule(self) -> str: ...
+    def __len__(self) -> int: ...
+    @property
+    def thetas(self) -> FloatArray: ...
+    @property
+    def entries(self) -> list[dict[str, Any]]: ...
+    @property
+    def scores(self) -> list[dict[str, Any]]: ...
+    def to_json(self) -> str: ...
+    def save(self, path: str) -> None: ...
+
+def select_representatives(directory: Optional[str] = None, perturbations: int = 20,
+                           seed: int = 1, threads: int = 0, early_stop: bool = True,
+                           physics: bool = True, robot: Optional[Robot] = None,
+                           scene: Optional[Scene] = None) -> tuple[GraspLibrary, dict[str, Any]]: ...
+
+class Grasp:
+    @property
+    def ok(self) -> bool: ...
+    @property
+    def message(self) -> str: ...
+    @property
+    def theta_deg(self) -> float: ...
+    @property
+    def method_used(self) -> str: ...
+    @property
+    def fallback(self) -> bool: ...
+    @property
+    def passed(self) -> bool: ...
+    @property
+    def gate_reason(self) -> str: ...
+    @property
+    def robustness(self) -> Optional[float]: ...
+    @property
+    def trajectory(self) -> Trajectory: ...
+    @property
+    def motion(self) -> dict[str, Any]: ...
+    @property
+    def unrefined(self) -> dict[str, Any]: ...
+    @property
+    def report(self) -> dict[str, Any]:
+        """the graspsynth-grasp/1 document"""
+    def to_json(self, force: bool = False) -> str: ...
+    def save(self, path: str, force: bool = False) -> None: ...
+
+class Synthesizer:
+    def __init__(self, library: Union[GraspLibrary, PathLike, None] = None,
+                 robot: Optional[Robot] = None, scene: Optional[Scene] = None) -> None: ...
+    @property
+    def theta_range(self) -> tuple[float, float]: ...
+    def synthesize(self, theta: float, method: str = "interp", refine: bool = True,
+                   reach: str = "auto", start: Optional[ArrayLike] = None,
+                   clearance_margin: float = 0.005, strict_thresholds: bool = False,
+                   perturb: int = 30, seed: int = 1, threads: int = 0,
+                   min_robustness: float = 0.8, physics: bool = True,
+                   physics_fallback: bool = True) -> Grasp: ...
+
+# --- studies -------------------------------------------------------------------------------
+
+def run(demos: Optional[str] = None, quick: bool = False,
+        orientations: Union[str, Sequence[float], None] = None, seed: int = 1, threads: int = 0,
+        perturb: Optional[int] = None, select_perturb: Optional[int] = None,
+        sensitivity: Optional[int] = None, physics: bool = True, physics_fallback: bool = True,
+        all_replays: bool = False, robot: Optional[Robot] = None,
+        scene: Optional[Scene] = None) -> dict[str, Any]: ...
+def generalize(library: Union[GraspLibrary, str, None] = None,
+               orientations: Union[str, Sequence[float]] = "20:100:1",
+               methods: Sequence[str] = ..., leave_one_out: bool = False, perturb: int = 20,
+               sensitivity: int = 0, noise_scale: float = 1.0, seed: int = 1, threads: int = 0,
+               physics: bool = True, physics_fallback: bool = True,
+               robot: Optional[Robot] = None, scene: Optional[Scene] = None) -> dict[str, Any]: ...

@@ -1,0 +1,347 @@
+// graspsynth._core: the grasp library, the representative selection, and the synthesis of a
+// grasp through the physics gate.
+
+#include <pybind11/stl.h>
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/errors.hpp"
+#include "kinematics/robot_description.hpp"
+#include "kinematics/scene_model.hpp"
+#include "learning_data/demo_directory.hpp"
+#include "learning_data/grasp_library.hpp"
+#include "learning_data/representative_selection.hpp"
+#include "python/bindings.hpp"
+#include "simulation/simulation_model.hpp"
+#include "solver/grasp_file.hpp"
+#include "solver/motion_generation.hpp"
+#include "solver/physics_gate.hpp"
+#include "solver/reach_planning.hpp"
+#include "solver/synthesis.hpp"
+#include "solver/synthesis_model.hpp"
+#include "solver/validated_synthesis.hpp"
+
+namespace graspsynth::python {
+namespace {
+
+// The synthesis' models, built once for many grasps: the simulation (the gate) and the
+// synthesis model (collision model, line principle, entry constraints) of one library.
+struct Synthesizer {
+  Synthesizer(const RobotModel& robot, const SceneModel& scene, const GraspLibrary& library)
+      : simulation(robot, scene), model(simulation.robot(), simulation.scene(), library) {}
+  SimulationModel simulation;
+  SynthesisModel model;
+};
+
+// A synthesized grasp and its gate.
+struct Grasp {
+  ValidatedSynthesis validated;
+  SynthesisMethod requested = SynthesisMethod::kInterp;
+};
+
+SceneModel SceneOrDefault(const std::shared_ptr<SceneModel>& scene) {
+  return scene ? *scene : LoadSceneModel(DefaultSceneModelPath());
+}
+
+RobotModel RobotOrDefault(const std::shared_ptr<RobotModel>& robot) {
+  return robot ? *robot : LoadRobotModel(DefaultRobotDescriptionPath());
+}
+
+std::shared_ptr<GraspLibrary> LoadLibrary(const std::optional<std::string>& path,
+                                          const std::string& object) {
+  return std::make_shared<GraspLibrary>(
+      ReadGraspLibrary(path ? std::filesystem::path(*path) : DefaultGraspLibraryPath(object)));
+}
+
+std::shared_ptr<Synthesizer> MakeSynthesizer(const py::object& library,
+                                             const std::shared_ptr<RobotModel>& robot,
+                                             const std::shared_ptr<SceneModel>& scene_arg) {
+  SceneModel scene = SceneOrDefault(scene_arg);
+  scene.object.Handle(kSynthesisNeedsHandle);
+  std::shared_ptr<GraspLibrary> lib;
+  if (library.is_none()) {
+    lib = LoadLibrary(std::nullopt, scene.object.name);
+  } else if (py::isinstance<py::str>(library) || py::hasattr(library, "__fspath__")) {
+    lib = LoadLibrary(py::str(library).cast<std::string>(), scene.object.name);
+  } else {
+    lib = library.cast<std::shared_ptr<GraspLibrary>>();
+  }
+  if (lib->entries.empty()) {
+    throw InputError("the grasp library '" + lib->source + "' has no entry to synthesize from");
+  }
+  py::gil_scoped_release release;
+  return std::make_shared<Synthesizer>(RobotOrDefault(robot), scene, *lib);
+}
+
+std::shared_ptr<Grasp> Synthesize(const Synthesizer& s, double theta_deg, const std::string& method,
+                                  bool refine, const std::string& reach,
+                                  const std::optional<DoubleArray>& start, double clearance_margin,
+                                  bool strict_thresholds, int perturb, uint64_t seed, int threads,
+                                  double min_robustness, bool physics, bool physics_fallback) {
+  if (!std::isfinite(theta_deg)) throw InputError("theta must be a finite number of degrees");
+  ValidatedSynthesisOptions vo;
+  SynthesisOptions& so = vo.synthesis;
+  so.generation.method = ParseSynthesisMethod(method);
+  if (!refine) so.refinement_stages.clear();
+  so.reach.method = ParseReachMethod(reach);
+  so.refinement.clearance_margin = clearance_margin;
+  if (strict_thresholds) so.source_thresholds.reset();
+  if (start) {
+    const Batch b = ReadBatch(*start, {kArmDof}, "start");
+    if (!b.single) throw InputError("start must have shape (7,)");
+    so.start = Eigen::Map<const Vector7d>(b.data);
+  }
+  vo.physics_fallback = physics_fallback;
+  vo.gate.perturbations = perturb;
+  vo.gate.seed = seed;
+  vo.gate.threads = threads;
+  vo.gate.min_robustness = min_robustness;
+  vo.gate.perturbation.physics.enabled = physics;
+  std::string why;
+  if (!so.IsValid(&why)) throw InputError("bad synthesis option: " + why);
+  if (!vo.gate.IsValid(&why)) throw InputError("bad physics gate option: " + why);
+  auto grasp = std::make_shared<Grasp>();
+  grasp->requested = so.generation.method;
+  {
+    py::gil_scoped_release release;
+    SynthesisData data(s.model);
+    grasp->validated = SynthesizeAndValidate(s.simulation, s.model, theta_deg, vo, &data);
+  }
+  const SynthesisResult& r = grasp->validated.synthesis;
+  switch (r.status) {
+    case SynthesisStatus::kOk:
+    case SynthesisStatus::kUnreachable:
+      return grasp;
+    case SynthesisStatus::kOutOfRange:
+    case SynthesisStatus::kBadStart:
+    case SynthesisStatus::kNoModel:
+      break;
+  }
+  throw InputError(r.message);
+}
+
+const SynthesisResult& Synthesized(const Grasp& g) {
+  if (!g.validated.synthesis.ok()) {
+    throw InputError("no grasp was synthesized: " + g.validated.synthesis.message);
+  }
+  return g.validated.synthesis;
+}
+
+py::dict ScoreDict(const DemoScore& s) {
+  py::dict d;
+  d["file"] = s.file;
+  d["trial"] = s.trial;
+  d["theta_deg"] = s.theta_deg;
+  d["trials"] = s.trials;
+  d["successes"] = s.successes;
+  d["score"] = s.score;
+  d["ci_low"] = s.ci_low;
+  d["ci_high"] = s.ci_high;
+  d["nominal_success"] = s.nominal_success;
+  d["seed"] = s.seed;
+  d["failures"] = s.failures;
+  d["selected"] = s.selected;
+  d["stopped"] = s.stopped;
+  return d;
+}
+
+py::tuple Select(const std::optional<std::string>& directory, int perturbations, uint64_t seed,
+                 int threads, bool early_stop, bool physics,
+                 const std::shared_ptr<RobotModel>& robot,
+                 const std::shared_ptr<SceneModel>& scene_arg) {
+  const SceneModel scene = SceneOrDefault(scene_arg);
+  const std::filesystem::path folder =
+      directory ? std::filesystem::path(*directory) : DefaultDemoDirectory(scene.object.name);
+  SelectionOptions options;
+  options.perturbations = perturbations;
+  options.seed = seed;
+  options.threads = threads;
+  options.early_stop = early_stop;
+  options.segmentation.region = scene.grasp_region;
+  options.perturbation.physics.enabled = physics;
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError("select: " + why);
+  SelectionResult result;
+  {
+    py::gil_scoped_release release;
+    const SimulationModel model(RobotOrDefault(robot), scene);
+    result = SelectRepresentatives(model, folder, options);
+  }
+  py::list issues;
+  for (const SelectionIssue& issue : result.issues) {
+    py::dict d;
+    d["file"] = issue.file;
+    d["kind"] = ToString(issue.kind);
+    d["reason"] = issue.reason;
+    issues.append(d);
+  }
+  py::dict report;
+  report["logs"] = result.logs;
+  report["unsuccessful"] = result.unsuccessful;
+  report["issues"] = issues;
+  report["unselected_thetas"] = result.unselected_thetas;
+  return py::make_tuple(std::make_shared<GraspLibrary>(std::move(result.library)), report);
+}
+
+}  // namespace
+
+void BindLibrary(py::module_& m) {
+  py::class_<GraspLibrary, std::shared_ptr<GraspLibrary>>(m, "GraspLibrary", R"doc(
+A grasp library (format graspsynth-library/1): the representative demonstration of each
+orientation, chosen by robustness in physics, with every scored demonstration.
+
+GraspLibrary(path=None, object="pan") reads a library file (the object's shipped library by
+default). Raises InputError naming the file and the field at fault.)doc")
+      .def(py::init(&LoadLibrary), py::arg("path") = py::none(), py::arg("object") = "pan")
+      .def_readonly("source", &GraspLibrary::source)
+      .def_readonly("demo_directory", &GraspLibrary::demo_directory)
+      .def_readonly("seed", &GraspLibrary::seed)
+      .def_readonly("perturbations", &GraspLibrary::perturbations)
+      .def_readonly("tie_rule", &GraspLibrary::tie_rule)
+      .def("__len__", [](const GraspLibrary& l) { return l.entries.size(); })
+      .def_property_readonly(
+          "thetas",
+          [](const GraspLibrary& l) {
+            py::array_t<double> out = NewArray({static_cast<py::ssize_t>(l.entries.size())});
+            for (size_t i = 0; i < l.entries.size(); ++i) {
+              out.mutable_data()[i] = l.entries[i].theta_deg;
+            }
+            return out;
+          },
+          "The orientations of the entries, deg, increasing")
+      .def_property_readonly(
+          "entries",
+          [](const GraspLibrary& l) {
+            py::list out;
+            for (const LibraryEntry& e : l.entries) {
+              py::dict d;
+              d["theta_deg"] = e.theta_deg;
+              d["file"] = e.file;
+              d["trial"] = e.trial;
+              d["score"] = e.score;
+              d["lift_height"] = e.lift_height;
+              d["lift_duration"] = e.lift_duration;
+              d["motion"] = MotionArrays(e.motion);
+              out.append(d);
+            }
+            return out;
+          },
+          "One dict per orientation: theta_deg, file, trial, score, lift_height (m), "
+          "lift_duration (s) and motion (the grasping motion's arrays)")
+      .def_property_readonly(
+          "scores",
+          [](const GraspLibrary& l) {
+            py::list out;
+            for (const DemoScore& s : l.scores) out.append(ScoreDict(s));
+            return out;
+          },
+          "Every successful demonstration's robustness score, by theta then file")
+      .def("to_json", &GraspLibraryToJson, "The graspsynth-library/1 text")
+      .def(
+          "save",
+          [](const GraspLibrary& l, const std::string& path) { WriteGraspLibrary(l, path); },
+          py::arg("path"), "Writes the library file atomically");
+
+  m.def("select_representatives", &Select, py::arg("directory") = py::none(),
+        py::arg("perturbations") = SelectionOptions{}.perturbations,
+        py::arg("seed") = SelectionOptions{}.seed, py::arg("threads") = 0,
+        py::arg("early_stop") = true, py::arg("physics") = true, py::arg("robot") = py::none(),
+        py::arg("scene") = py::none(), R"doc(
+Ranks every successful demonstration of a folder by its success under `perturbations`
+perturbed replays in physics and keeps the best per orientation (`graspsynth select`).
+Returns (library, report): the GraspLibrary, and a dict with the logs read, the unsuccessful
+ones, the issues (files rejected or not replayable, with reasons) and the orientations where
+nothing could be selected. The same seed gives the same library whatever `threads` is.)doc");
+
+  py::class_<Synthesizer, std::shared_ptr<Synthesizer>>(m, "Synthesizer", R"doc(
+The synthesis models of one library, built once for many grasps:
+Synthesizer(library=None, robot=None, scene=None). library: a GraspLibrary or a file path
+(the scene object's shipped library by default). synthesize() is safe to call from several
+threads at once, and releases the GIL.)doc")
+      .def(py::init(&MakeSynthesizer), py::arg("library") = py::none(),
+           py::arg("robot") = py::none(), py::arg("scene") = py::none())
+      .def_property_readonly("theta_range",
+                             [](const Synthesizer& s) {
+                               return py::make_tuple(s.model.theta_min_deg(),
+                                                     s.model.theta_max_deg());
+                             })
+      .def("synthesize", &Synthesize, py::arg("theta"), py::arg("method") = "interp",
+           py::arg("refine") = true, py::arg("reach") = "auto", py::arg("start") = py::none(),
+           py::arg("clearance_margin") = 0.005, py::arg("strict_thresholds") = false,
+           py::arg("perturb") = PhysicsGateOptions{}.perturbations,
+           py::arg("seed") = PhysicsGateOptions{}.seed, py::arg("threads") = 0,
+           py::arg("min_robustness") = PhysicsGateOptions{}.min_robustness,
+           py::arg("physics") = true, py::arg("physics_fallback") = true, R"doc(
+A grasp for object orientation theta (deg), checked in physics: `graspsynth synthesize`.
+
+method: "interp" (the paper's blend of the two nearest demonstrations), "line" (the line
+principle) or "nearest"; refine: the Ceres and NLopt refinement; reach: "auto", "spline" or
+"joint"; start: the start configuration (7,) rad (default: the rest pose); perturb, seed,
+threads, min_robustness, physics: the gate's perturbed replays. Returns a Grasp; raises
+InputError for an orientation outside the library (interp) or a bad start.)doc");
+
+  py::class_<Grasp, std::shared_ptr<Grasp>>(m, "Grasp", R"doc(
+A synthesized grasp and its physics validation.
+
+ok: a grasp was synthesized (else message says why: no IK solution along the motion).
+passed: it passed the physics gate. trajectory: the robot's Trajectory (reach, grasping motion,
+lift). motion / unrefined: the grasping motion after / before refinement, as arrays.
+report: the grasp file's content as a dict (graspsynth-grasp/1). save(path) writes the grasp
+file as `graspsynth synthesize --out` does.)doc")
+      .def_property_readonly("ok", [](const Grasp& g) { return g.validated.synthesis.ok(); })
+      .def_property_readonly("message",
+                             [](const Grasp& g) { return g.validated.synthesis.message; })
+      .def_property_readonly("theta_deg",
+                             [](const Grasp& g) { return g.validated.synthesis.theta_deg; })
+      .def_property_readonly(
+          "method_used", [](const Grasp& g) { return std::string(ToString(Synthesized(g).used)); })
+      .def_property_readonly("fallback", [](const Grasp& g) { return Synthesized(g).fallback; })
+      .def_property_readonly(
+          "passed", [](const Grasp& g) { return g.validated.gate_run && g.validated.gate.passed; })
+      .def_property_readonly("gate_reason", [](const Grasp& g) { return g.validated.gate.reason; })
+      .def_property_readonly("robustness",
+                             [](const Grasp& g) {
+                               const RobustnessResult& r = g.validated.gate.robustness;
+                               return g.validated.gate.robustness_run
+                                          ? py::object(py::float_(r.score))
+                                          : py::object(py::none());
+                             })
+      .def_property_readonly("trajectory",
+                             [](const Grasp& g) {
+                               return std::make_shared<JointTrajectory>(Synthesized(g).trajectory);
+                             })
+      .def_property_readonly("motion",
+                             [](const Grasp& g) { return MotionArrays(Synthesized(g).motion); })
+      .def_property_readonly("unrefined",
+                             [](const Grasp& g) { return MotionArrays(Synthesized(g).unrefined); })
+      .def_property_readonly(
+          "report",
+          [](const Grasp& g) {
+            return JsonTextToPython(GraspFileToJson(Synthesized(g), &g.validated.gate, false));
+          })
+      .def(
+          "to_json",
+          [](const Grasp& g, bool force) {
+            return GraspFileToJson(Synthesized(g), &g.validated.gate, force);
+          },
+          py::arg("force") = false, "The graspsynth-grasp/1 text")
+      .def(
+          "save",
+          [](const Grasp& g, const std::string& path, bool force) {
+            const SynthesisResult& s = Synthesized(g);
+            if (!g.validated.gate.passed && !force) {
+              throw InputError("the grasp failed the physics gate: " + g.validated.gate.reason +
+                               " (nothing written; force=True writes it with the failed "
+                               "validation)");
+            }
+            WriteGraspFile(path, s, &g.validated.gate, force);
+          },
+          py::arg("path"), py::arg("force") = false,
+          "Writes the grasp file atomically; a grasp that failed the gate only with force=True");
+}
+
+}  // namespace graspsynth::python

@@ -1,0 +1,19 @@
+// graspsynth._core: the extension module behind the Python package graspsynth
+// (python/graspsynth/__init__.py adds the pure-Python layer).
+
+#include "common/errors.hpp"
+#include "python/bindings.hpp"
+
+PYBIND11_MODULE(_core, m) {
+  namespace py = pybind11;
+  m.doc() = "graspsynth's C++ library: kinematics, demonstrations, physics, synthesis, studies";
+  // bad input (a file, an argument) raises graspsynth.InputError, a ValueError, with the C++
+  // message: the file, line, field and value at fault.
+  m.attr("__version__") = GRASPSYNTH_VERSION;
+  py::register_exception<graspsynth::InputError>(m, "InputError", PyExc_ValueError);
+  graspsynth::python::BindKinematics(m);
+  graspsynth::python::BindDemos(m);
+  graspsynth::python::BindSimulation(m);
+  graspsynth::python::BindLibrary(m);
+  graspsynth::python::BindStudy(m);
+}

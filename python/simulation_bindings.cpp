@@ -1,0 +1,315 @@
+// graspsynth._core: joint trajectories, the ODE simulation of a grasp-and-lift trial, and the
+// robustness evaluation under perturbation.
+
+#include <pybind11/stl.h>
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/atomic_file.hpp"
+#include "common/errors.hpp"
+#include "kinematics/pose_math.hpp"
+#include "kinematics/robot_description.hpp"
+#include "kinematics/scene_model.hpp"
+#include "motion/joint_trajectory.hpp"
+#include "python/bindings.hpp"
+#include "python/simulation_bindings.hpp"
+#include "simulation/robustness.hpp"
+#include "simulation/trial.hpp"
+#include "solver/grasp_file.hpp"
+#include "solver/trial_json.hpp"
+
+namespace graspsynth::python {
+namespace {
+
+using ojson = nlohmann::ordered_json;
+
+// A read-only view of one field of every sample of a vector of records: `field` points into
+// the first record; `shape` and `strides` are the field's own (empty for a scalar).
+template <class Record>
+py::array FieldView(const std::vector<Record>& records, const double* field,
+                    const std::vector<py::ssize_t>& shape, const std::vector<py::ssize_t>& strides,
+                    py::handle owner) {
+  return ReadOnlyView(field, static_cast<py::ssize_t>(records.size()),
+                      static_cast<py::ssize_t>(sizeof(Record)), shape, strides, owner);
+}
+
+// The strides of an Eigen fixed matrix of `rows` (column-major) seen as a row-major array.
+std::vector<py::ssize_t> MatrixStrides(py::ssize_t rows) {
+  return {static_cast<py::ssize_t>(sizeof(double)),
+          static_cast<py::ssize_t>(sizeof(double)) * rows};
+}
+
+Fidelity ParseFidelity(const std::string& text) {
+  if (text == "fast") return Fidelity::kFast;
+  if (text == "full") return Fidelity::kFull;
+  if (text == "fast-wrist") return Fidelity::kFastWristDynamic;
+  throw InputError("fidelity must be 'fast', 'fast-wrist' or 'full', not '" + text + "'");
+}
+
+TrialOptions TrialOptionsOf(const std::string& fidelity, double time_step, double hold) {
+  TrialOptions trial;
+  trial.fidelity = ParseFidelity(fidelity);
+  trial.time_step = time_step;
+  trial.hold = hold;
+  std::string why;
+  if (!trial.IsValid(&why)) throw InputError("bad simulation option: " + why);
+  return trial;
+}
+
+std::shared_ptr<JointTrajectory> MakeTrajectory(const DoubleArray& t, const DoubleArray& arm,
+                                                const DoubleArray& hand, double theta_deg,
+                                                const std::shared_ptr<RobotModel>& robot_arg) {
+  if (t.ndim() != 1 || t.shape(0) < 1) {
+    throw InputError("t must have shape (N,) with N >= 1 samples");
+  }
+  const py::ssize_t n = t.shape(0);
+  if (arm.ndim() != 2 || arm.shape(0) != n || arm.shape(1) != kArmDof) {
+    throw InputError("arm must have shape (N, 7), N = " + std::to_string(n));
+  }
+  if (hand.ndim() != 2 || hand.shape(0) != n || hand.shape(1) != kHandDof) {
+    throw InputError("hand must have shape (N, 16), N = " + std::to_string(n));
+  }
+  auto trajectory = std::make_shared<JointTrajectory>();
+  trajectory->theta_deg = theta_deg;
+  for (py::ssize_t i = 0; i < n; ++i) {
+    TrajectorySample s;
+    s.t = t.data()[i];
+    s.arm = Eigen::Map<const Vector7d>(arm.data() + kArmDof * i);
+    s.hand = Eigen::Map<const HandVector>(hand.data() + kHandDof * i);
+    if (!std::isfinite(s.t) || !s.arm.allFinite() || !s.hand.allFinite()) {
+      throw InputError("sample " + std::to_string(i) + " has a value that is not finite");
+    }
+    if (i > 0 && !(s.t > trajectory->samples.back().t)) {
+      throw InputError("t must increase strictly: t[" + std::to_string(i) +
+                       "] = " + std::to_string(s.t) + " after " +
+                       std::to_string(trajectory->samples.back().t));
+    }
+    trajectory->samples.push_back(s);
+  }
+  const std::shared_ptr<RobotModel> robot =
+      robot_arg ? robot_arg
+                : std::make_shared<RobotModel>(LoadRobotModel(DefaultRobotDescriptionPath()));
+  CheckJointLimits(*trajectory, robot->arm, robot->hand, "the trajectory");
+  return trajectory;
+}
+
+py::dict TrialDict(const TrialResult& r) {
+  ojson j = {{"success", r.success()},
+             {"outcome", ToString(r.outcome)},
+             {"reason", r.reason},
+             {"lift_m", r.lift},
+             {"max_lift_m", r.max_lift},
+             {"max_penetration_m", r.max_penetration},
+             {"simulated_s", r.simulated_time},
+             {"wall_s", r.wall_time},
+             {"hold", HoldQualityJson<ojson>(r.hold)}};
+  py::dict d = ToPython(j);
+  py::array_t<double> pose = NewArray({4, 4});
+  WriteMatrix(r.final_object_pose, pose.mutable_data());
+  d["final_object_pose"] = pose;
+  return d;
+}
+
+py::dict RobustnessDict(const RobustnessResult& r, const RobustnessOptions& options) {
+  ojson trials = ojson::array();
+  for (const RobustnessTrial& t : r.trials) {
+    trials.push_back({{"index", t.index},
+                      {"time_scale", t.time_scale},
+                      {"success", t.success()},
+                      {"outcome", ToString(t.outcome)},
+                      {"reason", t.reason},
+                      {"lift_m", t.lift},
+                      {"physics", PhysicsDrawJson<ojson>(t.physics, options.trial.step())},
+                      {"hold", HoldQualityJson<ojson>(t.hold)}});
+  }
+  const ojson j = {
+      {"trials", options.trials},       {"successes", r.successes},      {"score", r.score},
+      {"ci95", {r.ci95.lo, r.ci95.hi}}, {"seed", options.seed},          {"threads", r.threads},
+      {"wall_s", r.wall_time},          {"failures", FailureSummary(r)}, {"replays", trials}};
+  return ToPython(j);
+}
+
+// The states a trial recorded, as read-only views into its result.
+py::dict StateArrays(py::object self) {
+  const TrialResult& r = self.cast<const TrialResult&>();
+  py::dict d;
+  if (r.states.empty()) return d;
+  const TrialState& first = r.states.front();
+  const auto view = [&](const double* field, const std::vector<py::ssize_t>& shape,
+                        const std::vector<py::ssize_t>& strides) {
+    return FieldView(r.states, field, shape, strides, self);
+  };
+  d["t"] = view(&first.t, {}, {});
+  d["arm"] = view(first.arm.data(), {kArmDof}, {sizeof(double)});
+  d["hand"] = view(first.hand.data(), {kHandDof}, {sizeof(double)});
+  d["object_pose"] = view(first.X_WO.matrix().data(), {4, 4}, MatrixStrides(4));
+  d["wrist_pose"] = view(first.X_WH.matrix().data(), {4, 4}, MatrixStrides(4));
+  return d;
+}
+
+std::shared_ptr<SimulationModel> MakeSimulation(const std::shared_ptr<RobotModel>& robot,
+                                                const std::shared_ptr<SceneModel>& scene) {
+  return std::make_shared<SimulationModel>(
+      robot ? *robot : LoadRobotModel(DefaultRobotDescriptionPath()),
+      scene ? *scene : LoadSceneModel(DefaultSceneModelPath()));
+}
+
+}  // namespace
+
+RobustnessOptions RobustnessOptionsOf(int trials, uint64_t seed, int threads, bool physics,
+                                      double noise_scale, const TrialOptions& trial) {
+  RobustnessOptions ro;
+  ro.trials = trials;
+  ro.seed = seed;
+  ro.threads = threads;
+  ro.trial = trial;
+  ro.perturbation.physics.enabled = physics;
+  if (!(noise_scale >= 0.0)) throw InputError("noise_scale must be >= 0");
+  ro.perturbation.position_sigma *= noise_scale;
+  ro.perturbation.orientation_sigma *= noise_scale;
+  ro.perturbation.finger_sigma *= noise_scale;
+  std::string why;
+  if (!ro.IsValid(&why)) throw InputError("bad perturbation option: " + why);
+  return ro;
+}
+
+void BindSimulation(py::module_& m) {
+  py::class_<JointTrajectory, std::shared_ptr<JointTrajectory>>(m, "Trajectory", R"doc(
+A joint trajectory of the robot (format graspsynth-trajectory/1): what `graspsynth simulate`
+plays.
+
+Trajectory(t, arm, hand, theta_deg=0.0, robot=None) builds one from arrays t (N,) s strictly
+increasing, arm (N, 7) rad, hand (N, 16) rad, checked against the robot's joint limits.
+Trajectory.load(path) reads a trajectory file or a grasp file's trajectory. The arrays t, arm
+and hand are read-only views into the trajectory (no copy).)doc")
+      .def(py::init(&MakeTrajectory), py::arg("t"), py::arg("arm"), py::arg("hand"),
+           py::arg("theta_deg") = 0.0, py::arg("robot") = py::none())
+      .def_static(
+          "load",
+          [](const std::string& path, const std::shared_ptr<RobotModel>& robot_arg) {
+            const RobotModel robot =
+                robot_arg ? *robot_arg : LoadRobotModel(DefaultRobotDescriptionPath());
+            return std::make_shared<JointTrajectory>(
+                LoadTrajectoryOrGraspFile(path, robot.arm, robot.hand));
+          },
+          py::arg("path"), py::arg("robot") = py::none(),
+          "Reads a graspsynth-trajectory/1 file, or the trajectory of a graspsynth-grasp/1 file")
+      .def_readonly("theta_deg", &JointTrajectory::theta_deg)
+      .def_property_readonly("duration", &JointTrajectory::duration, "s")
+      .def("__len__", [](const JointTrajectory& tr) { return tr.samples.size(); })
+      .def_property_readonly("t",
+                             [](py::object self) {
+                               const auto& s = self.cast<const JointTrajectory&>().samples;
+                               return FieldView(s, &s.front().t, {}, {}, self);
+                             })
+      .def_property_readonly("arm",
+                             [](py::object self) {
+                               const auto& s = self.cast<const JointTrajectory&>().samples;
+                               return FieldView(s, s.front().arm.data(), {kArmDof},
+                                                {sizeof(double)}, self);
+                             })
+      .def_property_readonly("hand",
+                             [](py::object self) {
+                               const auto& s = self.cast<const JointTrajectory&>().samples;
+                               return FieldView(s, s.front().hand.data(), {kHandDof},
+                                                {sizeof(double)}, self);
+                             })
+      .def_property_readonly(
+          "waypoints",
+          [](const JointTrajectory& tr) {
+            const auto n = static_cast<py::ssize_t>(tr.waypoints.size());
+            py::array_t<double> t = NewArray({n}), p = NewArray({n, 3}), q = NewArray({n, 4});
+            for (py::ssize_t i = 0; i < n; ++i) {
+              const WristWaypoint& w = tr.waypoints[static_cast<size_t>(i)];
+              t.mutable_data()[i] = w.t;
+              std::copy(w.p_WH.data(), w.p_WH.data() + 3, p.mutable_data() + 3 * i);
+              const double wxyz[4] = {w.q_WH.w(), w.q_WH.x(), w.q_WH.y(), w.q_WH.z()};
+              std::copy(wxyz, wxyz + 4, q.mutable_data() + 4 * i);
+            }
+            py::dict d;
+            d["t"] = t;
+            d["position"] = p;
+            d["quaternion"] = q;
+            return d;
+          },
+          "The wrist's Cartesian waypoints (t, position, quaternion w x y z), world")
+      .def("to_json", &JointTrajectoryToJson, "The graspsynth-trajectory/1 text")
+      .def(
+          "save",
+          [](const JointTrajectory& tr, const std::string& path) {
+            WriteJointTrajectory(path, tr);
+          },
+          py::arg("path"), "Writes the trajectory file atomically");
+
+  py::class_<TrialResult, std::shared_ptr<TrialResult>>(m, "TrialResult", R"doc(
+The outcome of one grasp-and-lift trial in ODE.
+
+report: a dict (success, outcome, reason, lift_m, max_lift_m, max_penetration_m, simulated_s,
+wall_s, hold, final_object_pose). states: when the trial recorded (record_interval > 0), the
+time series as read-only arrays: t (N,), arm (N, 7), hand (N, 16), object_pose (N, 4, 4),
+wrist_pose (N, 4, 4).)doc")
+      .def_property_readonly("success", &TrialResult::success)
+      .def_property_readonly("outcome",
+                             [](const TrialResult& r) { return std::string(ToString(r.outcome)); })
+      .def_readonly("reason", &TrialResult::reason)
+      .def_readonly("lift", &TrialResult::lift, "m")
+      .def_property_readonly("report", &TrialDict)
+      .def_property_readonly("states", &StateArrays);
+
+  py::class_<SimulationModel, std::shared_ptr<SimulationModel>>(m, "Simulation", R"doc(
+The ODE world of the robot, the table and the object: Simulation(robot=None, scene=None)
+(the shipped ones by default). Only friction holds the object.
+
+trial() plays a trajectory once; robustness() replays it under perturbation (time scaling,
+pose and finger noise, and the physics: friction, contact stiffness and damping, mass, centre
+of mass, servo force, step). Both release the GIL, so Python threads run trials in parallel.)doc")
+      .def(py::init(&MakeSimulation), py::arg("robot") = py::none(), py::arg("scene") = py::none())
+      .def(
+          "trial",
+          [](const SimulationModel& model, const JointTrajectory& trajectory,
+             const std::string& fidelity, double time_step, double hold, double record_interval) {
+            TrialOptions options = TrialOptionsOf(fidelity, time_step, hold);
+            if (!(record_interval >= 0.0)) throw InputError("record_interval must be >= 0");
+            options.record_interval = record_interval;
+            auto result = std::make_shared<TrialResult>();
+            {
+              py::gil_scoped_release release;
+              *result = RunTrial(model, trajectory, options);
+            }
+            return result;
+          },
+          py::arg("trajectory"), py::arg("fidelity") = "fast", py::arg("time_step") = 0.0,
+          py::arg("hold") = TrialOptions{}.hold, py::arg("record_interval") = 0.0, R"doc(
+One grasp-and-lift trial of the trajectory (then `hold` s holding the object up).
+fidelity: "fast" (the study's), "fast-wrist" or "full"; time_step 0 takes the fidelity's
+step; record_interval > 0 records the states every so many seconds. Returns a TrialResult.)doc")
+      .def(
+          "robustness",
+          [](const SimulationModel& model, const JointTrajectory& trajectory, int trials,
+             uint64_t seed, int threads, bool physics, double noise_scale,
+             const std::string& fidelity) {
+            const RobustnessOptions ro =
+                RobustnessOptionsOf(trials, seed, threads, physics, noise_scale,
+                                    TrialOptionsOf(fidelity, 0.0, TrialOptions{}.hold));
+            RobustnessResult r;
+            {
+              py::gil_scoped_release release;
+              r = EvaluateRobustness(model, trajectory, ro);
+            }
+            return RobustnessDict(r, ro);
+          },
+          py::arg("trajectory"), py::arg("trials") = 20, py::arg("seed") = RobustnessOptions{}.seed,
+          py::arg("threads") = 0, py::arg("physics") = true, py::arg("noise_scale") = 1.0,
+          py::arg("fidelity") = "fast", R"doc(
+The success rate of `trials` perturbed replays of the trajectory (the same replays as
+`graspsynth simulate --perturb TRIALS --seed SEED`; the result does not depend on threads).
+physics=False keeps the modelled physics (motion noise only); noise_scale scales the motion
+noise. Returns a dict: trials, successes, score, ci95 (Wilson), failures, and replays, one
+dict per replay with its outcome and drawn physics.)doc");
+}
+
+}  // namespace graspsynth::python

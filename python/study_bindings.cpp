@@ -1,0 +1,187 @@
+// graspsynth._core: the end-to-end study (`graspsynth run`) and the generalization table
+// (`graspsynth generalize`), returned as data.
+
+#include <pybind11/stl.h>
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "common/errors.hpp"
+#include "common/orientation_list.hpp"
+#include "kinematics/robot_description.hpp"
+#include "kinematics/scene_model.hpp"
+#include "learning_data/demo_directory.hpp"
+#include "learning_data/grasp_library.hpp"
+#include "python/bindings.hpp"
+#include "simulation/simulation_model.hpp"
+#include "solver/analysis_report.hpp"
+#include "solver/study.hpp"
+#include "solver/study_method.hpp"
+#include "solver/study_report.hpp"
+#include "solver/synthesis_model.hpp"
+
+namespace graspsynth::python {
+namespace {
+
+// Orientations as a list of numbers, or as the command line's text ("20:100:5,33").
+using Orientations = std::variant<std::string, std::vector<double>>;
+
+std::vector<double> OrientationsOf(const Orientations& given) {
+  if (const auto* text = std::get_if<std::string>(&given)) {
+    return ParseOrientationList(*text, "orientations");
+  }
+  const auto& values = std::get<std::vector<double>>(given);
+  for (double v : values) {
+    if (!std::isfinite(v)) throw InputError("orientations: every value must be finite (deg)");
+  }
+  if (values.empty()) throw InputError("orientations: no orientation given");
+  return values;
+}
+
+SceneModel StudyScene(const std::shared_ptr<SceneModel>& scene_arg) {
+  SceneModel scene = scene_arg ? *scene_arg : LoadSceneModel(DefaultSceneModelPath());
+  scene.object.Handle(kSynthesisNeedsHandle);
+  return scene;
+}
+
+RobotModel StudyRobot(const std::shared_ptr<RobotModel>& robot) {
+  return robot ? *robot : LoadRobotModel(DefaultRobotDescriptionPath());
+}
+
+py::dict Run(const std::optional<std::string>& demos, bool quick,
+             const std::optional<Orientations>& orientations, uint64_t seed, int threads,
+             std::optional<int> perturb, std::optional<int> select_perturb,
+             std::optional<int> sensitivity, bool physics, bool physics_fallback, bool all_replays,
+             const std::shared_ptr<RobotModel>& robot,
+             const std::shared_ptr<SceneModel>& scene_arg) {
+  const SceneModel scene = StudyScene(scene_arg);
+  StudyOptions options;
+  options.demos = demos ? std::filesystem::path(*demos) : DefaultDemoDirectory(scene.object.name);
+  options.seed = seed;
+  options.threads = threads;
+  options.analysis.segmentation.region = scene.grasp_region;
+  options.paper_object = scene.object.paper_object;
+  options.perturbation.physics.enabled = physics;
+  options.physics_fallback = physics_fallback;
+  options.selection_early_stop = !all_replays;
+  if (quick) options.UseQuickStudy();
+  if (sensitivity) options.sensitivity_trials = *sensitivity;
+  if (perturb) options.gate_perturbations = *perturb;
+  if (select_perturb) options.selection_perturbations = *select_perturb;
+  if (orientations) options.orientations = OrientationsOf(*orientations);
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError("run: " + why);
+  if (!std::filesystem::is_directory(options.demos)) {
+    throw InputError("run: demos '" + options.demos.string() + "' is not a folder");
+  }
+  StudyResult result;
+  std::string analysis, synthesis, timing;
+  {
+    py::gil_scoped_release release;
+    const SimulationModel model(StudyRobot(robot), scene);
+    result = RunStudy(model, options);
+    analysis = AnalysisReportJson(result.analysis, result.options.PaperComparison());
+    synthesis = StudySynthesisJson(result);
+    timing = StudyTimingJson(result);
+  }
+  py::dict d;
+  d["analysis"] = JsonTextToPython(analysis);
+  d["library"] = std::make_shared<GraspLibrary>(result.selection.library);
+  d["synthesis"] = JsonTextToPython(synthesis);
+  d["timing"] = JsonTextToPython(timing);
+  return d;
+}
+
+std::vector<StudyMethod> MethodsOf(const std::vector<std::string>& labels) {
+  std::vector<StudyMethod> methods;
+  for (const std::string& label : labels) {
+    methods.push_back(ParseStudyMethod(label));
+    for (size_t k = 0; k + 1 < methods.size(); ++k) {
+      if (methods[k].Label() == methods.back().Label()) {
+        throw InputError("methods: '" + label + "' is given twice");
+      }
+    }
+  }
+  if (methods.empty()) throw InputError("methods: no method given");
+  return methods;
+}
+
+py::object Generalize(const py::object& library_arg, const Orientations& orientations,
+                      const std::vector<std::string>& methods, bool leave_one_out, int perturb,
+                      int sensitivity, double noise_scale, uint64_t seed, int threads, bool physics,
+                      bool physics_fallback, const std::shared_ptr<RobotModel>& robot,
+                      const std::shared_ptr<SceneModel>& scene_arg) {
+  SceneModel scene = StudyScene(scene_arg);
+  GraspLibrary library;
+  if (library_arg.is_none()) {
+    library = ReadGraspLibrary(DefaultGraspLibraryPath(scene.object.name));
+  } else if (py::isinstance<py::str>(library_arg) || py::hasattr(library_arg, "__fspath__")) {
+    library = ReadGraspLibrary(py::str(library_arg).cast<std::string>());
+  } else {
+    library = library_arg.cast<const GraspLibrary&>();
+  }
+  SynthesisTableOptions table;
+  table.methods = MethodsOf(methods);
+  if (perturb < 0) throw InputError("perturb must be >= 0");
+  if (sensitivity < 0) throw InputError("sensitivity must be >= 0");
+  if (!(noise_scale >= 0.0)) throw InputError("noise_scale must be >= 0");
+  table.gate_perturbations = perturb;
+  table.sensitivity_trials = sensitivity;
+  table.seed = seed;
+  table.threads = threads;
+  table.physics_fallback = physics_fallback;
+  table.perturbation.position_sigma *= noise_scale;
+  table.perturbation.orientation_sigma *= noise_scale;
+  table.perturbation.finger_sigma *= noise_scale;
+  table.perturbation.physics.enabled = physics;
+  if (!leave_one_out) table.orientations = OrientationsOf(orientations);
+  if (leave_one_out && library.entries.size() < 3) {
+    throw InputError("leave_one_out needs a library with at least 3 orientations ('" +
+                     library.source + "' has " + std::to_string(library.entries.size()) + ")");
+  }
+  std::string text;
+  {
+    py::gil_scoped_release release;
+    const SimulationModel model(StudyRobot(robot), std::move(scene));
+    const std::vector<StudyRow> rows = leave_one_out ? LeaveOneOutTable(model, library, table)
+                                                     : SynthesisTable(model, library, table);
+    text = StudyRowsJson(rows);
+  }
+  return JsonTextToPython(text);
+}
+
+}  // namespace
+
+void BindStudy(py::module_& m) {
+  m.def("run", &Run, py::arg("demos") = py::none(), py::arg("quick") = false,
+        py::arg("orientations") = py::none(), py::arg("seed") = StudyOptions{}.seed,
+        py::arg("threads") = 0, py::arg("perturb") = py::none(),
+        py::arg("select_perturb") = py::none(), py::arg("sensitivity") = py::none(),
+        py::arg("physics") = true, py::arg("physics_fallback") = true,
+        py::arg("all_replays") = false, py::arg("robot") = py::none(),
+        py::arg("scene") = py::none(), R"doc(
+The end-to-end study of `graspsynth run`: Table I, the representative selection, and a grasp
+for every orientation by each method, validated in physics. The same options give the same
+analysis, library and synthesis as the command line, whatever `threads` is.
+Returns a dict: analysis (analysis.json), library (a GraspLibrary), synthesis
+(synthesis.json: summary and rows), timing (timing.json).)doc");
+
+  m.def("generalize", &Generalize, py::arg("library") = py::none(),
+        py::arg("orientations") = std::string("20:100:1"),
+        py::arg("methods") =
+            std::vector<std::string>{"nearest", "interp", "interp+refine", "line+refine"},
+        py::arg("leave_one_out") = false, py::arg("perturb") = 20, py::arg("sensitivity") = 0,
+        py::arg("noise_scale") = 1.0, py::arg("seed") = 1, py::arg("threads") = 0,
+        py::arg("physics") = true, py::arg("physics_fallback") = true,
+        py::arg("robot") = py::none(), py::arg("scene") = py::none(), R"doc(
+Grasps for many orientations from a library by several methods, each validated in physics
+(`graspsynth generalize`); with leave_one_out, each inner demonstrated orientation from the
+library without it. orientations: a list of degrees or the command line's text
+("20:100:1,33"). Returns a dict: summary (per method) and rows (per orientation and method).)doc");
+}
+
+}  // namespace graspsynth::python
