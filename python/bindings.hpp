@@ -12,17 +12,23 @@
 #include <pybind11/pybind11.h>
 
 #include <Eigen/Geometry>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "learning_data/grasp_library.hpp"
 #include "motion/grasping_motion.hpp"
 
 namespace graspsynth::python {
 
 namespace py = pybind11;
+
+/// Throws InputError unless `threads` is in 0..1024 (0: one per hardware thread), as the
+/// command line's --threads.
+void CheckThreads(int threads);
 
 /// A float64 array argument, converted to C order when it is not already.
 using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
@@ -71,6 +77,12 @@ py::object JsonTextToPython(const std::string& text);
 /// A grasping motion as a dict: theta_deg, object_position, source, and the waypoints' arrays
 /// t (N,) s, position (N, 3) m, quaternion (N, 4) (w, x, y, z), fingers (N, 16) rad.
 py::dict MotionArrays(const GraspingMotion& motion);
+
+/// The grasp library a function was given: None (the object's shipped library), a path (str or
+/// os.PathLike) or a GraspLibrary. Throws InputError for a file that cannot be read, and
+/// TypeError (pybind11's type_error) for anything else.
+std::shared_ptr<const GraspLibrary> LibraryArgument(const py::object& library,
+                                                    const std::string& object_name);
 
 /// The registration of each part of the module (one source file each).
 void BindKinematics(py::module_& m);

@@ -2,6 +2,7 @@
 // wrist-line fit.
 
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 #include <filesystem>
 #include <memory>
@@ -89,6 +90,9 @@ py::dict FitLine(const DoubleArray& points, const std::string& loss, double loss
   std::vector<Eigen::Vector2d> p;
   for (py::ssize_t i = 0; i < batch.count; ++i) {
     p.emplace_back(batch.data[2 * i], batch.data[2 * i + 1]);
+    if (!p.back().allFinite()) {
+      throw InputError("points[" + std::to_string(i) + "] is not finite");
+    }
   }
   WristLineOptions options;
   if (loss == "none") {
@@ -122,12 +126,12 @@ py::dict FitLine(const DoubleArray& points, const std::string& loss, double loss
   return d;
 }
 
-py::object Analyze(const std::optional<std::string>& directory,
+py::object Analyze(const std::optional<std::filesystem::path>& directory,
                    const std::shared_ptr<SceneModel>& scene_arg) {
   const std::shared_ptr<SceneModel> scene =
       scene_arg ? scene_arg : std::make_shared<SceneModel>(LoadSceneModel(DefaultSceneModelPath()));
   const std::filesystem::path folder =
-      directory ? std::filesystem::path(*directory) : DefaultDemoDirectory(scene->object.name);
+      directory ? *directory : DefaultDemoDirectory(scene->object.name);
   AnalysisOptions options;
   options.segmentation.region = scene->grasp_region;
   PaperComparisonOptions comparison;
@@ -222,17 +226,16 @@ object_position (N, 3) m.)doc")
 
   m.def(
       "read_demo_log",
-      [](const std::string& path) {
-        return std::make_shared<DemoLog>(ReadDemoLog(std::filesystem::path(path)));
+      [](const std::filesystem::path& path) {
+        return std::make_shared<DemoLog>(ReadDemoLog(path));
       },
       py::arg("path"),
       "Reads a demonstration log. Raises InputError naming the file, line and column at fault.");
 
   m.def(
       "read_demo_directory",
-      [](const std::optional<std::string>& directory) {
-        DemoDirectory d = ReadDemoDirectory(directory ? std::filesystem::path(*directory)
-                                                      : DefaultDemoDirectory());
+      [](const std::optional<std::filesystem::path>& directory) {
+        DemoDirectory d = ReadDemoDirectory(directory ? *directory : DefaultDemoDirectory());
         py::list logs;
         for (DemoLog& log : d.logs) logs.append(std::make_shared<DemoLog>(std::move(log)));
         py::list rejected;

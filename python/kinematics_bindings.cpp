@@ -2,6 +2,7 @@
 // arm, and its feasible arm angles.
 
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 #include <cmath>
 #include <filesystem>
@@ -121,6 +122,9 @@ py::tuple Ik(const RobotModel& robot, const DoubleArray& X, const py::object& ps
   Batch near;
   if (q_near) {
     near = ReadBatch(*q_near, {kArmDof}, "q_near");
+    for (py::ssize_t k = 0; k < kArmDof * near.count; ++k) {
+      if (!std::isfinite(near.data[k])) throw InputError("q_near has a value that is not finite");
+    }
     if (!near.single && near.count != batch.count) {
       throw InputError("q_near has " + std::to_string(near.count) + " rows for " +
                        std::to_string(batch.count) + " targets");
@@ -200,9 +204,10 @@ py::object ArmAngle(const RobotModel& robot, const DoubleArray& q) {
   const Batch batch = ReadBatch(q, {kArmDof}, "q");
   if (batch.single) return py::float_(ArmAngleOf(robot.arm, Eigen::Map<const Vector7d>(q.data())));
   py::array_t<double> out = NewArray({batch.count});
+  double* psi = out.mutable_data();
+  py::gil_scoped_release release;
   for (py::ssize_t i = 0; i < batch.count; ++i) {
-    out.mutable_data()[i] =
-        ArmAngleOf(robot.arm, Eigen::Map<const Vector7d>(batch.data + kArmDof * i));
+    psi[i] = ArmAngleOf(robot.arm, Eigen::Map<const Vector7d>(batch.data + kArmDof * i));
   }
   return out;
 }
@@ -210,21 +215,23 @@ py::object ArmAngle(const RobotModel& robot, const DoubleArray& q) {
 py::array_t<int8_t> BranchOfArray(const DoubleArray& q) {
   const Batch batch = ReadBatch(q, {kArmDof}, "q");
   py::array_t<int8_t> out(BatchShape(batch, {3}));
+  int8_t* signs = out.mutable_data();
+  py::gil_scoped_release release;
   for (py::ssize_t i = 0; i < batch.count; ++i) {
     const ArmBranch b = BranchOf(Eigen::Map<const Vector7d>(batch.data + kArmDof * i));
-    out.mutable_data()[3 * i] = static_cast<int8_t>(b.gc2);
-    out.mutable_data()[3 * i + 1] = static_cast<int8_t>(b.gc4);
-    out.mutable_data()[3 * i + 2] = static_cast<int8_t>(b.gc6);
+    signs[3 * i] = static_cast<int8_t>(b.gc2);
+    signs[3 * i + 1] = static_cast<int8_t>(b.gc4);
+    signs[3 * i + 2] = static_cast<int8_t>(b.gc6);
   }
   return out;
 }
 
-std::shared_ptr<RobotModel> LoadRobot(const std::optional<std::string>& path) {
+std::shared_ptr<RobotModel> LoadRobot(const std::optional<std::filesystem::path>& path) {
   return std::make_shared<RobotModel>(
       LoadRobotModel(path ? std::filesystem::path(*path) : DefaultRobotDescriptionPath()));
 }
 
-std::shared_ptr<SceneModel> LoadScene(const std::optional<std::string>& path,
+std::shared_ptr<SceneModel> LoadScene(const std::optional<std::filesystem::path>& path,
                                       const std::optional<std::string>& object) {
   return std::make_shared<SceneModel>(LoadSceneModel(
       path ? std::filesystem::path(*path) : DefaultSceneModelPath(), object.value_or("")));
@@ -308,9 +315,14 @@ them for a batch.)doc")
         "The branch signs (GC2, GC4, GC6) of arm configurations q: shape (3,) or (N, 3), int8 "
         "(a zero joint counts as +1)");
 
-  m.attr("IK_STATUS_NAMES") = py::make_tuple(
-      ToString(IkStatus::kOk), ToString(IkStatus::kUnreachable), ToString(IkStatus::kSingular),
-      ToString(IkStatus::kElbowLimit), ToString(IkStatus::kOutOfLimits));
+  // the codes of IkStatus, by name: graspsynth.IkStatus (python/graspsynth/__init__.py)
+  // checks itself against them at import.
+  py::dict statuses;
+  for (IkStatus status : {IkStatus::kOk, IkStatus::kUnreachable, IkStatus::kSingular,
+                          IkStatus::kElbowLimit, IkStatus::kOutOfLimits}) {
+    statuses[py::str(std::string(ToString(status)))] = static_cast<int>(status);
+  }
+  m.attr("IK_STATUS_CODES") = statuses;
 
   py::class_<SceneModel, std::shared_ptr<SceneModel>>(m, "Scene", R"doc(
 The scene: the table, the object and where it stands (models/scene.json by default).

@@ -2,6 +2,7 @@
 // grasp through the physics gate.
 
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 #include <filesystem>
 #include <memory>
@@ -51,7 +52,7 @@ RobotModel RobotOrDefault(const std::shared_ptr<RobotModel>& robot) {
   return robot ? *robot : LoadRobotModel(DefaultRobotDescriptionPath());
 }
 
-std::shared_ptr<GraspLibrary> LoadLibrary(const std::optional<std::string>& path,
+std::shared_ptr<GraspLibrary> LoadLibrary(const std::optional<std::filesystem::path>& path,
                                           const std::string& object) {
   return std::make_shared<GraspLibrary>(
       ReadGraspLibrary(path ? std::filesystem::path(*path) : DefaultGraspLibraryPath(object)));
@@ -62,14 +63,7 @@ std::shared_ptr<Synthesizer> MakeSynthesizer(const py::object& library,
                                              const std::shared_ptr<SceneModel>& scene_arg) {
   SceneModel scene = SceneOrDefault(scene_arg);
   scene.object.Handle(kSynthesisNeedsHandle);
-  std::shared_ptr<GraspLibrary> lib;
-  if (library.is_none()) {
-    lib = LoadLibrary(std::nullopt, scene.object.name);
-  } else if (py::isinstance<py::str>(library) || py::hasattr(library, "__fspath__")) {
-    lib = LoadLibrary(py::str(library).cast<std::string>(), scene.object.name);
-  } else {
-    lib = library.cast<std::shared_ptr<GraspLibrary>>();
-  }
+  const std::shared_ptr<const GraspLibrary> lib = LibraryArgument(library, scene.object.name);
   if (lib->entries.empty()) {
     throw InputError("the grasp library '" + lib->source + "' has no entry to synthesize from");
   }
@@ -95,6 +89,7 @@ std::shared_ptr<Grasp> Synthesize(const Synthesizer& s, double theta_deg, const 
     if (!b.single) throw InputError("start must have shape (7,)");
     so.start = Eigen::Map<const Vector7d>(b.data);
   }
+  CheckThreads(threads);
   vo.physics_fallback = physics_fallback;
   vo.gate.perturbations = perturb;
   vo.gate.seed = seed;
@@ -149,8 +144,8 @@ py::dict ScoreDict(const DemoScore& s) {
   return d;
 }
 
-py::tuple Select(const std::optional<std::string>& directory, int perturbations, uint64_t seed,
-                 int threads, bool early_stop, bool physics,
+py::tuple Select(const std::optional<std::filesystem::path>& directory, int perturbations,
+                 uint64_t seed, int threads, bool early_stop, bool physics,
                  const std::shared_ptr<RobotModel>& robot,
                  const std::shared_ptr<SceneModel>& scene_arg) {
   const SceneModel scene = SceneOrDefault(scene_arg);
@@ -163,6 +158,7 @@ py::tuple Select(const std::optional<std::string>& directory, int perturbations,
   options.early_stop = early_stop;
   options.segmentation.region = scene.grasp_region;
   options.perturbation.physics.enabled = physics;
+  CheckThreads(threads);
   std::string why;
   if (!options.IsValid(&why)) throw InputError("select: " + why);
   SelectionResult result;
@@ -188,6 +184,19 @@ py::tuple Select(const std::optional<std::string>& directory, int perturbations,
 }
 
 }  // namespace
+
+std::shared_ptr<const GraspLibrary> LibraryArgument(const py::object& library,
+                                                    const std::string& object_name) {
+  if (library.is_none()) return LoadLibrary(std::nullopt, object_name);
+  if (py::isinstance<GraspLibrary>(library)) return library.cast<std::shared_ptr<GraspLibrary>>();
+  if (py::isinstance<py::str>(library) || py::hasattr(library, "__fspath__")) {
+    const py::object path = py::module_::import("os").attr("fspath")(library);
+    if (py::isinstance<py::str>(path))
+      return LoadLibrary(std::filesystem::path(path.cast<std::string>()), object_name);
+  }
+  throw py::type_error("library must be a GraspLibrary, a path or None, not " +
+                       py::repr(library.get_type()).cast<std::string>());
+}
 
 void BindLibrary(py::module_& m) {
   py::class_<GraspLibrary, std::shared_ptr<GraspLibrary>>(m, "GraspLibrary", R"doc(
@@ -243,7 +252,9 @@ default). Raises InputError naming the file and the field at fault.)doc")
       .def("to_json", &GraspLibraryToJson, "The graspsynth-library/1 text")
       .def(
           "save",
-          [](const GraspLibrary& l, const std::string& path) { WriteGraspLibrary(l, path); },
+          [](const GraspLibrary& l, const std::filesystem::path& path) {
+            WriteGraspLibrary(l, path);
+          },
           py::arg("path"), "Writes the library file atomically");
 
   m.def("select_representatives", &Select, py::arg("directory") = py::none(),
@@ -331,7 +342,7 @@ file as `graspsynth synthesize --out` does.)doc")
           py::arg("force") = false, "The graspsynth-grasp/1 text")
       .def(
           "save",
-          [](const Grasp& g, const std::string& path, bool force) {
+          [](const Grasp& g, const std::filesystem::path& path, bool force) {
             const SynthesisResult& s = Synthesized(g);
             if (!g.validated.gate.passed && !force) {
               throw InputError("the grasp failed the physics gate: " + g.validated.gate.reason +

@@ -10,7 +10,11 @@ PYBIND11_MODULE(_core, m) {
   // bad input (a file, an argument) raises graspsynth.InputError, a ValueError, with the C++
   // message: the file, line, field and value at fault.
   m.attr("__version__") = GRASPSYNTH_VERSION;
-  py::register_exception<graspsynth::InputError>(m, "InputError", PyExc_ValueError);
+  auto& input_error =
+      py::register_exception<graspsynth::InputError>(m, "InputError", PyExc_ValueError);
+  input_error.attr("__doc__") =
+      "Bad input (a file, an argument): the message names the file, line, field and value at "
+      "fault. A ValueError.";
   graspsynth::python::BindKinematics(m);
   graspsynth::python::BindDemos(m);
   graspsynth::python::BindSimulation(m);

@@ -2,6 +2,7 @@
 // robustness evaluation under perturbation.
 
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 #include <filesystem>
 #include <memory>
@@ -35,6 +36,13 @@ py::array FieldView(const std::vector<Record>& records, const double* field,
                     py::handle owner) {
   return ReadOnlyView(field, static_cast<py::ssize_t>(records.size()),
                       static_cast<py::ssize_t>(sizeof(Record)), shape, strides, owner);
+}
+
+// The samples of the Trajectory `self`; every way to make one gives it at least one.
+const std::vector<TrajectorySample>& Samples(const py::object& self) {
+  const auto& samples = self.cast<const JointTrajectory&>().samples;
+  if (samples.empty()) throw InputError("the trajectory has no sample");
+  return samples;
 }
 
 // The strides of an Eigen fixed matrix of `rows` (column-major) seen as a row-major array.
@@ -73,6 +81,7 @@ std::shared_ptr<JointTrajectory> MakeTrajectory(const DoubleArray& t, const Doub
   if (hand.ndim() != 2 || hand.shape(0) != n || hand.shape(1) != kHandDof) {
     throw InputError("hand must have shape (N, 16), N = " + std::to_string(n));
   }
+  if (!std::isfinite(theta_deg)) throw InputError("theta_deg must be a finite number of degrees");
   auto trajectory = std::make_shared<JointTrajectory>();
   trajectory->theta_deg = theta_deg;
   for (py::ssize_t i = 0; i < n; ++i) {
@@ -162,6 +171,7 @@ std::shared_ptr<SimulationModel> MakeSimulation(const std::shared_ptr<RobotModel
 
 RobustnessOptions RobustnessOptionsOf(int trials, uint64_t seed, int threads, bool physics,
                                       double noise_scale, const TrialOptions& trial) {
+  CheckThreads(threads);
   RobustnessOptions ro;
   ro.trials = trials;
   ro.seed = seed;
@@ -190,7 +200,7 @@ and hand are read-only views into the trajectory (no copy).)doc")
            py::arg("theta_deg") = 0.0, py::arg("robot") = py::none())
       .def_static(
           "load",
-          [](const std::string& path, const std::shared_ptr<RobotModel>& robot_arg) {
+          [](const std::filesystem::path& path, const std::shared_ptr<RobotModel>& robot_arg) {
             const RobotModel robot =
                 robot_arg ? *robot_arg : LoadRobotModel(DefaultRobotDescriptionPath());
             return std::make_shared<JointTrajectory>(
@@ -203,18 +213,18 @@ and hand are read-only views into the trajectory (no copy).)doc")
       .def("__len__", [](const JointTrajectory& tr) { return tr.samples.size(); })
       .def_property_readonly("t",
                              [](py::object self) {
-                               const auto& s = self.cast<const JointTrajectory&>().samples;
+                               const auto& s = Samples(self);
                                return FieldView(s, &s.front().t, {}, {}, self);
                              })
       .def_property_readonly("arm",
                              [](py::object self) {
-                               const auto& s = self.cast<const JointTrajectory&>().samples;
+                               const auto& s = Samples(self);
                                return FieldView(s, s.front().arm.data(), {kArmDof},
                                                 {sizeof(double)}, self);
                              })
       .def_property_readonly("hand",
                              [](py::object self) {
-                               const auto& s = self.cast<const JointTrajectory&>().samples;
+                               const auto& s = Samples(self);
                                return FieldView(s, s.front().hand.data(), {kHandDof},
                                                 {sizeof(double)}, self);
                              })
@@ -240,7 +250,7 @@ and hand are read-only views into the trajectory (no copy).)doc")
       .def("to_json", &JointTrajectoryToJson, "The graspsynth-trajectory/1 text")
       .def(
           "save",
-          [](const JointTrajectory& tr, const std::string& path) {
+          [](const JointTrajectory& tr, const std::filesystem::path& path) {
             WriteJointTrajectory(path, tr);
           },
           py::arg("path"), "Writes the trajectory file atomically");

@@ -2,6 +2,7 @@
 // (`graspsynth generalize`), returned as data.
 
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 #include <filesystem>
 #include <memory>
@@ -52,7 +53,7 @@ RobotModel StudyRobot(const std::shared_ptr<RobotModel>& robot) {
   return robot ? *robot : LoadRobotModel(DefaultRobotDescriptionPath());
 }
 
-py::dict Run(const std::optional<std::string>& demos, bool quick,
+py::dict Run(const std::optional<std::filesystem::path>& demos, bool quick,
              const std::optional<Orientations>& orientations, uint64_t seed, int threads,
              std::optional<int> perturb, std::optional<int> select_perturb,
              std::optional<int> sensitivity, bool physics, bool physics_fallback, bool all_replays,
@@ -73,6 +74,7 @@ py::dict Run(const std::optional<std::string>& demos, bool quick,
   if (perturb) options.gate_perturbations = *perturb;
   if (select_perturb) options.selection_perturbations = *select_perturb;
   if (orientations) options.orientations = OrientationsOf(*orientations);
+  CheckThreads(threads);
   std::string why;
   if (!options.IsValid(&why)) throw InputError("run: " + why);
   if (!std::filesystem::is_directory(options.demos)) {
@@ -116,14 +118,9 @@ py::object Generalize(const py::object& library_arg, const Orientations& orienta
                       bool physics_fallback, const std::shared_ptr<RobotModel>& robot,
                       const std::shared_ptr<SceneModel>& scene_arg) {
   SceneModel scene = StudyScene(scene_arg);
-  GraspLibrary library;
-  if (library_arg.is_none()) {
-    library = ReadGraspLibrary(DefaultGraspLibraryPath(scene.object.name));
-  } else if (py::isinstance<py::str>(library_arg) || py::hasattr(library_arg, "__fspath__")) {
-    library = ReadGraspLibrary(py::str(library_arg).cast<std::string>());
-  } else {
-    library = library_arg.cast<const GraspLibrary&>();
-  }
+  const std::shared_ptr<const GraspLibrary> shared =
+      LibraryArgument(library_arg, scene.object.name);
+  const GraspLibrary& library = *shared;
   SynthesisTableOptions table;
   table.methods = MethodsOf(methods);
   if (perturb < 0) throw InputError("perturb must be >= 0");
@@ -138,6 +135,9 @@ py::object Generalize(const py::object& library_arg, const Orientations& orienta
   table.perturbation.orientation_sigma *= noise_scale;
   table.perturbation.finger_sigma *= noise_scale;
   table.perturbation.physics.enabled = physics;
+  CheckThreads(threads);
+  std::string why;
+  if (!table.perturbation.IsValid(&why)) throw InputError("noise_scale: " + why);
   if (!leave_one_out) table.orientations = OrientationsOf(orientations);
   if (leave_one_out && library.entries.size() < 3) {
     throw InputError("leave_one_out needs a library with at least 3 orientations ('" +

@@ -31,7 +31,7 @@ from typing import Any, Iterable, Optional, Sequence, Union
 import numpy as np
 
 from ._core import (
-    IK_STATUS_NAMES,
+    IK_STATUS_CODES,
     __version__,
     DemoLog,
     Grasp,
@@ -76,11 +76,14 @@ class IkStatus(enum.IntEnum):
 
     @property
     def label(self) -> str:
-        """The command line's name of the status, e.g. ``"unreachable"``."""
-        return IK_STATUS_NAMES[self.value]
+        """The C++ library's name of the status, e.g. ``"out of limits"``."""
+        return _IK_STATUS_LABELS[self.value]
 
 
-assert [s.label for s in IkStatus] == list(IK_STATUS_NAMES), "IkStatus out of date"
+_IK_STATUS_LABELS = {code: name for name, code in IK_STATUS_CODES.items()}
+if {s.name.lower(): s.value for s in IkStatus} != {
+        name.replace(" ", "_"): code for name, code in IK_STATUS_CODES.items()}:
+    raise ImportError(f"graspsynth.IkStatus does not match the extension's {IK_STATUS_CODES}")
 
 _defaults_lock = threading.RLock()
 

@@ -15,7 +15,7 @@ Int8Array = npt.NDArray[np.int8]
 PathLike = Union[str, os.PathLike[str]]
 
 __version__: str
-IK_STATUS_NAMES: tuple[str, str, str, str, str]
+IK_STATUS_CODES: dict[str, int]
 
 class InputError(ValueError):
     """Bad input: the message names the file, line, field and value at fault."""
@@ -24,7 +24,7 @@ class InputError(ValueError):
 
 class Robot:
     """The PA-10 arm and the Gifu Hand III, read from a URDF (the shipped one by default)."""
-    def __init__(self, path: Optional[str] = None) -> None: ...
+    def __init__(self, path: Optional[PathLike] = None) -> None: ...
     @property
     def source(self) -> str: ...
     @property
@@ -60,7 +60,7 @@ def branch_of(q: ArrayLike) -> Int8Array:
 
 class Scene:
     """The table, the object and where it stands (models/scene.json by default)."""
-    def __init__(self, path: Optional[str] = None, object: Optional[str] = None) -> None: ...
+    def __init__(self, path: Optional[PathLike] = None, object: Optional[str] = None) -> None: ...
     @property
     def source(self) -> str: ...
     @property
@@ -110,11 +110,11 @@ class DemoLog:
     @property
     def object_position(self) -> FloatArray: ...
 
-def read_demo_log(path: str) -> DemoLog: ...
-def read_demo_directory(directory: Optional[str] = None) -> tuple[list[DemoLog], list[dict[str, str]]]:
+def read_demo_log(path: PathLike) -> DemoLog: ...
+def read_demo_directory(directory: Optional[PathLike] = None) -> tuple[list[DemoLog], list[dict[str, str]]]:
     """-> (logs, rejected [{"file", "reason"}])"""
 def segment(log: DemoLog, scene: Optional[Scene] = None, success_lift: float = 0.05) -> dict[str, Any]: ...
-def analyze_demonstrations(directory: Optional[str] = None, scene: Optional[Scene] = None) -> dict[str, Any]:
+def analyze_demonstrations(directory: Optional[PathLike] = None, scene: Optional[Scene] = None) -> dict[str, Any]:
     """-> the graspsynth-analysis/1 report: Table I, the wrist line, the radial model"""
 def fit_wrist_line(points: ArrayLike, loss: str = "none", loss_scale: float = 0.01) -> dict[str, Any]: ...
 
@@ -125,7 +125,7 @@ class Trajectory:
     def __init__(self, t: ArrayLike, arm: ArrayLike, hand: ArrayLike, theta_deg: float = 0.0,
                  robot: Optional[Robot] = None) -> None: ...
     @staticmethod
-    def load(path: str, robot: Optional[Robot] = None) -> Trajectory: ...
+    def load(path: PathLike, robot: Optional[Robot] = None) -> Trajectory: ...
     @property
     def theta_deg(self) -> float: ...
     @property
@@ -140,7 +140,7 @@ class Trajectory:
     @property
     def waypoints(self) -> dict[str, FloatArray]: ...
     def to_json(self) -> str: ...
-    def save(self, path: str) -> None: ...
+    def save(self, path: PathLike) -> None: ...
 
 class TrialResult:
     @property
@@ -169,7 +169,7 @@ class Simulation:
 # --- the grasp library and the synthesis ---------------------------------------------------
 
 class GraspLibrary:
-    def __init__(self, path: Optional[str] = None, object: str = "pan") -> None: ...
+    def __init__(self, path: Optional[PathLike] = None, object: str = "pan") -> None: ...
     @property
     def source(self) -> str: ...
     @property
@@ -188,9 +188,9 @@ class GraspLibrary:
     @property
     def scores(self) -> list[dict[str, Any]]: ...
     def to_json(self) -> str: ...
-    def save(self, path: str) -> None: ...
+    def save(self, path: PathLike) -> None: ...
 
-def select_representatives(directory: Optional[str] = None, perturbations: int = 20,
+def select_representatives(directory: Optional[PathLike] = None, perturbations: int = 20,
                            seed: int = 1, threads: int = 0, early_stop: bool = True,
                            physics: bool = True, robot: Optional[Robot] = None,
                            scene: Optional[Scene] = None) -> tuple[GraspLibrary, dict[str, Any]]: ...
@@ -222,7 +222,7 @@ class Grasp:
     def report(self) -> dict[str, Any]:
         """the graspsynth-grasp/1 document"""
     def to_json(self, force: bool = False) -> str: ...
-    def save(self, path: str, force: bool = False) -> None: ...
+    def save(self, path: PathLike, force: bool = False) -> None: ...
 
 class Synthesizer:
     def __init__(self, library: Union[GraspLibrary, PathLike, None] = None,
@@ -238,13 +238,13 @@ class Synthesizer:
 
 # --- studies -------------------------------------------------------------------------------
 
-def run(demos: Optional[str] = None, quick: bool = False,
+def run(demos: Optional[PathLike] = None, quick: bool = False,
         orientations: Union[str, Sequence[float], None] = None, seed: int = 1, threads: int = 0,
         perturb: Optional[int] = None, select_perturb: Optional[int] = None,
         sensitivity: Optional[int] = None, physics: bool = True, physics_fallback: bool = True,
         all_replays: bool = False, robot: Optional[Robot] = None,
         scene: Optional[Scene] = None) -> dict[str, Any]: ...
-def generalize(library: Union[GraspLibrary, str, None] = None,
+def generalize(library: Union[GraspLibrary, PathLike, None] = None,
                orientations: Union[str, Sequence[float]] = "20:100:1",
                methods: Sequence[str] = ..., leave_one_out: bool = False, perturb: int = 20,
                sensitivity: int = 0, noise_scale: float = 1.0, seed: int = 1, threads: int = 0,

@@ -51,7 +51,7 @@ def test_segmentation_finds_the_grasping_motion(gs, demos):
     seg = gs.segment(log)
     assert seg["status"] == "ok" and seg["success"]
     motion = seg["motion"]
-    assert seg["pregrasp"] < seg["grasp"] < seg["end"] == len(log) - 1
+    assert 0 < seg["pregrasp"] < seg["grasp"] < seg["end"] == len(log) - 1
     assert len(motion["t"]) == seg["grasp"] - seg["pregrasp"] + 1
     assert motion["t"][0] == 0.0
     np.testing.assert_array_equal(motion["position"], log.wrist_position[seg["pregrasp"]:seg["grasp"] + 1])
@@ -80,3 +80,12 @@ def test_the_wrist_line_fit_finds_a_line_through_collinear_points(gs):
     assert fit["line"]["angle_deg"] % 180 == pytest.approx(np.degrees(np.arctan(0.5)), abs=1e-6)
     with pytest.raises(gs.InputError, match="loss"):
         gs.fit_wrist_line(points, loss="square")
+    with pytest.raises(gs.InputError, match=r"points\[1\] is not finite"):
+        gs.fit_wrist_line([[0.0, 0.0], [np.nan, 1.0], [1.0, 1.0]])
+
+
+def test_paths_may_be_path_objects(gs, demos):
+    log = gs.read_demo_log(demos / "theta060_trial01.csv")
+    assert log.theta_deg == 60.0
+    logs, rejected = gs.read_demo_directory(demos)
+    assert len(logs) >= 81 and rejected == []

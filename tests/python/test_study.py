@@ -50,6 +50,8 @@ def test_tables_become_data_frames(gs):
     ({"methods": "interp,teleport"}, "teleport"),
     ({"methods": "interp,interp"}, "twice"),
     ({"perturb": -1}, "perturb"),
+    ({"noise_scale": float("inf")}, "noise_scale"),
+    ({"threads": -1}, "threads"),
 ])
 def test_bad_generalize_options_raise(gs, kwargs, message):
     with pytest.raises(gs.InputError, match=message):

@@ -102,6 +102,24 @@ def test_an_orientation_outside_the_library_raises(gs):
         gs.synthesize(None, 130.0, perturb=0)
 
 
+def test_bad_arguments_raise_before_any_work(gs, repo):
+    with pytest.raises(gs.InputError, match="threads must be in 0..1024"):
+        gs.synthesize(None, THETA, threads=-1)
+    with pytest.raises(gs.InputError, match="threads"):
+        gs.select_representatives(threads=5000)
+    with pytest.raises(TypeError, match="library must be"):
+        gs.synthesize(42, THETA)
+    library = gs.GraspLibrary(repo / "learning_data" / "library.json")  # a Path is a path
+    assert len(gs.Synthesizer(library).theta_range) == 2
+    t, arm = np.array([0.0, 1.0]), np.zeros((2, 7))
+    hand = np.tile(np.clip(0.0, gs.default_robot().hand_lower, gs.default_robot().hand_upper), (2, 1))
+    arm[:, 3] = 1.0
+    with pytest.raises(gs.InputError, match="theta_deg"):
+        gs.Trajectory(t, arm, hand, theta_deg=float("nan"))
+    with pytest.raises(gs.InputError, match="increase"):
+        gs.Trajectory(np.zeros(2), arm, hand)
+
+
 def test_a_trial_gives_the_command_lines_outcome(gs, cli, cli_grasp, tmp_path):
     out = tmp_path / "sim.json"
     cli("simulate", cli_grasp, "--out", out, expect=None)
@@ -132,7 +150,7 @@ def test_robustness_equals_the_command_lines_replays(gs, cli, cli_grasp, tmp_pat
     out = tmp_path / "sim.json"
     cli("simulate", cli_grasp, "--perturb", "4", "--seed", "3", "--out", out, expect=None)
     expected = load_json(out)["robustness"]
-    result = gs.robustness(str(cli_grasp), trials=4, seed=3, threads=2)
+    result = gs.robustness(cli_grasp, trials=4, seed=3, threads=2)
     assert result["successes"] == expected["successes"]
     assert [r["outcome"] for r in result["replays"]] == [
         t["outcome"] for t in load_json(out)["trials"]]
