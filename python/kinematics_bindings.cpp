@@ -122,9 +122,6 @@ py::tuple Ik(const RobotModel& robot, const DoubleArray& X, const py::object& ps
   Batch near;
   if (q_near) {
     near = ReadBatch(*q_near, {kArmDof}, "q_near");
-    for (py::ssize_t k = 0; k < kArmDof * near.count; ++k) {
-      if (!std::isfinite(near.data[k])) throw InputError("q_near has a value that is not finite");
-    }
     if (!near.single && near.count != batch.count) {
       throw InputError("q_near has " + std::to_string(near.count) + " rows for " +
                        std::to_string(batch.count) + " targets");
@@ -149,6 +146,9 @@ py::tuple Ik(const RobotModel& robot, const DoubleArray& X, const py::object& ps
       const Vector7d* near_ptr = nullptr;
       if (q_near) {
         near_q = Eigen::Map<const Vector7d>(near.data + kArmDof * (near.single ? 0 : i));
+        if (!near_q.allFinite()) {
+          throw InputError("q_near[" + std::to_string(i) + "] has a value that is not finite");
+        }
         near_ptr = &near_q;
       }
       for (py::ssize_t k = 0; k < per_target; ++k) {

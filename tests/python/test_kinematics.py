@@ -132,6 +132,8 @@ def test_ik_reports_an_unreachable_target_as_a_status(gs):
     (lambda gs: gs.ik(np.eye(4), 4.0), "outside"),
     (lambda gs: gs.ik(np.stack([np.eye(4)] * 2), [0.0, 0.1, 0.2]), "3 values for 2 targets"),
     (lambda gs: gs.ik(np.eye(4), 0.0, branch=(1, 0, 1)), "1 or -1"),
+    (lambda gs: gs.ik(np.eye(4), 0.0, branch=(1, 1, 1), q_near=np.full(7, np.nan)),
+     r"q_near\[0\] has a value that is not finite"),
 ])
 def test_bad_kinematics_input_raises_input_error(gs, call, message):
     with pytest.raises(gs.InputError, match=message):
