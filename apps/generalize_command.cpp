@@ -93,9 +93,7 @@ int RunGeneralize(const GeneralizeOptions& o) {
   table.seed = o.seed;
   table.threads = o.threads;
   table.physics_fallback = !o.no_physics_fallback;
-  table.perturbation.position_sigma *= o.noise_scale;
-  table.perturbation.orientation_sigma *= o.noise_scale;
-  table.perturbation.finger_sigma *= o.noise_scale;
+  table.perturbation.ScaleMotionNoise(o.noise_scale);
   CheckPhysicsFlags(o.physics);
   table.perturbation.physics = o.physics;
   std::string why;

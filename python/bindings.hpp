@@ -19,6 +19,8 @@
 #include <string_view>
 #include <vector>
 
+#include "kinematics/robot_description.hpp"
+#include "kinematics/scene_model.hpp"
 #include "learning_data/grasp_library.hpp"
 #include "motion/grasping_motion.hpp"
 
@@ -77,6 +79,16 @@ py::object JsonTextToPython(const std::string& text);
 /// A grasping motion as a dict: theta_deg, object_position, source, and the waypoints' arrays
 /// t (N,) s, position (N, 3) m, quaternion (N, 4) (w, x, y, z), fingers (N, 16) rad.
 py::dict MotionArrays(const GraspingMotion& motion);
+
+/// The robot a function was given, or the shipped one (read once, then shared: the URDF is not
+/// read again at every call).
+std::shared_ptr<const RobotModel> RobotOrDefault(const std::shared_ptr<RobotModel>& robot);
+/// The scene a function was given, or the shipped one (read once, then shared).
+std::shared_ptr<const SceneModel> SceneOrDefault(const std::shared_ptr<SceneModel>& scene);
+
+/// SceneOrDefault(scene), after checking that its object has the handle the synthesis aims at
+/// (InputError naming the object otherwise).
+std::shared_ptr<const SceneModel> SynthesisScene(const std::shared_ptr<SceneModel>& scene);
 
 /// The grasp library a function was given: None (the object's shipped library), a path (str or
 /// os.PathLike) or a GraspLibrary. Throws InputError for a file that cannot be read, and

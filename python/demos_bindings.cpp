@@ -43,8 +43,7 @@ void WriteQuaternion(const Eigen::Quaterniond& q, double* out) {
 
 SegmentationOptions SegmentationOf(const std::shared_ptr<SceneModel>& scene, double success_lift) {
   SegmentationOptions options;
-  options.region =
-      scene ? scene->grasp_region : LoadSceneModel(DefaultSceneModelPath()).grasp_region;
+  options.region = SceneOrDefault(scene)->grasp_region;
   options.success_lift = success_lift;
   std::string why;
   if (!options.IsValid(&why)) throw InputError("segmentation: " + why);
@@ -128,8 +127,7 @@ py::dict FitLine(const DoubleArray& points, const std::string& loss, double loss
 
 py::object Analyze(const std::optional<std::filesystem::path>& directory,
                    const std::shared_ptr<SceneModel>& scene_arg) {
-  const std::shared_ptr<SceneModel> scene =
-      scene_arg ? scene_arg : std::make_shared<SceneModel>(LoadSceneModel(DefaultSceneModelPath()));
+  const std::shared_ptr<const SceneModel> scene = SceneOrDefault(scene_arg);
   const std::filesystem::path folder =
       directory ? *directory : DefaultDemoDirectory(scene->object.name);
   AnalysisOptions options;

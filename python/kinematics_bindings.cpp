@@ -239,6 +239,19 @@ std::shared_ptr<SceneModel> LoadScene(const std::optional<std::filesystem::path>
 
 }  // namespace
 
+std::shared_ptr<const RobotModel> RobotOrDefault(const std::shared_ptr<RobotModel>& robot) {
+  if (robot) return robot;
+  // a throwing initializer leaves it unset: the next call reads the file again.
+  static const std::shared_ptr<const RobotModel> shipped = LoadRobot(std::nullopt);
+  return shipped;
+}
+
+std::shared_ptr<const SceneModel> SceneOrDefault(const std::shared_ptr<SceneModel>& scene) {
+  if (scene) return scene;
+  static const std::shared_ptr<const SceneModel> shipped = LoadScene(std::nullopt, std::nullopt);
+  return shipped;
+}
+
 void BindKinematics(py::module_& m) {
   py::class_<RobotModel, std::shared_ptr<RobotModel>>(m, "Robot", R"doc(
 The robot model: the PA-10 arm and the Gifu Hand III, read from a robot description (URDF).
@@ -314,6 +327,15 @@ them for a batch.)doc")
   m.def("branch_of", &BranchOfArray, py::arg("q"),
         "The branch signs (GC2, GC4, GC6) of arm configurations q: shape (3,) or (N, 3), int8 "
         "(a zero joint counts as +1)");
+
+  m.def(
+      "default_robot", [] { return std::const_pointer_cast<RobotModel>(RobotOrDefault(nullptr)); },
+      "The shipped robot (models/pa10_gifu3.urdf, or below $GRASPSYNTH_DATA_DIR), read once and "
+      "shared by every call that is given no robot");
+  m.def(
+      "default_scene", [] { return std::const_pointer_cast<SceneModel>(SceneOrDefault(nullptr)); },
+      "The shipped scene (models/scene.json), read once and shared by every call that is given "
+      "no scene");
 
   // the codes of IkStatus, by name: graspsynth.IkStatus (python/graspsynth/__init__.py)
   // checks itself against them at import.

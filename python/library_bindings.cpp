@@ -44,14 +44,6 @@ struct Grasp {
   SynthesisMethod requested = SynthesisMethod::kInterp;
 };
 
-SceneModel SceneOrDefault(const std::shared_ptr<SceneModel>& scene) {
-  return scene ? *scene : LoadSceneModel(DefaultSceneModelPath());
-}
-
-RobotModel RobotOrDefault(const std::shared_ptr<RobotModel>& robot) {
-  return robot ? *robot : LoadRobotModel(DefaultRobotDescriptionPath());
-}
-
 std::shared_ptr<GraspLibrary> LoadLibrary(const std::optional<std::filesystem::path>& path,
                                           const std::string& object) {
   return std::make_shared<GraspLibrary>(
@@ -61,14 +53,13 @@ std::shared_ptr<GraspLibrary> LoadLibrary(const std::optional<std::filesystem::p
 std::shared_ptr<Synthesizer> MakeSynthesizer(const py::object& library,
                                              const std::shared_ptr<RobotModel>& robot,
                                              const std::shared_ptr<SceneModel>& scene_arg) {
-  SceneModel scene = SceneOrDefault(scene_arg);
-  scene.object.Handle(kSynthesisNeedsHandle);
-  const std::shared_ptr<const GraspLibrary> lib = LibraryArgument(library, scene.object.name);
+  const std::shared_ptr<const SceneModel> scene = SynthesisScene(scene_arg);
+  const std::shared_ptr<const GraspLibrary> lib = LibraryArgument(library, scene->object.name);
   if (lib->entries.empty()) {
     throw InputError("the grasp library '" + lib->source + "' has no entry to synthesize from");
   }
   py::gil_scoped_release release;
-  return std::make_shared<Synthesizer>(RobotOrDefault(robot), scene, *lib);
+  return std::make_shared<Synthesizer>(*RobotOrDefault(robot), *scene, *lib);
 }
 
 std::shared_ptr<Grasp> Synthesize(const Synthesizer& s, double theta_deg, const std::string& method,
@@ -148,7 +139,7 @@ py::tuple Select(const std::optional<std::filesystem::path>& directory, int pert
                  uint64_t seed, int threads, bool early_stop, bool physics,
                  const std::shared_ptr<RobotModel>& robot,
                  const std::shared_ptr<SceneModel>& scene_arg) {
-  const SceneModel scene = SceneOrDefault(scene_arg);
+  const SceneModel& scene = *SceneOrDefault(scene_arg);
   const std::filesystem::path folder =
       directory ? std::filesystem::path(*directory) : DefaultDemoDirectory(scene.object.name);
   SelectionOptions options;
@@ -164,7 +155,7 @@ py::tuple Select(const std::optional<std::filesystem::path>& directory, int pert
   SelectionResult result;
   {
     py::gil_scoped_release release;
-    const SimulationModel model(RobotOrDefault(robot), scene);
+    const SimulationModel model(*RobotOrDefault(robot), scene);
     result = SelectRepresentatives(model, folder, options);
   }
   py::list issues;
@@ -184,6 +175,12 @@ py::tuple Select(const std::optional<std::filesystem::path>& directory, int pert
 }
 
 }  // namespace
+
+std::shared_ptr<const SceneModel> SynthesisScene(const std::shared_ptr<SceneModel>& scene_arg) {
+  std::shared_ptr<const SceneModel> scene = SceneOrDefault(scene_arg);
+  scene->object.Handle(kSynthesisNeedsHandle);
+  return scene;
+}
 
 std::shared_ptr<const GraspLibrary> LibraryArgument(const py::object& library,
                                                     const std::string& object_name) {

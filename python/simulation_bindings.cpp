@@ -99,9 +99,7 @@ std::shared_ptr<JointTrajectory> MakeTrajectory(const DoubleArray& t, const Doub
     }
     trajectory->samples.push_back(s);
   }
-  const std::shared_ptr<RobotModel> robot =
-      robot_arg ? robot_arg
-                : std::make_shared<RobotModel>(LoadRobotModel(DefaultRobotDescriptionPath()));
+  const std::shared_ptr<const RobotModel> robot = RobotOrDefault(robot_arg);
   CheckJointLimits(*trajectory, robot->arm, robot->hand, "the trajectory");
   return trajectory;
 }
@@ -162,9 +160,7 @@ py::dict StateArrays(py::object self) {
 
 std::shared_ptr<SimulationModel> MakeSimulation(const std::shared_ptr<RobotModel>& robot,
                                                 const std::shared_ptr<SceneModel>& scene) {
-  return std::make_shared<SimulationModel>(
-      robot ? *robot : LoadRobotModel(DefaultRobotDescriptionPath()),
-      scene ? *scene : LoadSceneModel(DefaultSceneModelPath()));
+  return std::make_shared<SimulationModel>(*RobotOrDefault(robot), *SceneOrDefault(scene));
 }
 
 }  // namespace
@@ -179,9 +175,7 @@ RobustnessOptions RobustnessOptionsOf(int trials, uint64_t seed, int threads, bo
   ro.trial = trial;
   ro.perturbation.physics.enabled = physics;
   if (!(noise_scale >= 0.0)) throw InputError("noise_scale must be >= 0");
-  ro.perturbation.position_sigma *= noise_scale;
-  ro.perturbation.orientation_sigma *= noise_scale;
-  ro.perturbation.finger_sigma *= noise_scale;
+  ro.perturbation.ScaleMotionNoise(noise_scale);
   std::string why;
   if (!ro.IsValid(&why)) throw InputError("bad perturbation option: " + why);
   return ro;
@@ -201,10 +195,9 @@ and hand are read-only views into the trajectory (no copy).)doc")
       .def_static(
           "load",
           [](const std::filesystem::path& path, const std::shared_ptr<RobotModel>& robot_arg) {
-            const RobotModel robot =
-                robot_arg ? *robot_arg : LoadRobotModel(DefaultRobotDescriptionPath());
+            const std::shared_ptr<const RobotModel> robot = RobotOrDefault(robot_arg);
             return std::make_shared<JointTrajectory>(
-                LoadTrajectoryOrGraspFile(path, robot.arm, robot.hand));
+                LoadTrajectoryOrGraspFile(path, robot->arm, robot->hand));
           },
           py::arg("path"), py::arg("robot") = py::none(),
           "Reads a graspsynth-trajectory/1 file, or the trajectory of a graspsynth-grasp/1 file")

@@ -43,23 +43,13 @@ std::vector<double> OrientationsOf(const Orientations& given) {
   return values;
 }
 
-SceneModel StudyScene(const std::shared_ptr<SceneModel>& scene_arg) {
-  SceneModel scene = scene_arg ? *scene_arg : LoadSceneModel(DefaultSceneModelPath());
-  scene.object.Handle(kSynthesisNeedsHandle);
-  return scene;
-}
-
-RobotModel StudyRobot(const std::shared_ptr<RobotModel>& robot) {
-  return robot ? *robot : LoadRobotModel(DefaultRobotDescriptionPath());
-}
-
 py::dict Run(const std::optional<std::filesystem::path>& demos, bool quick,
              const std::optional<Orientations>& orientations, uint64_t seed, int threads,
              std::optional<int> perturb, std::optional<int> select_perturb,
              std::optional<int> sensitivity, bool physics, bool physics_fallback, bool all_replays,
              const std::shared_ptr<RobotModel>& robot,
              const std::shared_ptr<SceneModel>& scene_arg) {
-  const SceneModel scene = StudyScene(scene_arg);
+  const SceneModel& scene = *SynthesisScene(scene_arg);
   StudyOptions options;
   options.demos = demos ? std::filesystem::path(*demos) : DefaultDemoDirectory(scene.object.name);
   options.seed = seed;
@@ -84,7 +74,7 @@ py::dict Run(const std::optional<std::filesystem::path>& demos, bool quick,
   std::string analysis, synthesis, timing;
   {
     py::gil_scoped_release release;
-    const SimulationModel model(StudyRobot(robot), scene);
+    const SimulationModel model(*RobotOrDefault(robot), scene);
     result = RunStudy(model, options);
     analysis = AnalysisReportJson(result.analysis, result.options.PaperComparison());
     synthesis = StudySynthesisJson(result);
@@ -117,7 +107,7 @@ py::object Generalize(const py::object& library_arg, const Orientations& orienta
                       int sensitivity, double noise_scale, uint64_t seed, int threads, bool physics,
                       bool physics_fallback, const std::shared_ptr<RobotModel>& robot,
                       const std::shared_ptr<SceneModel>& scene_arg) {
-  SceneModel scene = StudyScene(scene_arg);
+  const SceneModel& scene = *SynthesisScene(scene_arg);
   const std::shared_ptr<const GraspLibrary> shared =
       LibraryArgument(library_arg, scene.object.name);
   const GraspLibrary& library = *shared;
@@ -131,9 +121,7 @@ py::object Generalize(const py::object& library_arg, const Orientations& orienta
   table.seed = seed;
   table.threads = threads;
   table.physics_fallback = physics_fallback;
-  table.perturbation.position_sigma *= noise_scale;
-  table.perturbation.orientation_sigma *= noise_scale;
-  table.perturbation.finger_sigma *= noise_scale;
+  table.perturbation.ScaleMotionNoise(noise_scale);
   table.perturbation.physics.enabled = physics;
   CheckThreads(threads);
   std::string why;
@@ -146,7 +134,7 @@ py::object Generalize(const py::object& library_arg, const Orientations& orienta
   std::string text;
   {
     py::gil_scoped_release release;
-    const SimulationModel model(StudyRobot(robot), std::move(scene));
+    const SimulationModel model(*RobotOrDefault(robot), scene);
     const std::vector<StudyRow> rows = leave_one_out ? LeaveOneOutTable(model, library, table)
                                                      : SynthesisTable(model, library, table);
     text = StudyRowsJson(rows);

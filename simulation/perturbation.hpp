@@ -44,6 +44,14 @@ struct PerturbationOptions {
   /// (simulation/physics_perturbation.hpp); PerturbTrajectory itself does not read them.
   PhysicsPerturbationOptions physics;
 
+  /// Multiplies the motion's noise (position, orientation and finger sigmas) by `factor`
+  /// (`generalize --noise-scale`); the time scaling and the physics are left as they are.
+  void ScaleMotionNoise(double factor) {
+    position_sigma *= factor;
+    orientation_sigma *= factor;
+    finger_sigma *= factor;
+  }
+
   bool IsValid(std::string* why) const;
 };
 

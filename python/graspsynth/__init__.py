@@ -45,6 +45,8 @@ from ._core import (
     TrialResult,
     analyze_demonstrations,
     branch_of,
+    default_robot,
+    default_scene,
     fit_wrist_line,
     read_demo_directory,
     read_demo_log,
@@ -85,34 +87,12 @@ if {s.name.lower(): s.value for s in IkStatus} != {
         name.replace(" ", "_"): code for name, code in IK_STATUS_CODES.items()}:
     raise ImportError(f"graspsynth.IkStatus does not match the extension's {IK_STATUS_CODES}")
 
-_defaults_lock = threading.RLock()
-
-
-@functools.lru_cache(maxsize=None)
-def _cached_robot() -> Robot:
-    return Robot()
-
-
-@functools.lru_cache(maxsize=None)
-def _cached_scene() -> Scene:
-    return Scene()
+_defaults_lock = threading.Lock()
 
 
 @functools.lru_cache(maxsize=None)
 def _cached_simulation() -> Simulation:
     return Simulation(default_robot(), default_scene())
-
-
-def default_robot() -> Robot:
-    """The shipped robot (models/pa10_gifu3.urdf, or below $GRASPSYNTH_DATA_DIR), read once."""
-    with _defaults_lock:
-        return _cached_robot()
-
-
-def default_scene() -> Scene:
-    """The shipped scene (models/scene.json), read once."""
-    with _defaults_lock:
-        return _cached_scene()
 
 
 def fk(q: Any, robot: Optional[Robot] = None) -> np.ndarray:

@@ -55,6 +55,10 @@ class Robot:
         """-> intervals (K, 2) rad per target"""
     def arm_angle(self, q: ArrayLike) -> Union[float, FloatArray]: ...
 
+def default_robot() -> Robot:
+    """the shipped robot, read once"""
+def default_scene() -> Scene:
+    """the shipped scene, read once"""
 def branch_of(q: ArrayLike) -> Int8Array:
     """-> signs (GC2, GC4, GC6), shape (3,) or (N, 3)"""
 
