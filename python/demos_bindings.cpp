@@ -163,7 +163,9 @@ py::dict MotionArrays(const GraspingMotion& motion) {
   return d;
 }
 
-void BindDemos(py::module_& m) {
+namespace {
+
+void BindDemoLog(py::module_& m) {
   py::class_<DemoLog, std::shared_ptr<DemoLog>>(m, "DemoLog", R"doc(
 A demonstration log (format graspsynth-demo/1): one teleoperated trial, sampled.
 
@@ -221,7 +223,9 @@ object_position (N, 3) m.)doc")
           std::copy(s.p_WO.data(), s.p_WO.data() + 3, o);
         });
       });
+}
 
+void BindDemoAnalysis(py::module_& m) {
   m.def(
       "read_demo_log",
       [](const std::filesystem::path& path) {
@@ -279,6 +283,13 @@ Fits a line to 2-D points (shape (N, 2), m) by total least squares (Ceres), with
 robust loss ("none", "huber", "cauchy"; loss_scale in m), cross-checked with CGAL's fit.
 Returns a dict with the termination, the line (point, direction, angle_deg, residuals, rms,
 max), the plain and CGAL lines and whether they agree.)doc");
+}
+
+}  // namespace
+
+void BindDemos(py::module_& m) {
+  BindDemoLog(m);
+  BindDemoAnalysis(m);
 }
 
 }  // namespace graspsynth::python

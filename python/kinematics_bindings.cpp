@@ -252,7 +252,9 @@ std::shared_ptr<const SceneModel> SceneOrDefault(const std::shared_ptr<SceneMode
   return shipped;
 }
 
-void BindKinematics(py::module_& m) {
+namespace {
+
+void BindRobot(py::module_& m) {
   py::class_<RobotModel, std::shared_ptr<RobotModel>>(m, "Robot", R"doc(
 The robot model: the PA-10 arm and the Gifu Hand III, read from a robot description (URDF).
 
@@ -345,7 +347,9 @@ them for a batch.)doc")
     statuses[py::str(std::string(ToString(status)))] = static_cast<int>(status);
   }
   m.attr("IK_STATUS_CODES") = statuses;
+}
 
+void BindScene(py::module_& m) {
   py::class_<SceneModel, std::shared_ptr<SceneModel>>(m, "Scene", R"doc(
 The scene: the table, the object and where it stands (models/scene.json by default).
 
@@ -391,6 +395,13 @@ Scene(path=None, object=None): object replaces the scene's object with a shipped
             return out;
           },
           py::arg("theta_deg"), "Pose of the object resting at orientation theta_deg, 4 x 4");
+}
+
+}  // namespace
+
+void BindKinematics(py::module_& m) {
+  BindRobot(m);
+  BindScene(m);
 }
 
 }  // namespace graspsynth::python

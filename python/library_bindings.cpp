@@ -195,7 +195,9 @@ std::shared_ptr<const GraspLibrary> LibraryArgument(const py::object& library,
                        py::repr(library.get_type()).cast<std::string>());
 }
 
-void BindLibrary(py::module_& m) {
+namespace {
+
+void BindGraspLibrary(py::module_& m) {
   py::class_<GraspLibrary, std::shared_ptr<GraspLibrary>>(m, "GraspLibrary", R"doc(
 A grasp library (format graspsynth-library/1): the representative demonstration of each
 orientation, chosen by robustness in physics, with every scored demonstration.
@@ -264,7 +266,9 @@ perturbed replays in physics and keeps the best per orientation (`graspsynth sel
 Returns (library, report): the GraspLibrary, and a dict with the logs read, the unsuccessful
 ones, the issues (files rejected or not replayable, with reasons) and the orientations where
 nothing could be selected. The same seed gives the same library whatever `threads` is.)doc");
+}
 
+void BindSynthesis(py::module_& m) {
   py::class_<Synthesizer, std::shared_ptr<Synthesizer>>(m, "Synthesizer", R"doc(
 The synthesis models of one library, built once for many grasps:
 Synthesizer(library=None, robot=None, scene=None). library: a GraspLibrary or a file path
@@ -350,6 +354,13 @@ file as `graspsynth synthesize --out` does.)doc")
           },
           py::arg("path"), py::arg("force") = false,
           "Writes the grasp file atomically; a grasp that failed the gate only with force=True");
+}
+
+}  // namespace
+
+void BindLibrary(py::module_& m) {
+  BindGraspLibrary(m);
+  BindSynthesis(m);
 }
 
 }  // namespace graspsynth::python

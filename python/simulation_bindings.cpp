@@ -181,7 +181,9 @@ RobustnessOptions RobustnessOptionsOf(int trials, uint64_t seed, int threads, bo
   return ro;
 }
 
-void BindSimulation(py::module_& m) {
+namespace {
+
+void BindTrajectory(py::module_& m) {
   py::class_<JointTrajectory, std::shared_ptr<JointTrajectory>>(m, "Trajectory", R"doc(
 A joint trajectory of the robot (format graspsynth-trajectory/1): what `graspsynth simulate`
 plays.
@@ -247,7 +249,9 @@ and hand are read-only views into the trajectory (no copy).)doc")
             WriteJointTrajectory(path, tr);
           },
           py::arg("path"), "Writes the trajectory file atomically");
+}
 
+void BindTrial(py::module_& m) {
   py::class_<TrialResult, std::shared_ptr<TrialResult>>(m, "TrialResult", R"doc(
 The outcome of one grasp-and-lift trial in ODE.
 
@@ -313,6 +317,13 @@ The success rate of `trials` perturbed replays of the trajectory (the same repla
 physics=False keeps the modelled physics (motion noise only); noise_scale scales the motion
 noise. Returns a dict: trials, successes, score, ci95 (Wilson), failures, and replays, one
 dict per replay with its outcome and drawn physics.)doc");
+}
+
+}  // namespace
+
+void BindSimulation(py::module_& m) {
+  BindTrajectory(m);
+  BindTrial(m);
 }
 
 }  // namespace graspsynth::python
