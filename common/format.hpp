@@ -3,6 +3,7 @@
 /// @file
 /// printf-style formatting into a std::string, for the sentences of reports and reasons.
 
+#include <charconv>
 #include <cstdio>
 #include <string>
 
@@ -18,6 +19,15 @@ std::string Format(const char* format, Args... args) {
   std::string text(static_cast<size_t>(n), '\0');
   std::snprintf(text.data(), text.size() + 1, format, args...);
   return text;
+}
+
+/// The shortest text that reads back to exactly `value` (std::to_chars): 0.85, not
+/// 0.84999999999999998.
+inline std::string ShortestNumber(double value) {
+  char buffer[64];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof(buffer), value);
+  if (ec != std::errc()) return std::to_string(value);  // cannot happen with 64 characters
+  return std::string(buffer, end);
 }
 
 }  // namespace graspsynth

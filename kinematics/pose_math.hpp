@@ -5,6 +5,8 @@
 /// "average slerp" (aslerp, eqs. 1-2) of positions, the convex blend of finger vectors (eq. 4),
 /// and distances between poses.
 
+#include <vector>
+
 #include "kinematics/types.hpp"
 
 namespace graspsynth {
@@ -21,6 +23,24 @@ Eigen::Quaterniond Slerp(const Eigen::Quaterniond& q1, const Eigen::Quaterniond&
 /// the origin, or the two directions are opposite (the arc is undefined), the result is the
 /// plain linear blend (1 - t) p1 + t p2.
 Eigen::Vector3d Aslerp(const Eigen::Vector3d& p1, const Eigen::Vector3d& p2, double t);
+
+/// The weighted slerp of several orientations: their weighted Riemannian (Karcher) mean on the
+/// unit quaternions, the orientation m that minimizes sum_i w_i angle(m, q_i)^2, found by
+/// Gauss-Newton steps from the heaviest one (the first on ties), every q_i taken on m's side
+/// (shorter arcs). Weights are >= 0 and sum to 1 (1e-9). A weight of 1 returns that
+/// quaternion's canonical-sign copy exactly; for two orientations with weights (1 - t, t) it
+/// is Slerp(q1, q2, t) (to 1e-12 rad). The result is unit.
+Eigen::Quaterniond WeightedSlerp(const std::vector<Eigen::Quaterniond>& q,
+                                 const std::vector<double>& w);
+
+/// The weighted aslerp of several positions relative to the object centre: the direction is
+/// the weighted Karcher mean of the p_i / |p_i| on the unit sphere (from the heaviest one), the
+/// norm the weighted mean of the |p_i|. A weight of 1 returns that position exactly; for two
+/// positions with weights (1 - t, t) it is Aslerp(p1, p2, t) (to 1e-12 m). When a position is
+/// at the origin, or two directions with weight are nearly opposite (no mean direction), the
+/// result is the weighted linear mean, as Aslerp does.
+Eigen::Vector3d WeightedAslerp(const std::vector<Eigen::Vector3d>& p,
+                               const std::vector<double>& w);
 
 /// The convex blend of eq. 4, f = (1 - t) f1 + t f2, for vectors of any size.
 template <typename Derived>

@@ -79,11 +79,24 @@ ObjectModel LegacyPanObject(const std::string& name, const LegacyPanParameters& 
   return o;
 }
 
-Eigen::Isometry3d SceneModel::ObjectPose(double theta) const {
+Eigen::Isometry3d SceneModel::ObjectPose(const Placement& placement) const {
   Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
-  X_WO.translation() << object_centre_xy, table.top_z + object.rest_height;
-  X_WO.rotate(Eigen::AngleAxisd(theta + object_yaw_offset, Eigen::Vector3d::UnitZ()));
+  X_WO.translation() << CentreXY(placement), table.top_z + object.rest_height;
+  X_WO.rotate(Eigen::AngleAxisd(placement.theta + object_yaw_offset, Eigen::Vector3d::UnitZ()));
   return X_WO;
+}
+
+void SceneModel::CheckOnTable(const Eigen::Vector2d& xy) const {
+  const Eigen::Vector2d lo = table.centre_xy - 0.5 * table.size.head<2>();
+  const Eigen::Vector2d hi = table.centre_xy + 0.5 * table.size.head<2>();
+  if (xy.allFinite() && (xy.array() >= lo.array()).all() && (xy.array() <= hi.array()).all()) {
+    return;
+  }
+  std::ostringstream why;
+  why << "the object centre (" << xy.x() << ", " << xy.y() << ") m is not on the table of "
+      << source << " (x " << lo.x() << " to " << hi.x() << " m, y " << lo.y() << " to " << hi.y()
+      << " m)";
+  throw InputError(why.str());
 }
 
 SceneModel ParseSceneModel(std::string_view json_text, const std::string& source,

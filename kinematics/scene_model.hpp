@@ -11,6 +11,7 @@
 /// phi(theta) = theta + object_yaw_offset in the world.
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -36,11 +37,14 @@ struct GraspRegionModel {
   double height = 1.0;   ///< cylinder: full height, centred on the object centre, m
 };
 
-/// Where the object stands on the table: its orientation theta about the vertical (rad), at
-/// the scene's object centre. The one value a task carries down to every stage; a position on
-/// the table would be a further field here, read by SceneModel::ObjectPose alone.
+/// Where the object stands on the table: its orientation theta about the vertical (rad) and,
+/// optionally, its centre in the table plane. The one value a task carries down to every
+/// stage; SceneModel::ObjectPose turns it into the object's pose.
 struct Placement {
   double theta = 0.0;  ///< rad
+  /// The object centre in the table plane, world, m; empty: the scene's object centre (the
+  /// paper's fixed position).
+  std::optional<Eigen::Vector2d> xy;
 };
 
 /// Table, object and grasp region.
@@ -54,12 +58,18 @@ struct SceneModel {
   double object_yaw_offset = 0.0;
   GraspRegionModel grasp_region;
 
-  /// Pose X_WO of the object frame at rest on the table at orientation theta (radians).
-  Eigen::Isometry3d ObjectPose(double theta) const;
+  /// Pose X_WO of the object frame at rest on the table at orientation theta (radians), at
+  /// the scene's object centre.
+  Eigen::Isometry3d ObjectPose(double theta) const { return ObjectPose(Placement{theta, {}}); }
   /// Pose X_WO of the object frame at rest on the table at `placement`.
-  Eigen::Isometry3d ObjectPose(const Placement& placement) const {
-    return ObjectPose(placement.theta);
+  Eigen::Isometry3d ObjectPose(const Placement& placement) const;
+  /// The object centre in the table plane at `placement`, world, m.
+  Eigen::Vector2d CentreXY(const Placement& placement) const {
+    return placement.xy.value_or(object_centre_xy);
   }
+  /// Checks that `xy` (an object centre asked for: --at, a placement) is finite and on the
+  /// table's top; throws InputError naming the position, the scene and the table's extent.
+  void CheckOnTable(const Eigen::Vector2d& xy) const;
 };
 
 /// Parses a scene description. Format graspsynth-scene/2 names its object file

@@ -1,6 +1,5 @@
 #include "learning_data/demo_log.hpp"
 
-#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -10,6 +9,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "common/text_input.hpp"
 #include "kinematics/pose_math.hpp"
 
@@ -49,14 +49,6 @@ std::string AtColumn(const std::string& source, size_t line, int column) {
 }
 
 std::string Quoted(std::string_view text) { return "'" + std::string(text) + "'"; }
-
-// Shortest text that reads back to exactly `value`.
-std::string FormatNumber(double value) {
-  char buffer[64];
-  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  if (ec != std::errc()) return std::to_string(value);  // cannot happen with 64 characters
-  return std::string(buffer, end);
-}
 
 // One metadata line, already known to start with '#'.
 struct MetadataLine {
@@ -103,7 +95,7 @@ Eigen::Vector3d ParseMetadataPosition(const MetadataLine& m, const std::string& 
     if (std::abs(*value) > kDemoMaxPosition) {
       throw InputError(At(source, line) + "metadata '" + m.key + "': component " +
                        std::to_string(i + 1) + " = " + Quoted(TrimBlanks(fields[i])) +
-                       " m is beyond +-" + FormatNumber(kDemoMaxPosition) + " m");
+                       " m is beyond +-" + ShortestNumber(kDemoMaxPosition) + " m");
     }
     p[i] = *value;
   }
@@ -221,7 +213,7 @@ DemoSample ParseSampleRow(std::string_view text, const std::string& source, size
                                    : std::pair{std::numeric_limits<double>::infinity(), ""};
     if (std::abs(*value) > bound) {
       throw InputError(AtColumn(source, line, i) + Quoted(TrimBlanks(fields[i])) + " is beyond +-" +
-                       FormatNumber(bound) + unit);
+                       ShortestNumber(bound) + unit);
     }
     v[i] = *value;
   }
@@ -296,10 +288,10 @@ void AddRowAfterHeader(std::string_view body, const std::string& source, size_t 
   }
   DemoSample sample = ParseSampleRow(body, source, line);
   if (!log->samples.empty() && !(sample.t > log->samples.back().t)) {
-    throw InputError(AtColumn(source, line, kColT) + "time " + FormatNumber(sample.t) +
+    throw InputError(AtColumn(source, line, kColT) + "time " + ShortestNumber(sample.t) +
                      " s does not increase (the sample on line " +
                      std::to_string(lines->samples.back()) +
-                     " has t = " + FormatNumber(log->samples.back().t) + " s)");
+                     " has t = " + ShortestNumber(log->samples.back().t) + " s)");
   }
   if (sample.event == DemoEvent::kGrasp) {
     if (lines->grasp != 0) {
@@ -391,12 +383,12 @@ std::string FormatChecked(const DemoLog& log, const std::string& source) {
   const DemoMetadata& m = log.metadata;
   std::string out;
   out += "# format: " + m.format + "\n";
-  out += "# theta_deg: " + FormatNumber(m.theta_deg) + "\n";
-  out += "# object_position: " + FormatNumber(m.object_position.x()) + "," +
-         FormatNumber(m.object_position.y()) + "," + FormatNumber(m.object_position.z()) + "\n";
+  out += "# theta_deg: " + ShortestNumber(m.theta_deg) + "\n";
+  out += "# object_position: " + ShortestNumber(m.object_position.x()) + "," +
+         ShortestNumber(m.object_position.y()) + "," + ShortestNumber(m.object_position.z()) + "\n";
   if (m.trial) out += "# trial: " + *m.trial + "\n";
   if (m.operator_name) out += "# operator: " + *m.operator_name + "\n";
-  if (m.sample_rate_hz) out += "# sample_rate_hz: " + FormatNumber(*m.sample_rate_hz) + "\n";
+  if (m.sample_rate_hz) out += "# sample_rate_hz: " + ShortestNumber(*m.sample_rate_hz) + "\n";
   for (const auto& [key, value] : m.extra) out += "# " + key + ": " + value + "\n";
 
   for (size_t i = 0; i < DemoColumns().size(); ++i) {
@@ -408,11 +400,11 @@ std::string FormatChecked(const DemoLog& log, const std::string& source) {
     const double norm = s.q_WH.norm();
     if (!(std::abs(norm - 1.0) <= kDemoQuaternionTolerance)) {
       throw InputError(source + ": sample " + std::to_string(k) +
-                       ": the wrist quaternion has norm " + FormatNumber(norm) + ", not 1");
+                       ": the wrist quaternion has norm " + ShortestNumber(norm) + ", not 1");
     }
     const Eigen::Quaterniond q = CanonicalForFile(s.q_WH);
     const auto add = [&out](double value) {
-      out += FormatNumber(value);
+      out += ShortestNumber(value);
       out += ',';
     };
     add(s.t);
@@ -425,7 +417,7 @@ std::string FormatChecked(const DemoLog& log, const std::string& source) {
     out += std::to_string(static_cast<int>(s.event)) + ",";
     add(s.p_WO.x());
     add(s.p_WO.y());
-    out += FormatNumber(s.p_WO.z()) + "\n";
+    out += ShortestNumber(s.p_WO.z()) + "\n";
   }
   // the writer never produces a file its own reader would reject.
   ParseDemoLog(out, source);

@@ -37,6 +37,7 @@ DemoReplay ReplayDemoLog(const RobotModel& robot, const DemoLog& log,
     if (!s) continue;
     JointSpaceResult j = ToJointTrajectory(robot, path, s->q, options);
     j.trajectory.theta_deg = log.metadata.theta_deg;
+    j.trajectory.object_xy = Eigen::Vector2d(log.metadata.object_position.head<2>());
     if (j.status == JointSpaceStatus::kOk) {
       start = s;
       joints = std::move(j);

@@ -20,6 +20,9 @@ namespace {
 using json = nlohmann::ordered_json;
 
 constexpr std::string_view kLibraryFormat = "graspsynth-library/1";
+constexpr std::string_view kLibraryFormatV2 = "graspsynth-library/2";
+// two object positions closer than this are one, m.
+constexpr double kSamePosition = 1e-9;
 // a quaternion read from a library may be off unit by this much (rounding by other writers);
 // it is then normalized, so that the motion passes IsWellFormed (1e-9).
 constexpr double kQuaternionTolerance = 1e-6;
@@ -47,13 +50,17 @@ json MotionJson(const GraspingMotion& motion) {
           {"waypoints", waypoints}};
 }
 
+json PlacementJson(const Eigen::Vector2d& xy, double theta_deg) {
+  return {{"x", xy.x()}, {"y", xy.y()}, {"theta_deg", theta_deg}};
+}
+
 json LibraryJson(const GraspLibrary& library) {
+  const bool v2 = library.HasPositions();
   json scores = json::array();
   for (const DemoScore& s : library.scores) {
-    scores.push_back({{"file", s.file},
-                      {"trial", s.trial},
-                      {"theta_deg", s.theta_deg},
-                      {"trials", s.trials},
+    scores.push_back({{"file", s.file}, {"trial", s.trial}, {"theta_deg", s.theta_deg}});
+    if (v2) scores.back()["placement"] = PlacementJson(s.xy, s.theta_deg);
+    scores.back().update(json{{"trials", s.trials},
                       {"successes", s.successes},
                       {"score", s.score},
                       {"ci_low", s.ci_low},
@@ -66,8 +73,9 @@ json LibraryJson(const GraspLibrary& library) {
   }
   json entries = json::array();
   for (const LibraryEntry& e : library.entries) {
-    entries.push_back({{"theta_deg", e.theta_deg},
-                       {"file", e.file},
+    entries.push_back({{"theta_deg", e.theta_deg}});
+    if (v2) entries.back()["placement"] = PlacementJson(e.motion.p_WO.head<2>(), e.theta_deg);
+    entries.back().update(json{{"file", e.file},
                        {"trial", e.trial},
                        {"score", e.score},
                        {"lift_height", e.lift_height},
@@ -75,7 +83,7 @@ json LibraryJson(const GraspLibrary& library) {
                        {"motion", MotionJson(e.motion)}});
   }
   json j;
-  j["format"] = kLibraryFormat;
+  j["format"] = v2 ? kLibraryFormatV2 : kLibraryFormat;
   j["demo_directory"] = library.demo_directory;
   j["seed"] = library.seed;
   j["perturbations"] = library.perturbations;
@@ -123,12 +131,24 @@ GraspingMotion ReadMotion(const JsonReader& object, double theta_deg) {
   return motion;
 }
 
-DemoScore ReadScore(const JsonReader& object) {
+// A version-2 "placement" of a score or entry with orientation theta_deg: its position, and
+// its theta_deg checked against the one given.
+Eigen::Vector2d ReadPlacement(const JsonReader& object, double theta_deg) {
+  const JsonReader p = object.Field("placement").AsObject();
+  const Eigen::Vector2d xy(p.NumberIn("x", -5.0, 5.0), p.NumberIn("y", -5.0, 5.0));
+  if (p.Number("theta_deg") != theta_deg) {
+    p.Field("theta_deg").Fail("the theta_deg " + Shown(theta_deg) + " beside it");
+  }
+  return xy;
+}
+
+DemoScore ReadScore(const JsonReader& object, bool v2) {
   object.AsObject();
   DemoScore s;
   s.file = object.String("file");
   s.trial = object.String("trial");
   s.theta_deg = object.Number("theta_deg");
+  if (v2) s.xy = ReadPlacement(object, s.theta_deg);
   s.trials = static_cast<int>(object.Integer("trials", 0, std::numeric_limits<int>::max()));
   s.successes = static_cast<int>(object.Integer("successes", 0, s.trials));
   s.score = Probability(object, "score");
@@ -145,21 +165,30 @@ DemoScore ReadScore(const JsonReader& object) {
   return s;
 }
 
-LibraryEntry ReadEntry(const JsonReader& object) {
+LibraryEntry ReadEntry(const JsonReader& object, bool v2) {
   object.AsObject();
   LibraryEntry e;
   e.theta_deg = object.Number("theta_deg");
+  Eigen::Vector2d xy = Eigen::Vector2d::Zero();
+  if (v2) xy = ReadPlacement(object, e.theta_deg);
   e.file = object.String("file");
   e.trial = object.String("trial");
   e.score = Probability(object, "score");
   e.lift_height = object.Number("lift_height");
   e.lift_duration = object.NumberIn("lift_duration", 0.0, INFINITY);
   e.motion = ReadMotion(object.Field("motion"), e.theta_deg);
+  if (v2 && (e.motion.p_WO.head<2>() - xy).norm() > kSamePosition) {
+    object.Field("placement").Fail("the motion's object_position in x and y (" +
+                                   Shown(e.motion.p_WO.x()) + ", " + Shown(e.motion.p_WO.y()) +
+                                   ")");
+  }
   return e;
 }
 
 GraspLibrary ReadLibrary(const JsonReader& document) {
-  document.AsObject().ExpectString("format", kLibraryFormat);
+  const JsonReader format = document.AsObject().Field("format");
+  const bool v2 = format.IsString() && format.AsString() == kLibraryFormatV2;
+  if (!v2) document.ExpectString("format", kLibraryFormat);
   GraspLibrary library;
   library.demo_directory = document.String("demo_directory");
   library.seed = document.Unsigned("seed");
@@ -167,21 +196,48 @@ GraspLibrary ReadLibrary(const JsonReader& document) {
       static_cast<int>(document.Integer("perturbations", 0, std::numeric_limits<int>::max()));
   library.tie_rule = document.String("tie_rule");
   for (const JsonReader& score : document.Array("scores")) {
-    library.scores.push_back(ReadScore(score));
+    library.scores.push_back(ReadScore(score, v2));
   }
   for (const JsonReader& entry : document.Array("entries")) {
     // the order is checked before the entry's motion, which must match its theta.
     const double theta_deg = entry.AsObject().Number("theta_deg");
-    if (!library.entries.empty() && !(theta_deg > library.entries.back().theta_deg)) {
+    if (v2) {
+      const Eigen::Vector2d xy = ReadPlacement(entry, theta_deg);
+      if (!library.entries.empty()) {
+        const LibraryEntry& b = library.entries.back();
+        if (!PlacementBefore(b.motion.p_WO.head<2>(), b.theta_deg, xy, theta_deg)) {
+          entry.Field("placement")
+              .Fail("a placement after the previous entry's (x, then y, then theta: " +
+                    Shown(b.motion.p_WO.x()) + ", " + Shown(b.motion.p_WO.y()) + ", " +
+                    Shown(b.theta_deg) + ")");
+        }
+      }
+    } else if (!library.entries.empty() && !(theta_deg > library.entries.back().theta_deg)) {
       entry.Field("theta_deg")
           .Fail("a theta above the previous entry's " + Shown(library.entries.back().theta_deg));
     }
-    library.entries.push_back(ReadEntry(entry));
+    library.entries.push_back(ReadEntry(entry, v2));
   }
   return library;
 }
 
 }  // namespace
+
+bool PlacementBefore(const Eigen::Vector2d& xy_a, double theta_a, const Eigen::Vector2d& xy_b,
+                     double theta_b) {
+  if (std::abs(xy_a.x() - xy_b.x()) > kSamePosition) return xy_a.x() < xy_b.x();
+  if (std::abs(xy_a.y() - xy_b.y()) > kSamePosition) return xy_a.y() < xy_b.y();
+  return theta_a < theta_b;
+}
+
+bool GraspLibrary::HasPositions() const {
+  for (const LibraryEntry& e : entries) {
+    if ((e.motion.p_WO.head<2>() - entries.front().motion.p_WO.head<2>()).norm() > kSamePosition) {
+      return true;
+    }
+  }
+  return false;
+}
 
 SelectionReplays CountSelectionReplays(const GraspLibrary& library) {
   SelectionReplays r;

@@ -1,9 +1,16 @@
 #pragma once
 
 /// @file
-/// The grasp library (format `graspsynth-library/1`): the robustness score of every successful
-/// demonstration of a directory, the most robust demonstration per orientation (paper III-C),
-/// and where each came from. `graspsynth select` writes it; `graspsynth synthesize` reads it.
+/// The grasp library: the robustness score of every successful demonstration of a directory,
+/// the most robust demonstration per placement (paper III-C: per orientation), and where each
+/// came from. `graspsynth select` writes it; `graspsynth synthesize` reads it.
+///
+/// Formats: `graspsynth-library/1` holds demonstrations of one object position (the paper's
+/// setting: one entry per orientation, theta strictly increasing); `graspsynth-library/2` holds
+/// demonstrations at several positions, and every score and entry carries
+/// `"placement": {"x": m, "y": m, "theta_deg": deg}`, entries strictly increasing in (x, y,
+/// theta). The writer uses version 1 whenever every entry stands at one position, so that a
+/// library of the fixed position keeps its bytes; the reader reads both.
 
 #include <cstdint>
 #include <filesystem>
@@ -11,6 +18,7 @@
 #include <string_view>
 #include <vector>
 
+#include "kinematics/scene_model.hpp"
 #include "motion/grasping_motion.hpp"
 
 namespace graspsynth {
@@ -20,6 +28,9 @@ struct DemoScore {
   std::string file;        ///< the log's file name, relative to the library's demo directory
   std::string trial;       ///< the log's `trial` metadata (empty when absent)
   double theta_deg = 0.0;  ///< object orientation, deg
+  /// The object centre on the table in its log, world, m (the log's object_position); version-1
+  /// files do not record it (zero when read from one).
+  Eigen::Vector2d xy = Eigen::Vector2d::Zero();
   int trials = 0;          ///< perturbed replays
   int successes = 0;       ///< of which succeeded
   double score = 0.0;      ///< successes / trials
@@ -36,7 +47,7 @@ struct DemoScore {
   std::string stopped;
 };
 
-/// The representative (most robust) demonstration of one orientation.
+/// The representative (most robust) demonstration of one placement.
 struct LibraryEntry {
   double theta_deg = 0.0;  ///< deg
   std::string file;        ///< as in DemoScore
@@ -48,7 +59,14 @@ struct LibraryEntry {
   /// grasp sample to the end of the trial, m, and the time it took, s.
   double lift_height = 0.0;
   double lift_duration = 0.0;
+
+  /// Where the object stood: theta_deg in rad at the motion's object centre.
+  Placement placement() const { return {theta_deg * kDeg, Eigen::Vector2d(motion.p_WO.head<2>())}; }
 };
+
+/// The order of placements in a library: x, then y, then theta (for one position: theta).
+bool PlacementBefore(const Eigen::Vector2d& xy_a, double theta_a, const Eigen::Vector2d& xy_b,
+                     double theta_b);
 
 /// A grasp library.
 struct GraspLibrary {
@@ -59,15 +77,20 @@ struct GraspLibrary {
   uint64_t seed = 0;                  ///< seed of the selection
   int perturbations = 0;              ///< perturbed replays per demonstration
   std::string tie_rule;               ///< how ties in score were broken, in words
-  std::vector<DemoScore> scores;      ///< every successful demonstration, by theta then file
-  std::vector<LibraryEntry> entries;  ///< one per orientation, theta strictly increasing
+  /// Every successful demonstration, by placement (PlacementBefore) then file.
+  std::vector<DemoScore> scores;
+  /// One per placement, strictly increasing by PlacementBefore (one position: by theta).
+  std::vector<LibraryEntry> entries;
+
+  /// True when the entries stand at more than one object position (format version 2).
+  bool HasPositions() const;
 };
 
-/// The text of `library` as a graspsynth-library/1 file (pretty JSON), what WriteGraspLibrary
-/// writes.
+/// The text of `library` as a graspsynth-library/1 file, or /2 when it HasPositions() (pretty
+/// JSON), what WriteGraspLibrary writes.
 std::string GraspLibraryToJson(const GraspLibrary& library);
 
-/// Writes `library` as JSON (format graspsynth-library/1) to `path`, atomically.
+/// Writes GraspLibraryToJson(library) to `path`, atomically.
 void WriteGraspLibrary(const GraspLibrary& library, const std::filesystem::path& path);
 
 /// The selection's perturbed replays: those that ran (the sum of the scores' `trials`), those
@@ -82,8 +105,9 @@ SelectionReplays CountSelectionReplays(const GraspLibrary& library);
 
 /// Reads a library file. Throws InputError naming the file and the field for a missing file,
 /// malformed JSON, another format or version, a missing or ill-typed field, non-finite numbers,
-/// non-unit quaternions, a motion that breaks IsWellFormed, or entries whose theta does not
-/// strictly increase.
+/// non-unit quaternions, a motion that breaks IsWellFormed, entries whose theta (version 1) or
+/// placement (version 2) does not strictly increase, or a version-2 placement that disagrees
+/// with its motion's object position or theta.
 GraspLibrary ReadGraspLibrary(const std::filesystem::path& path);
 /// The same from the text of a library; `source` names it in messages.
 GraspLibrary ParseGraspLibrary(std::string_view json_text, const std::string& source);

@@ -198,6 +198,11 @@ bool OperatorOptions::IsValid(std::string* why) const {
         << 2.0 / sample_rate_hz << " s), so that the grasp comes before the end of the trial";
     return fail(why.str());
   }
+  for (const Eigen::Vector2d& p : positions) {
+    if (!p.allFinite() || p.cwiseAbs().maxCoeff() > 5.0) {
+      return fail("positions must be finite and within 5 m of the base");
+    }
+  }
   for (const OrientationPlan& p : plans) {
     const std::string at = "plan theta " + std::to_string(p.theta_deg);
     if (!std::isfinite(p.theta_deg) || !std::isfinite(p.pregrasp_eta_deg)) {
@@ -232,6 +237,11 @@ OperatorOptions ReadOperator(const JsonReader& document) {
   ReadScalars(root, kScalars, &o);
   ReadStyle(root, &o.grasp);
   for (const JsonReader& plan : root.Array("plans")) o.plans.push_back(ReadPlan(plan, o.grasp));
+  if (const auto positions = root.OptionalField("positions")) {
+    for (const JsonReader& p : positions->AsArray()) {
+      o.positions.emplace_back(p.AsNumbers(2, -5.0, 5.0));
+    }
+  }
   std::string why;
   if (!o.IsValid(&why)) throw InputError(root.source() + ": invalid operator options: " + why);
   return o;
@@ -274,6 +284,11 @@ void WriteOperatorOptions(const OperatorOptions& o, const std::filesystem::path&
     plans.push_back(jp);
   }
   root["plans"] = plans;
+  if (!o.positions.empty()) {
+    json positions = json::array();
+    for (const Eigen::Vector2d& p : o.positions) positions.push_back({p.x(), p.y()});
+    root["positions"] = positions;
+  }
   WriteFileAtomically(path, root.dump(2) + "\n");
 }
 

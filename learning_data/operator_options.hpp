@@ -70,10 +70,16 @@ struct OrientationPlan {
 /// The operator model: motion style, variability and hand shapes. Lengths in m, angles in
 /// rad, times in s.
 struct OperatorOptions {
-  uint64_t seed = 1;                ///< every trial is a function of (seed, theta, trial index)
+  uint64_t seed = 1;  ///< every trial is a function of (seed, position, theta, trial index)
   int trials_per_orientation = 10;  ///< >= 1; a plan's own `trials` overrides it
   double sample_rate_hz = 60.0;     ///< log rate (the paper's tracker: 30-60 Hz)
   std::vector<OrientationPlan> plans;
+  /// Where the object stands in the trials: centres on the table (world, m), every plan made
+  /// at each of them; empty: the scene's object centre only (the paper's fixed position). At
+  /// another position the operator turns the plan's polar angles (the strategies' eta and the
+  /// pre-grasp eta) by the change in the object's bearing from the robot base: he reaches for
+  /// the handle from the robot's side, as at the scene's centre.
+  std::vector<Eigen::Vector2d> positions;
 
   /// The hook of the strategies that have no grip of their own.
   GraspStyle grasp;
@@ -113,7 +119,7 @@ struct OperatorOptions {
 };
 
 /// Reads operator options (format graspsynth-operator/1, JSON). Fields that are absent keep
-/// their defaults; `plans` is required. A strategy's optional `grasp` object holds the fields
+/// their defaults; `plans` is required, `positions` ([[x, y], ...], m) optional. A strategy's optional `grasp` object holds the fields
 /// of its own grip (the GraspStyle fields of the top level: hook_reach, wrist_above_handle,
 /// max_pitch_deg, yaw_offset_deg, roll_deg, open_hand_deg, closed_hand_deg); the ones it leaves
 /// out come from the top level. Throws InputError naming the file and the field.

@@ -95,6 +95,14 @@ bool PreferredRepresentative(const SelectionCandidate& a, const SelectionCandida
 
 namespace {
 
+// The order of placements (grasp_library.hpp), and one placement.
+bool Before(const DemoScore& a, const DemoScore& b) {
+  return PlacementBefore(a.xy, a.theta_deg, b.xy, b.theta_deg);
+}
+bool SamePlacement(const DemoScore& a, const DemoScore& b) {
+  return !Before(a, b) && !Before(b, a);
+}
+
 // Segments every log; only successful, segmented trials are ranked (the others are counted
 // unsuccessful or listed as issues in `result`).
 std::vector<Scored> SegmentLogs(const std::vector<DemoLog>& logs, const SelectionOptions& options,
@@ -128,6 +136,7 @@ void RunNominal(const SimulationModel& model, const SelectionOptions& options, S
   score.file = FileName(log.source);
   score.trial = log.metadata.trial.value_or("");
   score.theta_deg = log.metadata.theta_deg;
+  score.xy = log.metadata.object_position.head<2>();
   score.seed = DemoSeed(options.seed, score.file);
   s->candidate.motion_duration = s->segmented.motion.duration();
 
@@ -221,13 +230,13 @@ LibraryEntry EntryOf(const Scored& best) {
   return entry;
 }
 
-// Sorts the scores by theta, then file, and picks the representative of each theta by the tie
-// rule (an orientation whose best score is not above min_score is left unselected).
+// Sorts the scores by placement, then file, and picks the representative of each placement by
+// the tie rule (a placement whose best score is not above min_score is left unselected).
 void PickRepresentatives(const SelectionOptions& options, std::vector<Scored>* scored,
                          SelectionResult* result) {
   std::sort(scored->begin(), scored->end(), [](const Scored& a, const Scored& b) {
-    if (a.candidate.score.theta_deg != b.candidate.score.theta_deg) {
-      return a.candidate.score.theta_deg < b.candidate.score.theta_deg;
+    if (!SamePlacement(a.candidate.score, b.candidate.score)) {
+      return Before(a.candidate.score, b.candidate.score);
     }
     return a.candidate.score.file < b.candidate.score.file;
   });
@@ -235,8 +244,7 @@ void PickRepresentatives(const SelectionOptions& options, std::vector<Scored>* s
   for (size_t begin = 0; begin < all.size();) {
     size_t end = begin;
     Scored* best = &all[begin];
-    while (end < all.size() &&
-           all[end].candidate.score.theta_deg == all[begin].candidate.score.theta_deg) {
+    while (end < all.size() && SamePlacement(all[end].candidate.score, all[begin].candidate.score)) {
       // a demonstration whose replays stopped early cannot win (ScorePerturbed).
       if (all[end].candidate.score.stopped.empty() &&
           PreferredRepresentative(all[end].candidate, best->candidate)) {
@@ -296,15 +304,15 @@ SelectionResult SelectRepresentatives(const SimulationModel& model,
   std::vector<Scored*> order;
   for (Scored& s : scored) order.push_back(&s);
   std::sort(order.begin(), order.end(), [](const Scored* a, const Scored* b) {
-    if (a->candidate.score.theta_deg != b->candidate.score.theta_deg) {
-      return a->candidate.score.theta_deg < b->candidate.score.theta_deg;
+    if (!SamePlacement(a->candidate.score, b->candidate.score)) {
+      return Before(a->candidate.score, b->candidate.score);
     }
     return PreferredOnTies(a->candidate, b->candidate);
   });
-  std::vector<std::vector<Scored*>> orientations;
+  std::vector<std::vector<Scored*>> orientations;  // one per placement
   for (Scored* s : order) {
     if (orientations.empty() ||
-        orientations.back().front()->candidate.score.theta_deg != s->candidate.score.theta_deg) {
+        !SamePlacement(orientations.back().front()->candidate.score, s->candidate.score)) {
       orientations.emplace_back();
     }
     orientations.back().push_back(s);

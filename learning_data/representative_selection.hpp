@@ -7,7 +7,8 @@
 /// waypoint noise and perturbed physics (simulation/robustness.hpp); its score is the success
 /// fraction. The most
 /// robust demonstration of each orientation becomes that orientation's library entry
-/// (grasp_library.hpp).
+/// (grasp_library.hpp). Demonstrations at several object positions (the logs' object_position)
+/// are grouped by placement (position and orientation): "orientation" below reads "placement".
 ///
 /// Determinism: the perturbation stream of a demonstration is seeded by DemoSeed(options.seed,
 /// file name) - a function of the file's name, never of the order in which files are processed
@@ -103,7 +104,7 @@ struct SelectionIssue {
 
 /// What SelectRepresentatives() found.
 struct SelectionResult {
-  /// Every scored demonstration (by theta, then file), one entry per orientation whose best
+  /// Every scored demonstration (by placement, then file), one entry per placement whose best
   /// demonstration passed min_score (theta increasing), seed, perturbations and tie rule.
   GraspLibrary library;
   std::vector<SelectionIssue> issues;  ///< by file name

@@ -51,13 +51,21 @@ Eigen::Vector3d Polar(const Eigen::Vector2d& c, double d, double eta, double z) 
   return Eigen::Vector3d(c.x() + d * std::cos(eta), c.y() + d * std::sin(eta), z);
 }
 
+// The change in the object's bearing from the robot base between the scene's centre and `c`,
+// rad: the turn of the operator's polar angles at a moved object.
+double BearingTurn(const SceneModel& scene, const Eigen::Vector2d& c) {
+  const Eigen::Vector2d& c0 = scene.object_centre_xy;
+  return std::atan2(c0.x() * c.y() - c0.y() * c.x(), c0.dot(c));
+}
+
 PlannedTrial PlanTrial(const SceneModel& scene, const HandModel& hand, const OperatorOptions& o,
-                       const OrientationPlan& plan, const GraspStrategy& strategy, bool sloppy,
-                       SplitMix64& rng) {
+                       const OrientationPlan& plan, const Placement& placement,
+                       const GraspStrategy& strategy, bool sloppy, SplitMix64& rng) {
   const double k = sloppy ? o.sloppy_scale : 1.0;
   const GraspStyle& style = strategy.grasp ? *strategy.grasp : o.grasp;
-  const Eigen::Isometry3d X_WO = scene.ObjectPose(plan.theta_deg * kDeg);
-  const Eigen::Vector2d c = scene.object_centre_xy;
+  const Eigen::Isometry3d X_WO = scene.ObjectPose(placement);
+  const Eigen::Vector2d c = scene.CentreXY(placement);
+  const double turn = placement.xy ? BearingTurn(scene, c) : 0.0;
   const Eigen::Vector3d h = scene.object.HandleDirection(X_WO);
   const Eigen::Vector3d n = Eigen::Vector3d::UnitZ().cross(h);
   const double handle_z =
@@ -65,7 +73,7 @@ PlannedTrial PlanTrial(const SceneModel& scene, const HandModel& hand, const Ope
 
   // the wrist at the grasp (its height follows from the hook below).
   Eigen::Vector3d w =
-      Polar(c, strategy.d, strategy.eta_deg * kDeg, k * o.height_noise * rng.Normal());
+      Polar(c, strategy.d, strategy.eta_deg * kDeg + turn, k * o.height_noise * rng.Normal());
   w.x() += k * o.position_noise * rng.Normal();
   w.y() += k * o.position_noise * rng.Normal();
   const Eigen::Vector3d rel(w.x() - c.x(), w.y() - c.y(), 0.0);
@@ -108,7 +116,7 @@ PlannedTrial PlanTrial(const SceneModel& scene, const HandModel& hand, const Ope
   const Eigen::Quaterniond q_rest(R_grasp *
                                   Eigen::AngleAxisd(30.0 * kDeg, Eigen::Vector3d::UnitY()));
 
-  const double eta_pg = plan.pregrasp_eta_deg * kDeg;
+  const double eta_pg = plan.pregrasp_eta_deg * kDeg + turn;
   const double travel_z = w.z() + o.travel_height;
   const Eigen::Vector3d p_out = Polar(c, o.entry_out, eta_pg, travel_z);
   const Eigen::Vector3d p_in = Polar(c, o.entry_in, eta_pg, travel_z - 0.01);
@@ -170,14 +178,20 @@ DemoSample SampleAt(const PlannedTrial& plan, double t) {
 
 // The log of a planned trial at the sample rate, object columns at rest.
 DemoLog SampleTrial(const PlannedTrial& plan, const OperatorOptions& o, const SceneModel& scene,
-                    double theta_deg, int index) {
+                    double theta_deg, const std::optional<Eigen::Vector2d>& position, int index) {
   DemoLog log;
-  char name[64];
-  std::snprintf(name, sizeof name, "theta%03d_trial%02d.csv",
-                static_cast<int>(std::lround(theta_deg)), index);
+  char name[96];
+  if (position) {
+    std::snprintf(name, sizeof name, "x%+05ld_y%+05ld_theta%03d_trial%02d.csv",
+                  std::lround(position->x() * 1000.0), std::lround(position->y() * 1000.0),
+                  static_cast<int>(std::lround(theta_deg)), index);
+  } else {
+    std::snprintf(name, sizeof name, "theta%03d_trial%02d.csv",
+                  static_cast<int>(std::lround(theta_deg)), index);
+  }
   log.source = name;
   log.metadata.theta_deg = theta_deg;
-  const Eigen::Isometry3d X_WO = scene.ObjectPose(theta_deg * kDeg);
+  const Eigen::Isometry3d X_WO = scene.ObjectPose(Placement{theta_deg * kDeg, position});
   log.metadata.object_position = X_WO.translation();
   log.metadata.trial = std::to_string(index);
   log.metadata.operator_name = "synthetic (graspsynth operator model)";
@@ -234,18 +248,30 @@ bool Simulate(const SimulationModel& model, OperatorTrial* trial) {
   return true;
 }
 
-uint64_t StreamIndex(double theta_deg, int index, int attempt) {
-  return static_cast<uint64_t>(std::llround(theta_deg * 1000.0)) * 1000003ull +
-         static_cast<uint64_t>(index) * 101ull + static_cast<uint64_t>(attempt);
+// The trial's random stream; a position (in mm) adds its own term, so that the trials at the
+// scene's centre keep the streams they had before positions existed.
+uint64_t StreamIndex(const std::optional<Eigen::Vector2d>& position, double theta_deg, int index,
+                     int attempt) {
+  uint64_t s = static_cast<uint64_t>(std::llround(theta_deg * 1000.0)) * 1000003ull +
+               static_cast<uint64_t>(index) * 101ull + static_cast<uint64_t>(attempt);
+  if (position) {
+    s += static_cast<uint64_t>(std::llround(position->x() * 1000.0) + 10000) * 0x9E3779B97F4Aull +
+         static_cast<uint64_t>(std::llround(position->y() * 1000.0) + 10000) * 0xC2B2AE3Dull;
+  }
+  return s;
 }
 
 OperatorTrial MakeTrial(const SimulationModel& model, const OperatorOptions& o,
-                        const OrientationPlan& plan, int index) {
+                        const OrientationPlan& plan, const std::optional<Eigen::Vector2d>& position,
+                        int index) {
   OperatorTrial trial;
+  trial.position = position;
   trial.theta_deg = plan.theta_deg;
   trial.index = index;
+  const Placement placement{plan.theta_deg * kDeg, position};
   for (int attempt = 0; attempt < kMaxAttempts; ++attempt) {
-    SplitMix64 rng = SplitMix64::ForStream(o.seed, StreamIndex(plan.theta_deg, index, attempt));
+    SplitMix64 rng =
+        SplitMix64::ForStream(o.seed, StreamIndex(position, plan.theta_deg, index, attempt));
     double total = 0.0;
     for (const GraspStrategy& s : plan.strategies) total += s.weight;
     double pick = rng.Uniform(0.0, total);
@@ -256,9 +282,10 @@ OperatorTrial MakeTrial(const SimulationModel& model, const OperatorOptions& o,
       ++trial.strategy;
     }
     trial.sloppy = rng.Uniform() < o.sloppy_fraction;
-    const PlannedTrial planned = PlanTrial(model.scene(), model.robot().hand, o, plan,
-                                           plan.strategies[trial.strategy], trial.sloppy, rng);
-    trial.log = SampleTrial(planned, o, model.scene(), plan.theta_deg, index);
+    const PlannedTrial planned =
+        PlanTrial(model.scene(), model.robot().hand, o, plan, placement,
+                  plan.strategies[trial.strategy], trial.sloppy, rng);
+    trial.log = SampleTrial(planned, o, model.scene(), plan.theta_deg, position, index);
     trial.attempts = attempt + 1;
     if (Simulate(model, &trial)) break;
   }
@@ -281,19 +308,29 @@ std::vector<OperatorTrial> GenerateDemonstrations(const SimulationModel& model,
                                                   const OperatorProgress& progress) {
   std::string why;
   if (!options.IsValid(&why)) throw InputError("invalid operator options: " + why);
-  std::vector<std::pair<size_t, int>> jobs;
-  for (size_t p = 0; p < options.plans.size(); ++p) {
-    const int n =
-        options.plans[p].trials > 0 ? options.plans[p].trials : options.trials_per_orientation;
-    for (int i = 1; i <= n; ++i) jobs.emplace_back(p, i);
+  std::vector<std::optional<Eigen::Vector2d>> positions(options.positions.begin(),
+                                                        options.positions.end());
+  if (positions.empty()) positions.emplace_back();  // the scene's centre
+  struct Job {
+    size_t position, plan;
+    int trial;
+  };
+  std::vector<Job> jobs;
+  for (size_t x = 0; x < positions.size(); ++x) {
+    for (size_t p = 0; p < options.plans.size(); ++p) {
+      const int n =
+          options.plans[p].trials > 0 ? options.plans[p].trials : options.trials_per_orientation;
+      for (int i = 1; i <= n; ++i) jobs.push_back({x, p, i});
+    }
   }
   std::vector<OperatorTrial> trials(jobs.size());
   const int total = static_cast<int>(jobs.size());
   ParallelFor(
       total, threads,
       [&](int j) {
-        const auto& [plan, trial] = jobs[static_cast<size_t>(j)];
-        trials[static_cast<size_t>(j)] = MakeTrial(model, options, options.plans[plan], trial);
+        const Job& job = jobs[static_cast<size_t>(j)];
+        trials[static_cast<size_t>(j)] =
+            MakeTrial(model, options, options.plans[job.plan], positions[job.position], job.trial);
       },
       [&](int finished) {
         if (progress) progress(finished, total);

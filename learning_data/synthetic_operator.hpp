@@ -38,6 +38,8 @@ namespace graspsynth {
 
 /// One generated trial and what the simulation made of it.
 struct OperatorTrial {
+  /// Where the object stood: OperatorOptions::positions' entry, empty for the scene's centre.
+  std::optional<Eigen::Vector2d> position;
   double theta_deg = 0.0;
   int index = 0;         ///< 1-based trial number within the orientation
   int strategy = 0;      ///< index into the plan's strategies
@@ -47,7 +49,9 @@ struct OperatorTrial {
   std::optional<TrialOutcome> outcome;
   std::string reason;
   int attempts = 1;  ///< draws needed for a trial the arm can execute
-  DemoLog log;       ///< source = the file name it gets, e.g. theta020_trial03.csv
+  /// source = the file name it gets: theta020_trial03.csv, or at a position of
+  /// OperatorOptions::positions x-0300_y+0800_theta020_trial03.csv (mm).
+  DemoLog log;
 };
 
 /// The trial's outcome as reports name it: ToString(*outcome), or "not_executable" when the
@@ -57,8 +61,8 @@ std::string_view OutcomeName(const OperatorTrial& trial);
 /// Called after each trial with the number done and the total.
 using OperatorProgress = std::function<void(int done, int total)>;
 
-/// Generates and simulates every trial of every plan (orientations in plan order, trials in
-/// index order). Trials run on `threads` workers (0: all cores); the result does not depend
+/// Generates and simulates every trial of every plan at every position (positions in their
+/// order, orientations in plan order, trials in index order). Trials run on `threads` workers (0: all cores); the result does not depend
 /// on the thread count. Throws InputError for invalid options.
 std::vector<OperatorTrial> GenerateDemonstrations(const SimulationModel& model,
                                                   const OperatorOptions& options, int threads = 0,

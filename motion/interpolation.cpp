@@ -44,4 +44,45 @@ GraspingMotion BlendMotions(const GraspingMotion& m1, const GraspingMotion& m2, 
   return out;
 }
 
+GraspingMotion BlendMotionsWeighted(const std::vector<const GraspingMotion*>& motions,
+                                    const std::vector<double>& weights,
+                                    const BlendOptions& options) {
+  GS_DEMAND(options.IsValid(nullptr), "invalid BlendOptions");
+  GS_DEMAND(!motions.empty() && motions.size() == weights.size(), "one weight per motion");
+  std::vector<GraspingMotion> m;
+  for (const GraspingMotion* motion : motions) {
+    m.push_back(Resample(*motion, options.waypoints, options.resample));
+  }
+  for (size_t i = 0; i < m.size(); ++i) {
+    if (weights[i] == 1.0) return m[i];  // exact at a vertex
+  }
+  GraspingMotion out;
+  out.source = "blend(";
+  for (size_t i = 0; i < m.size(); ++i) {
+    out.theta += weights[i] * m[i].theta;
+    out.p_WO += weights[i] * m[i].p_WO;
+    out.source += motions[i]->source + " w=" + std::to_string(weights[i]) +
+                  (i + 1 < m.size() ? ", " : ")");
+  }
+  const size_t n = m.front().waypoints.size();
+  out.waypoints.resize(n);
+  std::vector<Eigen::Vector3d> p(m.size());
+  std::vector<Eigen::Quaterniond> q(m.size());
+  for (size_t k = 0; k < n; ++k) {
+    MotionWaypoint& w = out.waypoints[k];
+    w.f.setZero();
+    for (size_t i = 0; i < m.size(); ++i) {
+      const MotionWaypoint& wi = m[i].waypoints[k];
+      w.t += weights[i] * wi.t;
+      w.f += weights[i] * wi.f;
+      p[i] = wi.p_WH - m[i].p_WO;
+      q[i] = wi.q_WH;
+    }
+    w.p_WH = out.p_WO + WeightedAslerp(p, weights);
+    w.q_WH = WeightedSlerp(q, weights);
+  }
+  out.waypoints.front().t = 0.0;
+  return out;
+}
+
 }  // namespace graspsynth

@@ -87,6 +87,9 @@ JointTrajectory ReadJointTrajectory(const JsonReader& object) {
   object.AsObject().ExpectString("format", kJointTrajectoryFormat);
   JointTrajectory trajectory;
   trajectory.theta_deg = object.Number("theta_deg");
+  if (object.Has("object_xy")) {
+    trajectory.object_xy = Eigen::Vector2d(object.Numbers("object_xy", 2, -5.0, 5.0));
+  }
 
   const JsonReader samples = object.Field("samples");
   const std::vector<JsonReader> sample_objects = samples.AsArray();
@@ -154,6 +157,9 @@ JointTrajectory LoadJointTrajectory(const std::filesystem::path& path, const Arm
 std::string JointTrajectoryToJson(const JointTrajectory& trajectory) {
   std::string out = "{\n  \"format\": \"" + std::string(kJointTrajectoryFormat) + "\",\n";
   out += "  \"theta_deg\": " + json(Rounded(trajectory.theta_deg)).dump() + ",\n";
+  if (trajectory.object_xy) {
+    out += "  \"object_xy\": " + json(RoundedArray(trajectory.object_xy->data(), 2)).dump() + ",\n";
+  }
   out += "  \"samples\": [\n";
   for (size_t i = 0; i < trajectory.samples.size(); ++i) {
     const TrajectorySample& s = trajectory.samples[i];

@@ -6,6 +6,7 @@
 ///
 ///     {"format": "graspsynth-trajectory/1",
 ///      "theta_deg": 60.0,                                  object orientation, degrees
+///      "object_xy": [x, y],             optional: the object centre on the table, world, m
 ///      "samples": [{"t": 0.0, "arm": [7 rad], "hand": [16 rad]}, ...],
 ///      "waypoints": [{"t": 1.5, "position": [x, y, z], "quaternion": [w, x, y, z]}, ...]}
 ///
@@ -17,6 +18,7 @@
 /// it. Other top-level keys (a "comment", provenance) are kept out of the way and ignored.
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -24,6 +26,7 @@
 #include "common/json_reader.hpp"
 #include "kinematics/arm_model.hpp"
 #include "kinematics/hand_model.hpp"
+#include "kinematics/scene_model.hpp"
 #include "kinematics/types.hpp"
 
 namespace graspsynth {
@@ -48,14 +51,19 @@ struct WristWaypoint {
   Eigen::Isometry3d pose() const;
 };
 
-/// A whole-robot trajectory for one object orientation.
+/// A whole-robot trajectory for one object placement.
 struct JointTrajectory {
-  double theta_deg = 0.0;                 ///< object orientation the trajectory is made for, deg
+  double theta_deg = 0.0;  ///< object orientation the trajectory is made for, deg
+  /// The object centre on the table the trajectory is made for, world, m; empty: the scene's
+  /// object centre (written only when set, so files of the fixed position are unchanged).
+  std::optional<Eigen::Vector2d> object_xy;
   std::vector<TrajectorySample> samples;  ///< at least one, strictly increasing t
   std::vector<WristWaypoint> waypoints;   ///< optional, strictly increasing t
 
   /// Time of the last sample (s); 0 for an empty trajectory.
   double duration() const { return samples.empty() ? 0.0 : samples.back().t; }
+  /// The object's placement: theta_deg in radians at object_xy.
+  Placement placement() const { return {theta_deg * M_PI / 180.0, object_xy}; }
 };
 
 /// The command at time t: linear interpolation between the bracketing samples; the first
@@ -72,7 +80,8 @@ JointTrajectory ParseJointTrajectory(std::string_view json_text, const std::stri
 /// Reads a trajectory object (a whole document, or a member of one such as a grasp file's
 /// `trajectory`). Throws InputError (JsonReader's wording: source, field path such as
 /// `samples[3].arm[2]`, expected and found value) when: `format` is not kJointTrajectoryFormat;
-/// `theta_deg` is missing or not finite; `samples` is missing or empty; a sample lacks `t`,
+/// `theta_deg` is missing or not finite; `object_xy` is present but not two numbers within
+/// +-5 m; `samples` is missing or empty; a sample lacks `t`,
 /// `arm` or `hand`; `arm` does not hold 7 numbers or `hand` 16; a value is not a finite number
 /// (JSON has no NaN, so a NaN written as null, a string or a bare NaN token is caught here);
 /// time does not strictly increase; a waypoint's quaternion is not unit (|norm - 1| > 1e-6).

@@ -98,6 +98,7 @@ PerturbedTrajectory PerturbTrajectory(const RobotModel& robot, const JointTrajec
   const HandModel& hand = robot.hand;
   JointTrajectory& traj = out.trajectory;
   traj.theta_deg = nominal.theta_deg;
+  traj.object_xy = nominal.object_xy;
   Vector7d q_prev = nominal.samples.front().arm;
   for (size_t i = 0; i < nominal.samples.size(); ++i) {
     const TrajectorySample& s = nominal.samples[i];

@@ -51,7 +51,7 @@ RobustnessTrial RunReplay(const SimulationModel& model, const JointTrajectory& n
   if (!p.ok) {
     t.outcome = TrialOutcome::kJointLimit;
     t.reason = "infeasible replay: " + p.message;
-    t.final_object_pose = model.scene().ObjectPose(nominal.theta_deg * M_PI / 180.0);
+    t.final_object_pose = model.scene().ObjectPose(nominal.placement());
     return t;
   }
   t.physics = fixed ? *fixed : DrawPhysics(options.perturbation.physics, rng);

@@ -511,7 +511,7 @@ struct SimulationData::Impl {
         dGeomSetOffsetRotation(g, R);
       }
     }
-    PlaceBody(object, model->scene().ObjectPose(options.theta));
+    PlaceBody(object, model->scene().ObjectPose(Placement{options.theta, options.object_xy}));
   }
 
   // the arm's hinges (none when the arm is kinematic) and its limits. Joints are made with

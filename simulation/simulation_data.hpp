@@ -28,6 +28,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -66,6 +67,8 @@ struct WorldOptions {
   double time_step = 0.002;  ///< s, one physics and control step
   ArmMode arm_mode = ArmMode::kKinematic;
   double theta = 0.0;  ///< object orientation, rad (SceneModel::ObjectPose)
+  /// The object centre on the table, world, m; empty: the scene's object centre.
+  std::optional<Eigen::Vector2d> object_xy;
   /// Free-space test (HandNearObject): how far from the object hand and arm geometry count as
   /// "near", m.
   double proximity_margin = 0.02;

@@ -66,6 +66,7 @@ SimulationData MakeTrialWorld(const SimulationModel& model, const JointTrajector
                            : options.fidelity == Fidelity::kFull ? ArmMode::kDynamic
                                                                  : ArmMode::kWristDynamic;
   world_options.theta = trajectory.theta_deg * M_PI / 180.0;
+  world_options.object_xy = trajectory.object_xy;
   world_options.proximity_margin = options.proximity_margin;
   world_options.physics = options.physics;
   return SimulationData(model, world_options, trajectory.samples.front().arm,
@@ -135,7 +136,7 @@ TrialResult RunTrial(const SimulationModel& model, const JointTrajectory& trajec
 
   TrialResult result;
   result.counts = data.counts();
-  const Eigen::Isometry3d X_WO_rest = model.scene().ObjectPose(trajectory.theta_deg * M_PI / 180.0);
+  const Eigen::Isometry3d X_WO_rest = model.scene().ObjectPose(trajectory.placement());
   const double t_motion = trajectory.duration();
   result.planned_time = t_motion + options.hold;
   TrialWatch watch = StartTrialWatch(X_WO_rest);

@@ -95,8 +95,8 @@ struct TrialResult {
 /// Called after every step with the world (for tests and instrumentation).
 using StepObserver = std::function<void(SimulationData&)>;
 
-/// Plays `trajectory` (a valid one: ParseJointTrajectory + CheckJointLimits) for object
-/// orientation trajectory.theta_deg from its first sample, holds its last command for
+/// Plays `trajectory` (a valid one: ParseJointTrajectory + CheckJointLimits) for the object at
+/// trajectory.placement() from its first sample, holds its last command for
 /// options.hold and judges the outcome. Throws InputError only for invalid options.
 TrialResult RunTrial(const SimulationModel& model, const JointTrajectory& trajectory,
                      const TrialOptions& options = {}, const StepObserver& observer = {});

@@ -80,6 +80,29 @@ bool PaperComparisonOptions::IsValid(std::string* why) const {
   return false;
 }
 
+namespace {
+
+// The line principle over placements when the successful trials' objects stand at two or more
+// positions; nullopt otherwise.
+std::optional<PlacementLineFit> FitOverPlacements(const std::vector<SegmentedTrial>& trials,
+                                                  const AnalysisOptions& options) {
+  std::vector<PlacementLineSample> samples;
+  for (const SegmentedTrial& trial : trials) {
+    if (!trial.ok() || !trial.success) continue;
+    const GraspingMotion& m = trial.motion;
+    PlacementLineSample s;
+    s.placement = Eigen::Vector3d(m.p_WO.x(), m.p_WO.y(), m.theta);
+    s.wrist = m.grasp().p_WH - m.p_WO;
+    samples.push_back(s);
+  }
+  if (options.line_points == LinePoints::kOrientationMeans) samples = MeanPerPlacement(samples);
+  PlacementLineFit fit = FitPlacementLine(samples, options.line);
+  if (fit.positions < 2) return std::nullopt;
+  return fit;
+}
+
+}  // namespace
+
 DemonstrationAnalysis AnalyzeDemonstrations(const DemoDirectory& demos,
                                             const AnalysisOptions& options) {
   std::string why;
@@ -116,6 +139,7 @@ DemonstrationAnalysis AnalyzeDemonstrations(const DemoDirectory& demos,
   analysis.radial = FitRadialModel(analysis.fit_theta, analysis.fit_points);
   analysis.grasp_ranges = ComputeAngularRanges(mean_theta, mean_grasp);
   analysis.pregrasp_ranges = ComputeAngularRanges(mean_theta, mean_pregrasp);
+  analysis.placement_line = FitOverPlacements(trials, options);
   return analysis;
 }
 
@@ -265,6 +289,38 @@ json WristLineJson(const DemonstrationAnalysis& analysis) {
   return wrist_line;
 }
 
+json Xyz(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); }
+
+json ResidualsJson(const PlacementLineResiduals& r) {
+  json per_sample = json::array();
+  for (const Eigen::Vector3d& e : r.per_sample) per_sample.push_back(Xyz(e));
+  return {{"rms_xy_m", r.rms_xy},
+          {"max_xy_m", r.max_xy},
+          {"rms_z_m", r.rms_z},
+          {"per_sample_m", per_sample}};
+}
+
+// The line principle over placements: the affine model, its residuals and those without the
+// position terms.
+json PlacementLineJson(const PlacementLineFit& fit) {
+  json out = {{"valid", fit.valid},
+              {"message", fit.message},
+              {"model", "r = b + a_x (x - x_ref) + a_y (y - y_ref) + a_theta theta"},
+              {"samples", fit.samples},
+              {"positions", fit.positions}};
+  if (!fit.valid) return out;
+  out["reference_m"] = Xy(fit.reference);
+  out["b_m"] = Xyz(fit.b);
+  out["a_x"] = Xyz(fit.a_x);
+  out["a_y"] = Xyz(fit.a_y);
+  out["a_theta_m_per_rad"] = Xyz(fit.a_theta);
+  out["line_angle_deg"] = std::isfinite(fit.line_angle_deg) ? json(fit.line_angle_deg) : json();
+  out["iterations"] = fit.iterations;
+  out["residuals"] = ResidualsJson(fit.residuals);
+  out["theta_only"] = ResidualsJson(fit.theta_only);
+  return out;
+}
+
 // Table I beside the paper's, row by row, with the tolerances.
 json PaperComparisonJson(const TableAnalysis& table, const PaperComparisonOptions& comparison) {
   json rows = json::array();
@@ -342,6 +398,9 @@ std::string AnalysisReportJson(const DemonstrationAnalysis& analysis,
       {"pregrasp_eta_deg", analysis.pregrasp_ranges.position_eta / kDeg},
       {"grasp_to_object_ratio",
        object_range > 0.0 ? json(analysis.grasp_ranges.position_eta / object_range) : json()}};
+
+  if (analysis.placement_line)
+    report["placement_line"] = PlacementLineJson(*analysis.placement_line);
 
   report["paper_comparison"] = comparison ? PaperComparisonJson(table, *comparison) : json();
 

@@ -18,6 +18,11 @@
 ///   rms_m, max_m, angle_difference_deg, offset_difference_m, agrees}};
 /// - `radial_model` {valid, d_m, c_deg, rms_m, max_m, residuals_m} (eta = theta + c, d constant);
 /// - `angular_ranges` {object_theta_deg, grasp_eta_deg, pregrasp_eta_deg, grasp_to_object_ratio};
+/// - `placement_line` (only when the trials' objects stand at two or more positions; the wrist
+///   relative to the object in world axes, not the table frame): {valid, message, model,
+///   samples, positions, reference_m [x, y], b_m, a_x, a_y, a_theta_m_per_rad (each [x, y, z]),
+///   line_angle_deg, iterations, residuals {rms_xy_m, max_xy_m, rms_z_m, per_sample_m
+///   [[x, y, z]...]}, theta_only {...the same}} (placement_line.hpp);
 /// - `paper_comparison` {distance_tolerance_m, angle_tolerance_deg, rows [{theta_deg,
 ///   n_paper, n_ours, paper {...}, ours {...}, difference {...}, within_tolerance, note}]};
 /// - `rejected` [{file, reason}] (files the reader rejected), `skipped` [{file, reason}] (trials
@@ -29,6 +34,7 @@
 
 #include "learning_data/demo_directory.hpp"
 #include "learning_data/segmentation.hpp"
+#include "solver/placement_line.hpp"
 #include "solver/table_analysis.hpp"
 #include "solver/wrist_line.hpp"
 
@@ -66,6 +72,10 @@ struct DemonstrationAnalysis {
   RadialModelResult radial;                 ///< the radial strategy on the same points
   AngularRanges grasp_ranges;               ///< mean grasp positions' eta range vs the theta range
   AngularRanges pregrasp_ranges;  ///< mean pre-grasp positions' eta range vs the theta range
+  /// The line principle over placements (placement_line.hpp), over the successful segmented
+  /// trials' grasps (per placement means or trials, as line_points); only when the trials'
+  /// objects stand at two or more positions.
+  std::optional<PlacementLineFit> placement_line;
 };
 
 /// Segments every log of `demos`, builds the table, fits the wrist line and the radial model to

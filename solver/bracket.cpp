@@ -45,7 +45,12 @@ const char* ToString(BracketKind kind) {
 
 int HandleSide(const SceneModel& scene, double theta, const Eigen::Vector3d& p_WH,
                double dead_band) {
-  const Eigen::Isometry3d X_WO = scene.ObjectPose(theta);
+  return HandleSide(scene, Placement{theta, {}}, p_WH, dead_band);
+}
+
+int HandleSide(const SceneModel& scene, const Placement& placement, const Eigen::Vector3d& p_WH,
+               double dead_band) {
+  const Eigen::Isometry3d X_WO = scene.ObjectPose(placement);
   const Eigen::Vector3d h = scene.object.HandleDirection(X_WO);
   const Eigen::Vector3d right = h.cross(Eigen::Vector3d::UnitZ()).normalized();
   const double lateral = right.dot(p_WH - X_WO.translation());

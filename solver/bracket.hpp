@@ -79,6 +79,9 @@ struct Bracket {
 /// comment.
 int HandleSide(const SceneModel& scene, double theta, const Eigen::Vector3d& p_WH,
                double dead_band);
+/// The same with the object at `placement`.
+int HandleSide(const SceneModel& scene, const Placement& placement, const Eigen::Vector3d& p_WH,
+               double dead_band);
 
 /// The bracket of `theta_deg` in `library` (entries strictly increasing in theta).
 Bracket SelectBracket(const GraspLibrary& library, const SceneModel& scene, double theta_deg,

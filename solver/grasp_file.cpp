@@ -146,6 +146,7 @@ std::string GraspFileToJson(const SynthesisResult& s, const PhysicsGateResult* g
   json j;
   j["format"] = kGraspFileFormat;
   j["theta_deg"] = s.theta_deg;
+  if (s.placement.xy) j["object_xy"] = {s.placement.xy->x(), s.placement.xy->y()};
   j["method"] = MethodJson(s);
   j["reach"] = {{"used", ToString(s.reach_used)}, {"reason", s.reach_reason}};
   j["bracket"] = BracketJson(s.bracket);

@@ -117,6 +117,15 @@ SideKnot SideModel::At(double theta) const {
 
 namespace {
 
+// The placement of entry `e` at orientation theta (rad): at its own motion's object centre, or
+// at the scene's when it stands there up to rounding (a log records the centre as it computed
+// it, e.g. 0.8499999999999999 for 0.85: the fixed-position study keeps the scene's exact pose).
+Placement OwnPlacement(const SceneModel& scene, const LibraryEntry& e, double theta) {
+  const Eigen::Vector2d xy = e.motion.p_WO.head<2>();
+  if ((xy - scene.object_centre_xy).norm() < 1e-9) return {theta, std::nullopt};
+  return {theta, xy};
+}
+
 // The knot of a library grasping motion at object orientation theta (rad, object pose X_WO)
 // on `side`, its approach resampled to n waypoints; the handle axis point under the hand in H,
 // weighted by `weight`, added to *handle_in_hand.
@@ -170,6 +179,15 @@ SideKnot KnotOf(const SceneModel& scene, const GraspingMotion& motion,
 
 }  // namespace
 
+int GraspSide(const SceneModel& scene, const LibraryEntry& e, double dead_band) {
+  const double th = e.theta_deg * kDeg;
+  const MotionWaypoint& g = e.motion.grasp();
+  const double rel = Wrap(HandYaw(g.q_WH.toRotationMatrix()) - HandleAngle(scene, th));
+  const int side = HandleSide(scene, OwnPlacement(scene, e, th), g.p_WH, dead_band);
+  if (side != 0) return side;
+  return rel > 0.0 ? 1 : -1;
+}
+
 LinePrincipleModel FitLinePrinciple(const GraspLibrary& library, const SceneModel& scene,
                                     const LinePrincipleOptions& options) {
   LinePrincipleModel model;
@@ -179,14 +197,8 @@ LinePrincipleModel FitLinePrinciple(const GraspLibrary& library, const SceneMode
     model.message = "the line principle needs at least two library entries";
     return model;
   }
-  // every entry's side of the handle (the yaw's sign when the wrist is on the handle's line).
   for (const LibraryEntry& e : entries) {
-    const double th = e.theta_deg * kDeg;
-    const MotionWaypoint& g = e.motion.grasp();
-    const double rel = Wrap(HandYaw(g.q_WH.toRotationMatrix()) - HandleAngle(scene, th));
-    int side = HandleSide(scene, th, g.p_WH, options.side_dead_band);
-    if (side == 0) side = rel > 0.0 ? 1 : -1;
-    model.entry_sides.push_back(side);
+    model.entry_sides.push_back(GraspSide(scene, e, options.side_dead_band));
   }
   // the entries the models are fitted over: the robust ones when two or more are.
   std::vector<size_t> used;
@@ -202,7 +214,7 @@ LinePrincipleModel FitLinePrinciple(const GraspLibrary& library, const SceneMode
   std::vector<Eigen::Vector2d> points;
   for (size_t k : used) {
     const LibraryEntry& e = entries[k];
-    const Eigen::Isometry3d X_WO = scene.ObjectPose(e.theta_deg * kDeg);
+    const Eigen::Isometry3d X_WO = scene.ObjectPose(OwnPlacement(scene, e, e.theta_deg * kDeg));
     theta.push_back(e.theta_deg * kDeg);
     points.push_back((e.motion.grasp().p_WH - X_WO.translation()).head<2>());
   }
@@ -220,7 +232,7 @@ LinePrincipleModel FitLinePrinciple(const GraspLibrary& library, const SceneMode
   for (int si = 0; si < 2; ++si) model.sides[si].side = si == 1 ? 1 : -1;
   for (size_t k = 0; k < used.size(); ++k) {
     const LibraryEntry& e = entries[used[k]];
-    const Eigen::Isometry3d X_WO = scene.ObjectPose(theta[k]);
+    const Eigen::Isometry3d X_WO = scene.ObjectPose(OwnPlacement(scene, e, theta[k]));
     s.push_back(line.direction.dot(points[k] - line.point));
     const int side = model.entry_sides[used[k]];
     const SideKnot knot =

@@ -116,8 +116,15 @@ struct LinePrincipleModel {
   const SideModel& side_model(int side) const { return sides[side > 0 ? 1 : 0]; }
 };
 
-/// Fits the models over the library's entries. Needs at least two entries with distinct grasp
-/// positions; otherwise the model is not valid (with the reason).
+/// The side of the handle (+1 or -1) of entry `e`'s grasp, relative to its own object (its
+/// motion's object centre at its theta): HandleSide, and on the handle's line (within
+/// dead_band, m) the sign of the hand's yaw relative to the handle.
+int GraspSide(const SceneModel& scene, const LibraryEntry& e, double dead_band);
+
+/// Fits the models over the library's entries (of one object position, theta increasing),
+/// each grasp relative to its own object centre (its motion's object_position). Needs at least
+/// two entries with distinct grasp positions; otherwise the model is not valid (with the
+/// reason).
 LinePrincipleModel FitLinePrinciple(const GraspLibrary& library, const SceneModel& scene,
                                     const LinePrincipleOptions& options = {});
 

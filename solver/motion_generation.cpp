@@ -4,6 +4,7 @@
 
 #include "common/errors.hpp"
 #include "motion/joint_space.hpp"
+#include "solver/placement_motion.hpp"
 
 namespace graspsynth {
 
@@ -47,6 +48,8 @@ void UseBlend(const SynthesisModel& model, const SynthesisTask& task,
   r->motion = BlendMotions(library.entries[b.lower].motion, library.entries[b.upper].motion, b.t,
                            options.blend);
   r->motion.theta = task.placement.theta;
+  // the library's object position, moved to the task's (the blend is of one position).
+  if (task.placement.xy) r->motion = TurnWithObject(r->motion, task.placement);
   r->sources = {Source(library, b.lower, 1.0 - b.t), Source(library, b.upper, b.t)};
 }
 
@@ -154,6 +157,17 @@ std::string FallbackReason::Text() const {
     default:
       break;
   }
+  if (!cell.empty()) {
+    f << "the cell " << cell << " cannot be blended (" << bracket_reason << ")";
+    if (kind == FallbackKind::kTurnedDemo) {
+      f << "; used its heaviest robust vertex " << used_placement
+        << " moved and turned with the object";
+    } else {
+      f << "; no robust vertex moved with the object is reachable with " << min_psi_width / kDeg
+        << " deg of arm angle; used the plain blend, left to the refinement";
+    }
+    return f.str();
+  }
   f << "the bracket " << lower_deg << " - " << upper_deg << " deg cannot be blended ("
     << bracket_reason << ")";
   if (kind == FallbackKind::kTurnedDemo) {
@@ -179,8 +193,9 @@ bool MotionGenerationOptions::IsValid(std::string* why) const {
 GraspingMotion TurnWithObject(const GraspingMotion& motion, const Placement& placement) {
   GraspingMotion out = motion;
   const Eigen::AngleAxisd turn(placement.theta - motion.theta, Eigen::Vector3d::UnitZ());
+  if (placement.xy) out.p_WO.head<2>() = *placement.xy;
   for (MotionWaypoint& w : out.waypoints) {
-    w.p_WH = motion.p_WO + turn * (w.p_WH - motion.p_WO);
+    w.p_WH = out.p_WO + turn * (w.p_WH - motion.p_WO);
     w.q_WH = (Eigen::Quaterniond(turn) * w.q_WH).normalized();
   }
   out.theta = placement.theta;
@@ -196,6 +211,7 @@ bool Reachable(const RobotModel& robot, const GraspingMotion& motion, ArmBranch 
 MotionGenerationResult GenerateGraspingMotion(const SynthesisModel& model,
                                               const SynthesisTask& task,
                                               const MotionGenerationOptions& options) {
+  if (model.placements()) return GeneratePlacementMotion(model, task, options);
   MotionGenerationResult r;
   r.used = options.method;
   r.bracket = SelectBracket(model.library(), model.scene(), task.theta_deg, options.bracket);

@@ -71,6 +71,10 @@ struct FallbackReason {
   /// The bracket was blendable, but its blend failed its nominal trial in physics
   /// (bracket_reason says how).
   bool blend_failed = false;
+  /// A library over placements (placement_motion.hpp): the query's cell, its vertices and
+  /// weights in words, in place of the bracket; and the vertex used (kTurnedDemo).
+  std::string cell;
+  std::string used_placement;
 
   /// The reason in words ("" for kNone): what could not be used, then what was.
   std::string Text() const;
@@ -121,7 +125,8 @@ MotionGenerationResult GenerateGraspingMotion(const SynthesisModel& model,
                                               const MotionGenerationOptions& options);
 
 /// A library entry's grasping motion turned with the object from its theta to `placement`'s
-/// about the vertical through the object centre.
+/// about the vertical through the object centre, and moved with it to placement.xy when that
+/// is set.
 GraspingMotion TurnWithObject(const GraspingMotion& motion, const Placement& placement);
 
 /// True when the pre-grasp and grasp poses of `motion` keep `min_width` (rad) of feasible arm

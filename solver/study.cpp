@@ -153,11 +153,16 @@ std::vector<ReachabilityRow> TableIReachability(const RobotModel& robot, const S
 namespace {
 
 // The row of (theta, method) of a table with `seed`, before anything is known of it.
-StudyRow NewRow(double theta, const StudyMethod& method, uint64_t seed) {
+StudyRow NewRow(double theta, const StudyMethod& method, uint64_t seed,
+               const std::optional<Eigen::Vector2d>& at = {}) {
   StudyRow row;
   row.theta_deg = theta;
+  row.at = at;
   row.method = method.Label();
-  row.seed = StudyRowSeed(seed, theta, row.method);
+  // a row at a position of its own has a stream of its own; the scene's centre keeps its seed.
+  row.seed = at ? DemoSeed(seed, "at " + Num17(at->x()) + " " + Num17(at->y()) + " theta " +
+                                     Num17(theta) + " " + row.method)
+                : StudyRowSeed(seed, theta, row.method);
   return row;
 }
 
@@ -172,10 +177,16 @@ std::vector<StudyRow> SynthesisTable(const SimulationModel& model, const GraspLi
                       2 * static_cast<int>(AllPhysicsFactors().size()) * options.sensitivity_trials;
   std::vector<StudyRow> rows;
   std::vector<StudyMethod> methods;  // of each row
-  for (double theta : options.orientations) {
-    for (const StudyMethod& method : options.methods) {
-      rows.push_back(NewRow(theta, method, options.seed));
-      methods.push_back(method);
+  std::vector<std::optional<Eigen::Vector2d>> positions(options.positions.begin(),
+                                                        options.positions.end());
+  if (positions.empty()) positions.emplace_back();  // the scene's centre
+  for (const std::optional<Eigen::Vector2d>& at : positions) {
+    if (at) MakeSynthesisTask(model.scene(), 0.0, at);  // an off-table position: InputError
+    for (double theta : options.orientations) {
+      for (const StudyMethod& method : options.methods) {
+        rows.push_back(NewRow(theta, method, options.seed, at));
+        methods.push_back(method);
+      }
     }
   }
   ProgressCounter counter(static_cast<int>(rows.size()) * per_row, progress);
@@ -186,7 +197,9 @@ std::vector<StudyRow> SynthesisTable(const SimulationModel& model, const GraspLi
   ParallelFor(static_cast<int>(rows.size()), split.outer, [&](int i) {
     StudyRow& row = rows[static_cast<size_t>(i)];
     const double theta = row.theta_deg;
-    const std::string what = "theta " + Deg(theta) + " " + row.method;
+    const std::string what =
+        (row.at ? "at " + Deg(row.at->x()) + "," + Deg(row.at->y()) + " " : std::string()) +
+        "theta " + Deg(theta) + " " + row.method;
     counter.Add(0, what);
     ValidatedSynthesisOptions vo;
     vo.synthesis = methods[static_cast<size_t>(i)].Options();
@@ -200,7 +213,8 @@ std::vector<StudyRow> SynthesisTable(const SimulationModel& model, const GraspLi
     SynthesisData data(synthesis);
     int counted = 0;  // of the row's per_row (a fallback's second gate counts no further)
     const ValidatedSynthesis v =
-        SynthesizeAndValidate(model, synthesis, theta, vo, &data, [&](int done, int) {
+        SynthesizeAndValidate(model, synthesis, MakeSynthesisTask(model.scene(), theta, row.at),
+                              vo, &data, [&](int done, int) {
           const int now = std::clamp(1 + done, counted, per_row);
           counter.Add(now - counted, what);
           counted = now;

@@ -135,6 +135,9 @@ struct ReachabilityRow {
 /// One row of the synthesis table: one orientation, one method, and its physics validation.
 struct StudyRow {
   double theta_deg = 0.0;  ///< deg
+  /// The object centre on the table, world, m; empty: the scene's object centre (the files
+  /// then have no position columns).
+  std::optional<Eigen::Vector2d> at;
   std::string method;      ///< StudyMethod::Label()
   std::string message;     ///< the synthesis' message when status is not "ok"
   /// The method used; unset when the synthesis did not succeed (the files write "").
@@ -211,6 +214,9 @@ std::vector<ReachabilityRow> TableIReachability(const RobotModel& robot, const S
 /// Options of the synthesis table (the study's stage 3; experiments 2 and 3).
 struct SynthesisTableOptions {
   std::vector<double> orientations;  ///< deg
+  /// Object positions on the table (world, m): every orientation at each, rows by position
+  /// first; empty: the scene's object centre only.
+  std::vector<Eigen::Vector2d> positions;
   std::vector<StudyMethod> methods;
   int gate_perturbations = kStudyGatePerturbations;  ///< per row (0: nominal only)
   /// Replays per end of each physics factor's range in each row's sensitivity table (0: none).
@@ -227,8 +233,8 @@ struct SynthesisTableOptions {
 /// Progress of the synthesis table: replays done of their total, and the row being worked on.
 using SynthesisTableProgress = std::function<void(int done, int total, const std::string& what)>;
 
-/// A grasp for every orientation and method from `library`, each validated by the physics
-/// gate: rows by orientation, then method. Rows whose synthesis fails keep its status and
+/// A grasp for every position, orientation and method from `library`, each validated by the
+/// physics gate: rows by position, then orientation, then method. Rows whose synthesis fails keep its status and
 /// message. Throws InputError for a library the synthesis cannot use.
 std::vector<StudyRow> SynthesisTable(const SimulationModel& model, const GraspLibrary& library,
                                      const SynthesisTableOptions& options,

@@ -16,6 +16,12 @@ std::string Num17(double value) { return Format("%.17g", value); }
 
 std::string Deg(double theta_deg) { return Format("%g", theta_deg); }
 
+// A row's orientation, and its position when it has one of its own: "60" or "60 @ (-0.3, 0.8)".
+std::string Where(const StudyRow& r) {
+  if (!r.at) return Deg(r.theta_deg);
+  return Format("%g @ (%g, %g)", r.theta_deg, r.at->x(), r.at->y());
+}
+
 std::string Cell(const std::string& text) {
   std::string out;
   for (char c : text) {
@@ -49,10 +55,12 @@ using study_text::Cell;
 using study_text::CsvField;
 using study_text::Deg;
 using study_text::Num17;
+using study_text::Where;
 
 json RowJson(const StudyRow& r) {
   json j;
   j["theta_deg"] = r.theta_deg;
+  if (r.at) j["at"] = {r.at->x(), r.at->y()};
   j["method"] = r.method;
   j["status"] = StatusName(r);
   j["message"] = r.message;
@@ -127,8 +135,15 @@ std::string NominalOutcomeName(const StudyRow& row) {
 }
 
 std::string StudySynthesisCsv(const std::vector<StudyRow>& rows) {
-  std::string csv = std::string(kStudySynthesisCsvHeader) + "\n";
+  bool positions = false;
+  for (const StudyRow& r : rows) positions |= r.at.has_value();
+  std::string csv = (positions ? std::string("x,y,") : std::string()) +
+                    std::string(kStudySynthesisCsvHeader) + "\n";
   for (const StudyRow& r : rows) {
+    if (positions) {
+      const Eigen::Vector2d at = r.at.value_or(Eigen::Vector2d::Constant(NAN));
+      csv += ShortestNumber(at.x()) + "," + ShortestNumber(at.y()) + ",";
+    }
     const std::vector<std::string> fields = {Num17(r.theta_deg),
                                              r.method,
                                              StatusName(r),
@@ -216,7 +231,7 @@ std::string SynthesisTableMarkdown(const std::vector<StudyRow>& rows) {
   md << "| theta (deg) | method | used | nominal | robustness | 95% CI | gate | epsilon | "
         "synthesis (ms) | gate (s) |\n|---|---|---|---|---|---|---|---|---|---|\n";
   for (const StudyRow& r : rows) {
-    md << "| " << Deg(r.theta_deg) << " | " << r.method << " | ";
+    md << "| " << Where(r) << " | " << r.method << " | ";
     if (r.status != SynthesisStatus::kOk) {
       md << "**" << StatusName(r) << "** | | | | **no** | | " << Format("%.1f", r.synthesis_s * 1e3)
          << " | |\n";
@@ -238,7 +253,7 @@ std::string SynthesisTableMarkdown(const std::vector<StudyRow>& rows) {
     md << "Fallbacks:\n\n";
     for (const StudyRow& r : rows) {
       if (r.fallback) {
-        md << "- " << Deg(r.theta_deg) << " deg, " << r.method << " used " << UsedName(r) << ": "
+        md << "- " << Where(r) << " deg, " << r.method << " used " << UsedName(r) << ": "
            << Cell(r.fallback_reason.Text()) << "\n";
       }
     }
@@ -258,9 +273,9 @@ std::string HoldAndSensitivityMarkdown(const std::vector<StudyRow>& rows) {
   for (const StudyRow& r : rows) {
     if (!r.gate_run) continue;
     const HoldQuality& h = r.nominal_hold;
-    md << "| " << Deg(r.theta_deg) << " | " << r.method << " | "
-       << Format("%.1f", h.end_tilt / kDeg) << " | " << Format("%.1f", h.max_tilt / kDeg) << " | "
-       << Format("%.1f", h.slip * 1e3) << " | " << h.LoadBearers() << " |";
+    md << "| " << Where(r) << " | " << r.method << " | " << Format("%.1f", h.end_tilt / kDeg)
+       << " | " << Format("%.1f", h.max_tilt / kDeg) << " | " << Format("%.1f", h.slip * 1e3)
+       << " | " << h.LoadBearers() << " |";
     for (size_t c = 0; c < AllPhysicsFactors().size(); ++c) {
       if (!r.sensitivity) {
         md << " - |";
@@ -303,7 +318,7 @@ std::string ShortfallMarkdown(const std::vector<StudyRow>& rows) {
     for (const StudyRow& r : rows) {
       if (r.method != s.method || r.passed) continue;
       any_shortfall = true;
-      md << "  - " << Deg(r.theta_deg) << " deg: " << Cell(ShortfallReason(r)) << "\n";
+      md << "  - " << Where(r) << " deg: " << Cell(ShortfallReason(r)) << "\n";
     }
   }
   if (!any_shortfall) md << "\nNo shortfall.\n";

@@ -61,7 +61,8 @@ std::string HoldAndSensitivityMarkdown(const std::vector<StudyRow>& rows);
 std::string ShortfallMarkdown(const std::vector<StudyRow>& rows);
 
 /// The synthesis table as CSV: kStudySynthesisCsvHeader, then one line per row (numbers with 17
-/// significant digits, text fields quoted when they hold a comma or a quote).
+/// significant digits, text fields quoted when they hold a comma or a quote). Rows at positions
+/// of their own (StudyRow::at) add the columns x and y (m) in front.
 std::string StudySynthesisCsv(const std::vector<StudyRow>& rows);
 
 /// The synthesis table as JSON (format kStudySynthesisFormat): `format`, `seed`, `orientations`

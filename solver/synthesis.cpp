@@ -197,13 +197,17 @@ JointTrajectory AssembleTrajectory(const ReachPlanResult& reach, const GraspAndL
 
 SynthesisResult SynthesizeGrasp(const SynthesisModel& model, double theta_deg,
                                 const SynthesisOptions& options, SynthesisData* workspace) {
+  return SynthesizeGrasp(model, MakeSynthesisTask(model.scene(), theta_deg), options, workspace);
+}
+
+SynthesisResult SynthesizeGrasp(const SynthesisModel& model, const SynthesisTask& task,
+                                const SynthesisOptions& options, SynthesisData* workspace) {
   std::string why;
   if (!options.IsValid(&why)) throw InputError("invalid synthesis option: " + why);
-  if (!std::isfinite(theta_deg)) throw InputError("theta is not finite");
-  const SynthesisTask task = MakeSynthesisTask(model.scene(), theta_deg);
   CollisionData* data = workspace->collision();
   SynthesisResult r;
-  r.theta_deg = theta_deg;
+  r.theta_deg = task.theta_deg;
+  r.placement = task.placement;
   r.requested = options.generation.method;
 
   // 1. the grasping motion.
@@ -259,6 +263,7 @@ SynthesisResult SynthesizeGrasp(const SynthesisModel& model, double theta_deg,
   r.start = reach.start;
   r.reach_used = reach.used;
   r.trajectory = AssembleTrajectory(reach, tail);
+  r.trajectory.object_xy = task.placement.xy;
   r.path = std::move(reach.path);
   r.joints = std::move(reach.joints);
   r.status = SynthesisStatus::kOk;

@@ -102,6 +102,7 @@ struct SynthesisResult {
   SynthesisStatus status = SynthesisStatus::kUnreachable;
   std::string message;  ///< why, when not kOk
   double theta_deg = 0.0;
+  Placement placement;  ///< the task's (xy empty: the scene's object centre)
   SynthesisMethod requested = SynthesisMethod::kInterp;
   SynthesisMethod used = SynthesisMethod::kInterp;
   bool fallback = false;           ///< a method other than the requested one was used
@@ -195,6 +196,9 @@ JointTrajectory AssembleTrajectory(const ReachPlanResult& reach, const GraspAndL
 /// InputError for invalid options; bad queries and failures are results. `data` is the
 /// calling thread's workspace, made from `model`.
 SynthesisResult SynthesizeGrasp(const SynthesisModel& model, double theta_deg,
+                                const SynthesisOptions& options, SynthesisData* data);
+/// The same for a task made by MakeSynthesisTask (the object at a placement of its own).
+SynthesisResult SynthesizeGrasp(const SynthesisModel& model, const SynthesisTask& task,
                                 const SynthesisOptions& options, SynthesisData* data);
 
 }  // namespace graspsynth

@@ -4,6 +4,7 @@
 /// What every stage of the synthesis (synthesis.hpp) shares: the model, built once from the
 /// robot, scene and library, and the task, the object's placement entered once per query.
 
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "kinematics/scene_model.hpp"
 #include "learning_data/grasp_library.hpp"
 #include "solver/line_principle.hpp"
+#include "solver/placement_cell.hpp"
 #include "solver/refinement.hpp"
 
 namespace graspsynth {
@@ -40,16 +42,34 @@ class SynthesisModel {
   /// in physics did (SynthesisOptions::source_thresholds).
   const std::vector<RefinementConstraints>& entry_constraints() const { return entry_constraints_; }
   /// The library's range, deg.
-  double theta_min_deg() const { return library_.entries.front().theta_deg; }
-  double theta_max_deg() const { return library_.entries.back().theta_deg; }
+  double theta_min_deg() const { return theta_min_deg_; }
+  double theta_max_deg() const { return theta_max_deg_; }
+  /// Each entry's side of the handle (+1, -1; GraspSide), in entry order.
+  const std::vector<int>& entry_sides() const { return entry_sides_; }
+
+  /// True when the library holds demonstrations at several object positions
+  /// (GraspLibrary::HasPositions): the synthesis then works over placements (x, y, theta),
+  /// solver/placement_motion.hpp.
+  bool placements() const { return triangulation_.has_value(); }
+  /// The Delaunay triangulation of the entries' placements, entry order; placements() only.
+  const PlacementTriangulation& triangulation() const;
+  /// The entries the line principle is fitted over, by index: every entry, or for a library
+  /// over placements those at the position nearest the scene's object centre (the line
+  /// principle models one position's grasps as a function of theta).
+  std::vector<int> LineEntries() const;
 
  private:
+  GraspLibrary LineLibrary() const;
+
   RobotModel robot_;
   SceneModel scene_;
   GraspLibrary library_;
   CollisionModel collision_;
   LinePrincipleModel line_;
   std::vector<RefinementConstraints> entry_constraints_;
+  double theta_min_deg_ = 0.0, theta_max_deg_ = 0.0;
+  std::vector<int> entry_sides_;
+  std::optional<PlacementTriangulation> triangulation_;
 };
 
 /// The synthesis's per-thread workspace (STYLE.md's Data): everything a query writes while it
@@ -79,7 +99,13 @@ struct SynthesisTask {
   Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
 };
 
-/// The task of orientation `theta_deg` (deg, finite) in `scene`.
-SynthesisTask MakeSynthesisTask(const SceneModel& scene, double theta_deg);
+/// The task of orientation `theta_deg` (deg) in `scene`, the object at `at` (its centre on the
+/// table, world, m) or, without it, at the scene's object centre. Throws InputError when theta
+/// is not finite or `at` is not on the table.
+SynthesisTask MakeSynthesisTask(const SceneModel& scene, double theta_deg,
+                                const std::optional<Eigen::Vector2d>& at = {});
+
+/// A placement as the placement space's coordinates (x, y, theta): m, m, rad.
+Eigen::Vector3d PlacementCoordinates(const SceneModel& scene, const Placement& placement);
 
 }  // namespace graspsynth

@@ -18,9 +18,17 @@ ValidatedSynthesis SynthesizeAndValidate(const SimulationModel& simulation,
                                          const SynthesisModel& model, double theta_deg,
                                          const ValidatedSynthesisOptions& options,
                                          SynthesisData* data, const ProgressCallback& progress) {
+  return SynthesizeAndValidate(simulation, model, MakeSynthesisTask(model.scene(), theta_deg),
+                               options, data, progress);
+}
+
+ValidatedSynthesis SynthesizeAndValidate(const SimulationModel& simulation,
+                                         const SynthesisModel& model, const SynthesisTask& task,
+                                         const ValidatedSynthesisOptions& options,
+                                         SynthesisData* data, const ProgressCallback& progress) {
   ValidatedSynthesis v;
   auto t0 = WallClock::now();
-  v.synthesis = SynthesizeGrasp(model, theta_deg, options.synthesis, data);
+  v.synthesis = SynthesizeGrasp(model, task, options.synthesis, data);
   v.synthesis_s = SecondsSince(t0);
   if (!v.synthesis.ok()) return v;
   v.gate = RunPhysicsGate(simulation, v.synthesis.trajectory, options.gate, progress);
@@ -30,7 +38,7 @@ ValidatedSynthesis SynthesizeAndValidate(const SimulationModel& simulation,
   SynthesisOptions retry = options.synthesis;
   retry.generation.reject_blend = true;
   t0 = WallClock::now();
-  SynthesisResult fallback = SynthesizeGrasp(model, theta_deg, retry, data);
+  SynthesisResult fallback = SynthesizeGrasp(model, task, retry, data);
   v.synthesis_s += SecondsSince(t0);
   if (!fallback.ok()) return v;  // the blend, with its failed gate, is what there is
   v.rejected_blend =

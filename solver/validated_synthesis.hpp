@@ -46,5 +46,11 @@ ValidatedSynthesis SynthesizeAndValidate(const SimulationModel& simulation,
                                          const ValidatedSynthesisOptions& options,
                                          SynthesisData* data,
                                          const ProgressCallback& progress = {});
+/// The same for a task made by MakeSynthesisTask (the object at a placement of its own).
+ValidatedSynthesis SynthesizeAndValidate(const SimulationModel& simulation,
+                                         const SynthesisModel& model, const SynthesisTask& task,
+                                         const ValidatedSynthesisOptions& options,
+                                         SynthesisData* data,
+                                         const ProgressCallback& progress = {});
 
 }  // namespace graspsynth

@@ -79,6 +79,28 @@ GraspLibrary SampleLibrary() {
     e.lift_duration = rng.Uniform(0.5, 2.0);
     library.entries.push_back(e);
   }
+  // a library of one object position (format version 1).
+  library.entries[1].motion.p_WO = library.entries[0].motion.p_WO;
+  return library;
+}
+
+// A library over placements: the sample's entries at two more positions (format version 2).
+GraspLibrary PlacementsLibrary() {
+  GraspLibrary library = SampleLibrary();
+  const std::vector<LibraryEntry> base = library.entries;
+  library.entries.clear();
+  for (const Eigen::Vector2d& xy : {Eigen::Vector2d(-0.30, 0.80), Eigen::Vector2d(-0.30, 0.90),
+                                    Eigen::Vector2d(-0.2, 0.85)}) {
+    for (LibraryEntry e : base) {
+      const Eigen::Vector3d shift(xy.x() - e.motion.p_WO.x(), xy.y() - e.motion.p_WO.y(), 0.0);
+      e.motion.p_WO.head<2>() = xy;
+      for (MotionWaypoint& w : e.motion.waypoints) w.p_WH += shift;
+      library.entries.push_back(e);
+    }
+  }
+  for (size_t i = 0; i < library.scores.size(); ++i) {
+    library.scores[i].xy = Eigen::Vector2d(-0.3 + 0.05 * static_cast<double>(i), 0.8);
+  }
   return library;
 }
 
@@ -104,6 +126,9 @@ void ExpectIdentical(const GraspLibrary& a, const GraspLibrary& b) {
     EXPECT_EQ(x.seed, y.seed);
     EXPECT_EQ(x.failures, y.failures);
     EXPECT_EQ(x.selected, y.selected);
+    if (a.HasPositions()) {
+      EXPECT_EQ(x.xy, y.xy);
+    }
   }
   ASSERT_EQ(a.entries.size(), b.entries.size());
   for (size_t i = 0; i < a.entries.size(); ++i) {
@@ -151,6 +176,52 @@ TEST(GraspLibrary, RoundTripKeepsEveryBit) {
     ++files;
   }
   EXPECT_EQ(files, 1);
+}
+
+TEST(GraspLibrary, OnePositionIsVersion1AndSeveralAreVersion2) {
+  const GraspLibrary one = SampleLibrary();
+  EXPECT_FALSE(one.HasPositions());
+  const json j1 = json::parse(GraspLibraryToJson(one));
+  EXPECT_EQ(j1["format"], "graspsynth-library/1");
+  EXPECT_FALSE(j1["entries"][0].contains("placement"));
+  EXPECT_FALSE(j1["scores"][0].contains("placement"));
+
+  const TestFolder folder;
+  const GraspLibrary several = PlacementsLibrary();
+  EXPECT_TRUE(several.HasPositions());
+  const auto path = folder.path() / "placements.json";
+  WriteGraspLibrary(several, path);
+  const json j2 = json::parse(ReadFileText(path));
+  EXPECT_EQ(j2["format"], "graspsynth-library/2");
+  EXPECT_EQ(j2["entries"][0]["placement"], json({{"x", -0.3}, {"y", 0.8}, {"theta_deg", 40.0}}));
+  EXPECT_EQ(j2["scores"][1]["placement"]["x"], -0.25);
+  const GraspLibrary read = ReadGraspLibrary(path);
+  ExpectIdentical(several, read);
+  EXPECT_EQ(*read.entries[3].placement().xy, Eigen::Vector2d(-0.3, 0.9));
+  EXPECT_EQ(read.entries[3].placement().theta, 60.2 * kDeg);
+  EXPECT_EQ(GraspLibraryToJson(read), ReadFileText(path));
+}
+
+TEST(GraspLibrary, Version2PlacementsMustIncreaseAndAgreeWithTheirMotions) {
+  json j = json::parse(GraspLibraryToJson(PlacementsLibrary()));
+  json swapped = j;
+  std::swap(swapped["entries"][1], swapped["entries"][2]);  // (-0.3, 0.8, 60.2) after (-0.3, 0.9, 40)
+  try {
+    ParseGraspLibrary(swapped.dump(), "swapped.json");
+    FAIL() << "entries out of order were accepted";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("swapped.json"));
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("entries[2].placement"));
+  }
+  json moved = j;
+  moved["entries"][0]["placement"]["x"] = -0.31;
+  try {
+    ParseGraspLibrary(moved.dump(), "moved.json");
+    FAIL() << "a placement away from its motion was accepted";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("entries[0].placement"));
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("object_position"));
+  }
 }
 
 TEST(GraspLibrary, QuaternionsAreWrittenSignNormalized) {
@@ -222,8 +293,11 @@ TEST_F(MalformedLibrary, MissingFileAndBadJson) {
 
 TEST_F(MalformedLibrary, WrongFormatOrVersion) {
   ExpectRejected(
-      [](json& j) { j["format"] = "graspsynth-library/2"; },
-      {"field 'format': expected \"graspsynth-library/1\", found \"graspsynth-library/2\""});
+      [](json& j) { j["format"] = "graspsynth-library/3"; },
+      {"field 'format': expected \"graspsynth-library/1\", found \"graspsynth-library/3\""});
+  // version 2 without its placements.
+  ExpectRejected([](json& j) { j["format"] = "graspsynth-library/2"; },
+                 {"field 'scores[0].placement': expected an object"});
   ExpectRejected([](json& j) { j["format"] = "graspsynth-analysis/1"; },
                  {"found \"graspsynth-analysis/1\""});
   ExpectRejected([](json& j) { j.erase("format"); },

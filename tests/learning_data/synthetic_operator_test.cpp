@@ -11,6 +11,7 @@
 #include <fstream>
 #include <optional>
 
+#include "common/data_dir.hpp"
 #include "common/errors.hpp"
 #include "kinematics/robot_description.hpp"
 #include "kinematics/scene_model.hpp"
@@ -150,6 +151,44 @@ TEST(SyntheticOperator, TheShippedSetIsReproducedByteForByte) {
   const std::vector<OperatorTrial> trials = GenerateDemonstrations(model, options, 2);
   ASSERT_FALSE(trials.empty());
   ExpectTheShippedLogs(trials, DefaultOperatorOptionsPath().parent_path());
+}
+
+// The shipped placements set (learning_data/placements/demos): one position away from the
+// scene's centre at one orientation comes out of its operator again, bit for bit. Its logs
+// carry the moved object, are named by it and segment around it.
+TEST(SyntheticOperator, TheShippedPlacementSetIsReproducedAroundItsMovedObject) {
+  const SimulationModel model = LoadDefaultSimulationModel();
+  const fs::path dir = DataDirectory() / "learning_data" / "placements" / "demos";
+  OperatorOptions options = ReadOperatorOptions(dir / "operator.json");
+  ASSERT_EQ(options.positions.size(), 9u);
+  // the corner (-0.19, 0.91) as the config has it (the grid's own rounding)
+  const Eigen::Vector2d moved = options.positions.back();
+  ASSERT_LT((moved - Eigen::Vector2d(-0.19, 0.91)).norm(), 1e-9);
+  options.positions = {moved};
+  std::vector<OrientationPlan> plans;
+  for (const OrientationPlan& p : options.plans) {
+    if (p.theta_deg == 60.0) plans.push_back(p);
+  }
+  ASSERT_EQ(plans.size(), 1u);
+  if (testing::Scaled(0, 1) == 1) plans.front().trials = 2;
+  options.plans = plans;
+  const std::vector<OperatorTrial> trials = GenerateDemonstrations(model, options, 2);
+  ASSERT_FALSE(trials.empty());
+  ExpectTheShippedLogs(trials, dir);
+  SegmentationOptions segmentation;
+  segmentation.region = model.scene().grasp_region;
+  for (const OperatorTrial& t : trials) {
+    SCOPED_TRACE(t.log.source);
+    EXPECT_THAT(t.log.source, ::testing::StartsWith("x-0190_y+0910_theta060_trial0"));
+    ASSERT_TRUE(t.position.has_value());
+    EXPECT_EQ(*t.position, moved);
+    EXPECT_EQ(Eigen::Vector2d(t.log.metadata.object_position.head<2>()), moved);
+    const SegmentedTrial s = Segment(t.log, segmentation);
+    ASSERT_TRUE(s.ok()) << s.message;
+    // the pre-grasp is where the wrist enters the region around the moved object.
+    const Eigen::Vector2d pregrasp = s.motion.pregrasp().p_WH.head<2>();
+    EXPECT_NEAR((pregrasp - moved).norm(), model.scene().grasp_region.radius, 0.01);
+  }
 }
 
 // Every other object's shipped set (learning_data/objects/NAME/demos) comes out of its own

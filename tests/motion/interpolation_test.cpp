@@ -88,5 +88,77 @@ TEST(BlendOptions, RejectsTooFewWaypoints) {
   EXPECT_EQ(why, "BlendOptions::waypoints must be at least 2, is 1");
 }
 
+
+// a third demonstration at another object position: the placements' blend.
+GraspingMotion Third(const Eigen::Vector3d& p_WO) {
+  return LineMotion(p_WO + Eigen::Vector3d(0.05, -0.41, 0.19), p_WO + Eigen::Vector3d(0.04, -0.37, 0.08),
+                    0.1, 0.9, 23, 1.3, p_WO, 25 * kDeg);
+}
+
+TEST(BlendMotionsWeighted, AWeightOfOneIsThatDemonstrationExactly) {
+  const Pair p;
+  const GraspingMotion m3 = Third(p.p_WO + Eigen::Vector3d(0.05, 0.05, 0.0));
+  BlendOptions options;
+  options.waypoints = 40;
+  const std::vector<const GraspingMotion*> motions = {&p.m1, &p.m2, &m3};
+  for (size_t k = 0; k < 3; ++k) {
+    std::vector<double> w(3, 0.0);
+    w[k] = 1.0;
+    const GraspingMotion blend = BlendMotionsWeighted(motions, w, options);
+    const GraspingMotion expected = Resample(*motions[k], 40);
+    ASSERT_EQ(blend.waypoints.size(), 40u);
+    EXPECT_EQ(blend.theta, expected.theta);
+    EXPECT_EQ(blend.p_WO, expected.p_WO);
+    for (size_t i = 0; i < 40; ++i) {
+      EXPECT_EQ(blend.waypoints[i].p_WH, expected.waypoints[i].p_WH) << k << " " << i;
+      EXPECT_EQ(blend.waypoints[i].q_WH.coeffs(), expected.waypoints[i].q_WH.coeffs());
+      EXPECT_EQ(blend.waypoints[i].f, expected.waypoints[i].f);
+      EXPECT_EQ(blend.waypoints[i].t, expected.waypoints[i].t);
+    }
+  }
+}
+
+TEST(BlendMotionsWeighted, TwoDemonstrationsOfOnePositionGiveThePapersBlend) {
+  const Pair p;
+  const GraspingMotion m3 = Third(p.p_WO + Eigen::Vector3d(0.05, 0.05, 0.0));
+  BlendOptions options;
+  options.waypoints = 40;
+  for (double t : {0.1, 0.37, 0.5, 0.9}) {
+    const GraspingMotion paper = BlendMotions(p.m1, p.m2, t, options);
+    // the third motion takes part with weight 0, as a vertex of the cell off the segment.
+    const GraspingMotion blend =
+        BlendMotionsWeighted({&p.m1, &p.m2, &m3}, {1.0 - t, t, 0.0}, options);
+    EXPECT_NEAR(blend.theta, paper.theta, 1e-12);
+    EXPECT_TRUE(MatricesNear(blend.p_WO, paper.p_WO, 1e-12));
+    for (size_t i = 0; i < 40; ++i) {
+      const MotionWaypoint& a = blend.waypoints[i];
+      const MotionWaypoint& b = paper.waypoints[i];
+      EXPECT_NEAR(a.t, b.t, 1e-12);
+      EXPECT_TRUE(MatricesNear(a.p_WH, b.p_WH, 1e-12)) << t << " " << i;
+      EXPECT_LT(AngleBetween(a.q_WH, b.q_WH), 1e-12) << t << " " << i;
+      EXPECT_TRUE(MatricesNear(a.f, b.f, 1e-12));
+    }
+  }
+}
+
+TEST(BlendMotionsWeighted, BlendsRelativeToEachObjectAndPlacesAtTheWeightedCentre) {
+  // the same motion demonstrated at two positions (moved with the object): any blend is that
+  // motion at the blended position.
+  const Pair p;
+  const Eigen::Vector3d shift(0.08, -0.04, 0.0);
+  GraspingMotion moved = p.m1;
+  moved.p_WO += shift;
+  for (MotionWaypoint& w : moved.waypoints) w.p_WH += shift;
+  BlendOptions options;
+  options.waypoints = 30;
+  const GraspingMotion blend = BlendMotionsWeighted({&p.m1, &moved}, {0.25, 0.75}, options);
+  const GraspingMotion base = Resample(p.m1, 30);
+  EXPECT_TRUE(MatricesNear(blend.p_WO, p.p_WO + 0.75 * shift, 1e-12));
+  for (size_t i = 0; i < 30; ++i) {
+    EXPECT_TRUE(MatricesNear(blend.waypoints[i].p_WH, base.waypoints[i].p_WH + 0.75 * shift, 1e-12));
+    EXPECT_LT(AngleBetween(blend.waypoints[i].q_WH, base.waypoints[i].q_WH), 1e-12);
+  }
+}
+
 }  // namespace
 }  // namespace graspsynth

@@ -74,6 +74,17 @@ TEST(PerturbTrajectory, ScalesTimeAndMovesTheWristByTheDrawnNoise) {
   }
 }
 
+TEST(PerturbTrajectory, KeepsTheObjectsPlacement) {
+  JointTrajectory moved = ExampleTrajectory();
+  moved.object_xy = Eigen::Vector2d(-0.27, 0.87);
+  SplitMix64 rng(3);
+  const PerturbedTrajectory p = PerturbTrajectory(Robot(), moved, PerturbationOptions{}, rng);
+  ASSERT_TRUE(p.ok) << p.message;
+  EXPECT_EQ(p.trajectory.theta_deg, moved.theta_deg);
+  ASSERT_TRUE(p.trajectory.object_xy.has_value());
+  EXPECT_EQ(*p.trajectory.object_xy, *moved.object_xy);
+}
+
 TEST(PerturbTrajectory, TheSameStreamGivesTheSameReplay) {
   const PerturbationOptions o;
   SplitMix64 a = SplitMix64::ForStream(11, 2), b = SplitMix64::ForStream(11, 2);

@@ -17,11 +17,11 @@ const SceneModel& Scene() { return ShippedSimulationModel().scene(); }
 
 // The models at orientation theta (rad) of the shipped scene, its object pose computed once.
 Eigen::Isometry3d GraspPoseAt(const LinePrincipleModel& m, double theta, int side) {
-  const Placement placement{theta};
+  const Placement placement{theta, {}};
   return LinePrincipleGraspPose(m, placement, Scene().ObjectPose(placement), side);
 }
 GraspingMotion MotionAt(const LinePrincipleModel& m, double theta, int side) {
-  const Placement placement{theta};
+  const Placement placement{theta, {}};
   return LinePrincipleMotion(m, placement, Scene().ObjectPose(placement), side);
 }
 
@@ -29,7 +29,7 @@ TEST(LinePrinciple, TheMotionStandsAtTheObjectPoseItIsGiven) {
   // the object pose is the caller's: the models place the grasp relative to it.
   const LinePrincipleModel m = FitLinePrinciple(Library406080(), Scene());
   ASSERT_TRUE(m.valid) << m.message;
-  const Placement placement{50.0 * kDeg};
+  const Placement placement{50.0 * kDeg, {}};
   const Eigen::Isometry3d X_WO = Scene().ObjectPose(placement);
   Eigen::Isometry3d X_shifted = X_WO;
   X_shifted.translation() += Eigen::Vector3d(0.1, -0.05, 0.0);

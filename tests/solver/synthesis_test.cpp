@@ -144,7 +144,7 @@ TEST(Synthesis, BadStartIsAResult) {
 
 TEST(Synthesis, TurnWithObjectKeepsTheHoldRelativeToTheObject) {
   const GraspingMotion& m = Library406080().entries[0].motion;
-  const GraspingMotion t = TurnWithObject(m, Placement{55.0 * kDeg});
+  const GraspingMotion t = TurnWithObject(m, Placement{55.0 * kDeg, {}});
   const SceneModel& scene = ShippedSimulationModel().scene();
   const Eigen::Isometry3d X_OH_a =
       scene.ObjectPose(m.theta).inverse() * (Eigen::Translation3d(m.grasp().p_WH) * m.grasp().q_WH);

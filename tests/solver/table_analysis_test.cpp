@@ -116,5 +116,31 @@ TEST(TableAnalysis, EmptyInputGivesAnEmptyTable) {
   EXPECT_EQ(table.used, 0);
 }
 
+TEST(TableAnalysis, ALogAtAMovedPlacementIsAnalysedRelativeToItsOwnObjectCentre) {
+  // the same trial with the object 0.1 m along x and 0.05 m along y from the scene's centre:
+  // the pre-grasp is still the first sample inside the cylinder around its own object, and the
+  // polar figures are the same.
+  SegmentationOptions options;
+  TrialSpec spec;
+  spec.theta_deg = 40.0;
+  spec.pregrasp_xy = Polar(0.4, -66.0);
+  spec.grasp_xy = Polar(0.358, -71.1);
+  const SegmentedTrial at_centre = Segment(MakeTrial(spec), options);
+  spec.p_WO += Eigen::Vector3d(0.1, 0.05, 0.0);
+  spec.trial = "moved";
+  const SegmentedTrial moved = Segment(MakeTrial(spec), options);
+  ASSERT_TRUE(moved.ok()) << moved.message;
+  EXPECT_EQ(moved.pregrasp, at_centre.pregrasp);
+  EXPECT_EQ(moved.grasp, at_centre.grasp);
+  EXPECT_TRUE(testing::MatricesNear(moved.motion.p_WO, spec.p_WO, 0.0));
+  const TableAnalysis a = AnalyzeTable({at_centre});
+  const TableAnalysis b = AnalyzeTable({moved});
+  ASSERT_EQ(b.orientations.size(), 1u);
+  EXPECT_NEAR(b.orientations[0].grasp.d, 0.358, 1e-12);
+  EXPECT_NEAR(b.orientations[0].grasp.eta_deg, -71.1, 1e-9);
+  EXPECT_NEAR(b.orientations[0].pregrasp.d, a.orientations[0].pregrasp.d, 1e-12);
+  EXPECT_NEAR(b.orientations[0].pregrasp.eta_deg, a.orientations[0].pregrasp.eta_deg, 1e-9);
+}
+
 }  // namespace
 }  // namespace graspsynth

@@ -2,6 +2,7 @@
 # tests/CMakeLists.txt).
 graspsynth_test(solver/table_analysis_test.cpp LIBS graspsynth::solver)
 graspsynth_test(solver/wrist_line_test.cpp LIBS graspsynth::solver)
+graspsynth_test(solver/placement_line_test.cpp LIBS graspsynth::solver)
 graspsynth_test(solver/analysis_report_test.cpp LIBS graspsynth::solver
                 nlohmann_json::nlohmann_json)
 graspsynth_test(apps/analyze_command_test.cpp LIBS graspsynth::solver
@@ -10,6 +11,8 @@ add_dependencies(apps_analyze_command_test graspsynth)
 # Tests of the synthesis half of solver/ and of `graspsynth synthesize`.
 graspsynth_test(solver/bracket_test.cpp LIBS graspsynth::solver)
 graspsynth_test(solver/line_principle_test.cpp LIBS graspsynth::solver)
+graspsynth_test(solver/placement_cell_test.cpp LIBS graspsynth::solver)
+graspsynth_test(solver/placement_motion_test.cpp LIBS graspsynth::solver)
 graspsynth_test(solver/refinement_test.cpp LIBS graspsynth::solver)
 graspsynth_test(solver/physics_gate_test.cpp LIBS graspsynth::solver)
 graspsynth_test(solver/synthesis_test.cpp LIBS graspsynth::solver)
