@@ -63,6 +63,30 @@ AnalysisOptions MakeAnalysisOptions(const AnalyzeOptions& o, const SceneModel& s
   return options;
 }
 
+// The line principle over placements: the model's terms and residuals, with and without the
+// position terms.
+void PrintPlacementLine(const PlacementLineFit& fit, std::ostream& out) {
+  out << "line principle over placements (" << fit.samples << " sample(s) at " << fit.positions
+      << " position(s)): ";
+  if (!fit.valid) {
+    out << "not fitted: " << fit.message << "\n";
+    return;
+  }
+  char line[600];
+  std::snprintf(line, sizeof(line),
+                "wrist - object = b + A_x dx + A_y dy + A_theta theta\n"
+                "  A_theta (%.3f, %.3f, %.3f) m/rad: the wrist line at %.1f deg\n"
+                "  A_x (%.3f, %.3f, %.3f), A_y (%.3f, %.3f, %.3f) m/m: the grasp's shift as "
+                "the object moves\n"
+                "  residuals: rms %.4f m (max %.4f m) on the table, %.4f m in height; without "
+                "A_x, A_y: rms %.4f m (max %.4f m)\n",
+                fit.a_theta.x(), fit.a_theta.y(), fit.a_theta.z(), fit.line_angle_deg, fit.a_x.x(),
+                fit.a_x.y(), fit.a_x.z(), fit.a_y.x(), fit.a_y.y(), fit.a_y.z(),
+                fit.residuals.rms_xy, fit.residuals.max_xy, fit.residuals.rms_z,
+                fit.theta_only.rms_xy, fit.theta_only.max_xy);
+  out << line;
+}
+
 // `comparison` is null for an object that is not the paper's.
 void PrintSummary(const DemonstrationAnalysis& a, const PaperComparisonOptions* comparison,
                   std::ostream& out) {
@@ -95,6 +119,7 @@ void PrintSummary(const DemonstrationAnalysis& a, const PaperComparisonOptions* 
                   a.grasp_ranges.position_eta / kDeg, a.grasp_ranges.object_theta / kDeg);
     out << line;
   }
+  if (a.placement_line) PrintPlacementLine(*a.placement_line, out);
   if (!comparison) {
     out << "paper Table I: none for this object (not the paper's pan)\n";
     return;

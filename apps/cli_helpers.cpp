@@ -5,6 +5,8 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <sstream>
 
 #include "common/errors.hpp"
 #include "common/format.hpp"
@@ -92,6 +94,56 @@ void AddObjectFlag(CLI::App* app, std::string* object) {
                   "The object to grasp in place of the scene's: a shipped object's name (a file "
                   "models/objects/NAME.json) or an object description file "
                   "(graspsynth-object/1); default: the object the scene names");
+}
+
+void AddAtFlag(CLI::App* app, std::string* at) {
+  app->add_option("--at", *at,
+                  "X,Y: the object centre on the table, world frame, metres (e.g. -0.30,0.90); "
+                  "default: the scene's object centre (the paper's fixed position)");
+}
+
+std::optional<Eigen::Vector2d> ParseAt(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  Eigen::Vector2d xy;
+  std::stringstream ss(text);
+  std::string item;
+  int i = 0;
+  while (std::getline(ss, item, ',')) {
+    char* end = nullptr;
+    const double v = std::strtod(item.c_str(), &end);
+    if (i >= 2 || item.empty() || end == item.c_str() || *end != '\0' || !std::isfinite(v)) {
+      i = -1;
+      break;
+    }
+    xy[i++] = v;
+  }
+  if (i != 2 || (!text.empty() && text.back() == ',')) {
+    throw InputError("--at needs X,Y: two finite numbers of metres separated by a comma, got '" +
+                     text + "'");
+  }
+  return xy;
+}
+
+std::vector<Eigen::Vector2d> ParsePositionGrid(const std::string& x, const std::string& y) {
+  if (x.empty() != y.empty()) throw InputError("--x and --y go together (a grid of positions)");
+  std::vector<Eigen::Vector2d> grid;
+  if (x.empty()) return grid;
+  const std::vector<double> xs = ParseNumberList(x, "--x", "metres");
+  for (double yv : ParseNumberList(y, "--y", "metres")) {
+    for (double xv : xs) grid.emplace_back(xv, yv);
+  }
+  return grid;
+}
+
+void PlaceTrajectoryObject(const SceneModel& scene, const std::optional<Eigen::Vector2d>& at,
+                           const std::string& file, JointTrajectory* trajectory) {
+  if (at) trajectory->object_xy = at;
+  if (!trajectory->object_xy) return;
+  try {
+    scene.CheckOnTable(*trajectory->object_xy);
+  } catch (const InputError& e) {
+    throw InputError((at ? std::string("--at: ") : file + ": object_xy: ") + e.what());
+  }
 }
 
 SceneModel LoadScene(const std::string& scene, const std::string& object,

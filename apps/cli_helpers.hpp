@@ -6,12 +6,14 @@
 /// perturbation's flags, and a progress bar on stderr.
 
 #include <mutex>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "common/orientation_list.hpp"
 #include "kinematics/scene_model.hpp"
+#include "motion/joint_trajectory.hpp"
 #include "simulation/physics_perturbation.hpp"
 #include "solver/synthesis_model.hpp"
 
@@ -34,6 +36,25 @@ void CheckPhysicsFlags(const PhysicsPerturbationOptions& options);
 /// Adds --object NAME|FILE to a command that takes --scene: the object to use in place of the
 /// scene's (a shipped object's name, models/objects/NAME.json, or an object file).
 void AddObjectFlag(CLI::App* app, std::string* object);
+
+/// Adds --at X,Y to a command that takes --theta: where the object stands on the table (its
+/// centre, world, m); without it, at the scene's object centre. Read it with ParseAt.
+void AddAtFlag(CLI::App* app, std::string* at);
+
+/// The position of --at ("X,Y", two finite numbers of metres), or none for an empty text.
+/// Throws InputError naming the flag and the text otherwise.
+std::optional<Eigen::Vector2d> ParseAt(const std::string& text);
+
+/// The object positions of --x and --y (each a list in the orientation-list grammar, metres):
+/// every x at every y, y outermost; none when both are empty. Throws InputError when only one
+/// is given or a list is malformed.
+std::vector<Eigen::Vector2d> ParsePositionGrid(const std::string& x, const std::string& y);
+
+/// Puts `trajectory`'s object at `at` (--at) when given, and checks that the object then
+/// stands on the scene's table (SceneModel::CheckOnTable); throws InputError naming --at or
+/// `file` (where the trajectory's "object_xy" came from) otherwise.
+void PlaceTrajectoryObject(const SceneModel& scene, const std::optional<Eigen::Vector2d>& at,
+                           const std::string& file, JointTrajectory* trajectory);
 
 /// The scene of --scene (models/scene.json when empty) with the object of --object (the
 /// scene's own when empty). With `needs_handle` (what the command does with it), an object

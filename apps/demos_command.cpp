@@ -15,6 +15,7 @@
 
 #include "apps/cli_helpers.hpp"
 #include "common/errors.hpp"
+#include "common/orientation_list.hpp"
 #include "kinematics/robot_description.hpp"
 #include "kinematics/scene_model.hpp"
 #include "learning_data/segmentation.hpp"
@@ -36,7 +37,8 @@ struct DemosOptions {
   std::string object;  // --object: a shipped object's name or an object file
   uint64_t seed = 0;
   bool seed_given = false;
-  int trials = 0;  // 0: the config's
+  int trials = 0;    // 0: the config's
+  std::string x, y;  // --x, --y: a grid of object positions (both or neither)
   int threads = 0;
   int iterations = 3;
   double damping = 0.7;
@@ -51,6 +53,11 @@ OperatorOptions LoadOperator(const DemosOptions& o, const SceneModel& scene) {
   if (o.trials > 0) {  // the same count everywhere
     options.trials_per_orientation = o.trials;
     for (OrientationPlan& plan : options.plans) plan.trials = 0;
+  }
+  if (!o.x.empty() || !o.y.empty()) {
+    options.positions = ParsePositionGrid(o.x, o.y);
+    std::string why;
+    if (!options.IsValid(&why)) throw InputError("--x/--y: " + why);
   }
   return options;
 }
@@ -116,6 +123,21 @@ void PrintSummary(const TableAnalysis& table, const std::vector<OperatorTrial>& 
   }
 }
 
+// Successes per object position (a grid of positions; the table above pools them).
+void PrintPositions(const std::vector<OperatorTrial>& trials) {
+  std::map<std::pair<double, double>, std::pair<int, int>> counts;  // (y, x) -> (trials, ok)
+  for (const OperatorTrial& t : trials) {
+    if (!t.position) continue;
+    auto& c = counts[{t.position->y(), t.position->x()}];
+    ++c.first;
+    c.second += t.success ? 1 : 0;
+  }
+  std::printf("      x       y  trials   ok\n");
+  for (const auto& [yx, c] : counts) {
+    std::printf("%7.3f %7.3f  %6d %4d\n", yx.second, yx.first, c.first, c.second);
+  }
+}
+
 int Generate(const DemosOptions& o) {
   const std::unique_ptr<SimulationModel> model = LoadModel(o);
   const OperatorOptions options = LoadOperator(o, model->scene());
@@ -130,6 +152,7 @@ int Generate(const DemosOptions& o) {
   OperatorOptions used = options;
   WriteOperatorOptions(used, fs::path(o.out) / "operator.json");
   PrintSummary(Analyze(*model, trials), trials, model->scene().object.paper_object);
+  if (!options.positions.empty()) PrintPositions(trials);
   std::printf("wrote %zu logs and operator.json to %s\n", trials.size(), o.out.c_str());
   return 0;
 }
@@ -247,6 +270,11 @@ void AddDemosCommand(CLI::App& app, int* exit_code) {
       "operator.json that made it, into --out. The same config and seed give the same bytes.\n"
       "Example:\n  graspsynth demos generate --out demos/ --seed 7 --trials-per-orientation 10");
   generate->add_option("--out", o->out, "Output folder")->required();
+  generate->add_option("--x", o->x,
+                       "Object positions: x of the object centre on the table, m, a list or "
+                       "FROM:TO:STEP (with --y: every x at every y); default: the config's "
+                       "positions, else the scene's object centre");
+  generate->add_option("--y", o->y, "Object positions: y of the object centre, m (see --x)");
   AddCommonOptions(generate, o.get());
   generate->callback([o, exit_code] { *exit_code = Generate(*o); });
 

@@ -30,6 +30,7 @@ namespace fs = std::filesystem;
 struct GeneralizeOptions {
   std::string library;
   std::string orientations = "20:100:1";
+  std::string x, y;  // --x, --y: a grid of object positions (both or neither)
   std::string methods = "nearest,interp,interp+refine,line+refine";
   bool leave_one_out = false;
   int perturb = kStudyGatePerturbations;
@@ -103,6 +104,11 @@ int RunGeneralize(const GeneralizeOptions& o) {
   std::vector<StudyRow> rows;
   std::ostringstream what;
   if (o.leave_one_out) {
+    if (!o.x.empty() || !o.y.empty()) {
+      throw InputError(
+          "--leave-one-out works over the library's orientations at its own "
+          "positions: it takes no --x or --y");
+    }
     if (library.entries.size() < 3) {
       throw InputError("--leave-one-out needs a library with at least 3 orientations ('" +
                        library_path.string() + "' has " + std::to_string(library.entries.size()) +
@@ -115,7 +121,13 @@ int RunGeneralize(const GeneralizeOptions& o) {
                                 const std::string& w) { bar.Update(stage, done, total, w); });
   } else {
     table.orientations = ParseOrientationList(o.orientations, "--orientations");
-    what << "Library: " << library_name << ", orientations " << o.orientations << " deg.";
+    table.positions = ParsePositionGrid(o.x, o.y);
+    what << "Library: " << library_name << ", orientations " << o.orientations << " deg";
+    if (!table.positions.empty()) {
+      what << " at " << table.positions.size() << " object positions (x " << o.x << " m, y " << o.y
+           << " m)";
+    }
+    what << ".";
     rows = SynthesisTable(model, library, table, [&](int done, int total, const std::string& w) {
       bar.Update("synthesis", done, total, w);
     });
@@ -164,14 +176,24 @@ void AddGeneralizeCommand(CLI::App& app, int* exit_code) {
       "+nlopt (one stage), then /arc (arc-length resampling of the blend), /spline or\n"
       "/joint (the reach; default auto) and /strict (the refinement's default thresholds\n"
       "even where the sources break them), e.g. interp+refine/arc.\n"
-      "Experiments 2 and 3 (experiments/generalization.sh, experiments/ablations.sh) run it.\n"
+      "With --x and --y, every orientation at every position of the grid: the object\n"
+      "elsewhere on the table (a library over placements interpolates between them; the\n"
+      "CSV then starts with the columns x and y).\n"
+      "Experiments 2 and 3 (experiments/generalization.sh, experiments/ablations.sh) and the\n"
+      "placements study (experiments/placements.sh) run it.\n"
       "Example:\n"
       "  graspsynth generalize --orientations 20:100:1 --out results");
-  cmd->add_option("--library", opts->library,
-                  "Grasp library (graspsynth-library/1; default: the shipped one)");
+  cmd->add_option(
+      "--library", opts->library,
+      "Grasp library (graspsynth-library/1, or /2 over placements; default: the shipped one)");
   cmd->add_option("--orientations", opts->orientations,
                   "Orientations, deg: numbers and ranges FROM:TO:STEP, comma-separated")
       ->capture_default_str();
+  cmd->add_option("--x", opts->x,
+                  "Object positions: x of the object centre on the table, m, numbers and ranges "
+                  "FROM:TO:STEP (with --y: every orientation at every x at every y); default: "
+                  "the scene's object centre");
+  cmd->add_option("--y", opts->y, "Object positions: y of the object centre, m (see --x)");
   cmd->add_option("--methods", opts->methods, "Comma-separated methods")->capture_default_str();
   cmd->add_flag("--leave-one-out", opts->leave_one_out,
                 "Synthesize each inner library orientation from the library without it "

@@ -48,6 +48,7 @@ struct SimulateOptions {
   double position_noise = PerturbationOptions{}.position_sigma;
   double orientation_noise_deg = PerturbationOptions{}.orientation_sigma / kDeg;
   double finger_noise_deg = PerturbationOptions{}.finger_sigma / kDeg;
+  std::string at;  // --at X,Y: the object elsewhere than the file says
   std::string robot;
   std::string scene;
   std::string object;  // --object: a shipped object's name or an object file
@@ -194,8 +195,9 @@ int RunSimulate(const SimulateOptions& o) {
   }
   const SimulationModel model = LoadModel(o.robot, o.scene, o.object);
   // a graspsynth-trajectory/1 file, or the "trajectory" member of a graspsynth-grasp/1 file.
-  const JointTrajectory trajectory =
+  JointTrajectory trajectory =
       LoadTrajectoryOrGraspFile(o.trajectory, model.robot().arm, model.robot().hand);
+  PlaceTrajectoryObject(model.scene(), ParseAt(o.at), o.trajectory, &trajectory);
 
   TrialOptions trial;
   trial.fidelity = o.fidelity == "full"         ? Fidelity::kFull
@@ -215,6 +217,9 @@ int RunSimulate(const SimulateOptions& o) {
   report["format"] = kReportFormat;
   report["trajectory"] = o.trajectory;
   report["theta_deg"] = trajectory.theta_deg;
+  if (trajectory.object_xy) {
+    report["object_xy"] = {trajectory.object_xy->x(), trajectory.object_xy->y()};
+  }
   report["settings"] = {{"fidelity", o.fidelity},
                         {"time_step_s", trial.step()},
                         {"hold_s", trial.hold},
@@ -282,6 +287,9 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
       ->required()
       ->check(CLI::ExistingFile);
   sim->add_option("--out", opts->out, "Report file to write (JSON)")->required();
+  sim->add_option("--at", opts->at,
+                  "X,Y: play it with the object centre here on the table (world, m) instead of "
+                  "where the file puts it (its \"object_xy\", else the scene's object centre)");
   sim->add_option("--perturb", opts->perturb, "Number of perturbed replays (0: nominal only)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);

@@ -25,6 +25,7 @@ namespace {
 struct SynthesizeOptions {
   std::string library;
   double theta = NAN;
+  std::string at;  // --at X,Y
   std::string method = "interp";
   std::string reach = "auto";
   double clearance_margin = 0.005;
@@ -69,6 +70,7 @@ Vector7d ParseStart(const std::string& text) {
 int RunSynthesize(const SynthesizeOptions& o) {
   const SynthesisMethod method = ParseSynthesisMethod(o.method);
   if (!std::isfinite(o.theta)) throw InputError("--theta must be a finite number of degrees");
+  const std::optional<Eigen::Vector2d> at = ParseAt(o.at);
   SceneModel scene = LoadScene(o.scene, o.object, kSynthesisNeedsHandle);
   const std::filesystem::path library_path = o.library.empty()
                                                  ? DefaultGraspLibraryPath(scene.object.name)
@@ -98,7 +100,8 @@ int RunSynthesize(const SynthesizeOptions& o) {
   std::string why;
   if (!vo.gate.IsValid(&why)) throw InputError("bad physics gate option: " + why);
   SynthesisData data(model);
-  const ValidatedSynthesis v = SynthesizeAndValidate(sim, model, o.theta, vo, &data);
+  const ValidatedSynthesis v =
+      SynthesizeAndValidate(sim, model, MakeSynthesisTask(model.scene(), o.theta, at), vo, &data);
   const SynthesisResult& s = v.synthesis;
   switch (s.status) {
     case SynthesisStatus::kOk:
@@ -114,7 +117,10 @@ int RunSynthesize(const SynthesizeOptions& o) {
   if (!v.rejected_blend.empty()) {
     std::cerr << "the blend failed its nominal trial in physics: " << v.rejected_blend << "\n";
   }
-  std::cerr << "synthesized theta " << o.theta << " deg by " << ToString(s.used)
+  std::cerr << "synthesized theta " << o.theta << " deg"
+            << (at ? " at (" + std::to_string(at->x()) + ", " + std::to_string(at->y()) + ") m"
+                   : std::string())
+            << " by " << ToString(s.used)
             << (s.fallback ? " (fallback: " + s.fallback_reason.Text() + ")" : std::string())
             << ": " << s.trajectory.samples.size() << " samples, " << s.trajectory.duration()
             << " s; " << ToString(s.reach_used) << " reach (" << s.reach_reason << "); "
@@ -153,9 +159,18 @@ void AddSynthesizeCommand(CLI::App& app, int* exit_code) {
       "cannot be blended falls back to the nearer demonstration turned with the object, then\n"
       "the line principle; a blend whose nominal trial fails in physics falls back the same\n"
       "way), line (the line principle, also outside the library's range),\n"
-      "nearest (the nearest demonstration turned with the object).");
-  cmd->add_option("--library", opts->library, "Grasp library (graspsynth-library/1)");
+      "nearest (the nearest demonstration turned with the object).\n"
+      "--at X,Y puts the object elsewhere on the table. With a library over placements\n"
+      "(learning_data/placements/library.json) interp blends the demonstrations at the\n"
+      "corners of the query's cell in a Delaunay triangulation of the demonstrated (x, y,\n"
+      "theta); nearest moves and turns the nearest one with the object.\n"
+      "Example:\n"
+      "  graspsynth synthesize --library learning_data/placements/library.json \\\n"
+      "      --at -0.27,0.87 --theta 65 --out grasp.json");
+  cmd->add_option("--library", opts->library,
+                  "Grasp library (graspsynth-library/1, or /2 over placements)");
   cmd->add_option("--theta", opts->theta, "Object orientation, degrees")->required();
+  AddAtFlag(cmd, &opts->at);
   cmd->add_option("--method", opts->method, "interp, line or nearest")
       ->check(CLI::IsMember({"interp", "line", "nearest"}))
       ->capture_default_str();

@@ -20,6 +20,7 @@
 #include <string>
 #include <thread>
 
+#include "apps/cli_helpers.hpp"
 #include "apps/stop_signals.hpp"
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
@@ -45,6 +46,7 @@ struct ServerOptions {
   int port = 9870;
   std::string bind = "127.0.0.1";
   std::string orientations = "20,30,40,50,60,70,80,90,100";
+  std::string at;
   std::string record_dir;
   double rate_hz = 60.0;
   std::string config;
@@ -86,6 +88,7 @@ teleop::TeleopOptions SessionOptions(const ServerOptions& opts) {
   options.timeout_s = opts.timeout_ms * 1e-3;
   options.end_hold_s = opts.end_hold_s;
   options.orientations_deg = ParseOrientationList(opts.orientations, "--orientations");
+  options.object_xy = ParseAt(opts.at);
   options.record_dir = opts.record_dir;
   options.operator_name = opts.operator_name;
   options.calibration =
@@ -370,6 +373,7 @@ void AddServerCommand(CLI::App& app, int* exit_code) {
                    "them (the next-orientation button): numbers and ranges FROM:TO:STEP, "
                    "e.g. 20,30 or 20:100:10")
       ->capture_default_str();
+  AddAtFlag(teleop, &opts->at);
   teleop->add_option("--record", opts->record_dir,
                      "Folder to write every trial to, as trial_NNN_thetaT.csv (v1 logs)");
   teleop->add_option("--rate", opts->rate_hz, "Control rate, Hz (1..1000)")->capture_default_str();

@@ -36,6 +36,7 @@ struct ViewOptions {
   std::string robot;
   std::string scene;
   std::string object;  // --object: a shipped object's name or an object file
+  std::string at;      // --at X,Y: the trajectory's object elsewhere on the table
   std::string address = "127.0.0.1";
   int port = 8765;
   std::string camera;
@@ -48,10 +49,18 @@ struct ViewOptions {
 };
 
 // The replay of --trajectory or --log, or the robot at rest with neither.
-teleop::ViewerReplay LoadReplay(const ViewOptions& opts, const RobotModel& robot) {
+teleop::ViewerReplay LoadReplay(const ViewOptions& opts, const RobotModel& robot,
+                                const SceneModel& scene) {
+  const std::optional<Eigen::Vector2d> at = ParseAt(opts.at);
+  if (at && opts.trajectory.empty()) {
+    throw InputError(
+        "--at moves the object of a --trajectory (a log's object stands where it "
+        "was logged)");
+  }
   if (!opts.trajectory.empty()) {
-    return teleop::ReplayOfTrajectory(LoadJointTrajectory(opts.trajectory, robot.arm, robot.hand),
-                                      opts.trajectory);
+    JointTrajectory trajectory = LoadJointTrajectory(opts.trajectory, robot.arm, robot.hand);
+    PlaceTrajectoryObject(scene, at, opts.trajectory, &trajectory);
+    return teleop::ReplayOfTrajectory(std::move(trajectory), opts.trajectory);
   }
   if (!opts.log.empty()) {
     teleop::ViewerReplay replay = teleop::ReplayOfLog(robot, ReadDemoLog(opts.log));
@@ -136,7 +145,7 @@ int RunView(const ViewOptions& opts) {
       opts.camera.empty()
           ? teleop::DefaultViewerCamera(scene)
           : teleop::ParseViewerCamera(opts.camera, teleop::DefaultViewerCamera(scene));
-  const teleop::ViewerReplay replay = LoadReplay(opts, robot);
+  const teleop::ViewerReplay replay = LoadReplay(opts, robot, scene);
 
   teleop::ViewerServerOptions server_options;
   server_options.address = opts.address;
@@ -194,6 +203,10 @@ void AddViewCommand(CLI::App& app, int* exit_code) {
   view->add_option("--scene", opts->scene,
                    "Scene description (graspsynth-scene/2); default: models/scene.json");
   AddObjectFlag(view, &opts->object);
+  view->add_option("--at", opts->at,
+                   "X,Y: the object centre on the table for a --trajectory, world frame, metres "
+                   "(e.g. -0.30,0.90); default: where the file puts it (its \"object_xy\", else "
+                   "the scene's object centre)");
   view->add_option("--address", opts->address,
                    "IPv4 address to serve on; 0.0.0.0 opens the viewer to the network")
       ->capture_default_str();

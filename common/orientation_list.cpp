@@ -22,6 +22,12 @@ double Number(const std::string& item) {
 }  // namespace
 
 std::vector<double> ParseOrientationList(const std::string& text, const std::string& option) {
+  return ParseNumberList(text, option, "degrees");
+}
+
+std::vector<double> ParseNumberList(const std::string& text, const std::string& option,
+                                    const std::string& unit) {
+  const std::string values = unit == "degrees" ? "orientations" : "values";
   std::vector<double> thetas;
   std::stringstream ss(text);
   std::string item;
@@ -35,7 +41,7 @@ std::vector<double> ParseOrientationList(const std::string& text, const std::str
     while (std::getline(is, part, ':')) parts.push_back(part);
     if (parts.size() == 1) {
       const double v = Number(parts[0]);
-      if (std::isnan(v)) throw bad("is not a finite number of degrees");
+      if (std::isnan(v)) throw bad("is not a finite number of " + unit);
       thetas.push_back(v);
     } else if (parts.size() == 3) {
       const double from = Number(parts[0]), to = Number(parts[1]), step = Number(parts[2]);
@@ -46,16 +52,19 @@ std::vector<double> ParseOrientationList(const std::string& text, const std::str
       // counted in double first: the count of a wide range does not fit an int (to - from
       // can even overflow to infinity).
       const double n = std::floor((to - from) / step + 1e-9);
-      if (!(n < kMaxOrientations)) throw bad("has more than 100000 orientations");
+      if (!(n < kMaxOrientations)) throw bad("has more than 100000 " + values);
       for (int k = 0; k <= static_cast<int>(n); ++k) thetas.push_back(from + k * step);
     } else {
       throw bad("is neither a number nor a range FROM:TO:STEP");
     }
     if (thetas.size() > kMaxOrientations) {
-      throw InputError(option + ": more than 100000 orientations in all (in '" + text + "')");
+      throw InputError(option + ": more than 100000 " + values + " in all (in '" + text + "')");
     }
   }
-  if (thetas.empty()) throw InputError(option + ": no orientation in '" + text + "'");
+  if (thetas.empty()) {
+    throw InputError(option + ": no " + (unit == "degrees" ? "orientation" : "value") + " in '" +
+                     text + "'");
+  }
   return thetas;
 }
 

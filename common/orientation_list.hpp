@@ -2,7 +2,8 @@
 
 /// @file
 /// The grammar of a list of object orientations on the command line, one for every command:
-/// comma-separated items, each a number of degrees or an inclusive range FROM:TO:STEP.
+/// comma-separated items, each a number of degrees or an inclusive range FROM:TO:STEP (and of
+/// other lists of numbers in the same shape: the positions of --x and --y).
 
 #include <string>
 #include <vector>
@@ -14,5 +15,9 @@ namespace graspsynth {
 /// "0:20:1,100:120:5" or "40,45". Throws InputError naming `option` (e.g. "--orientations"),
 /// the item and the whole text when an item is malformed or the list is empty.
 std::vector<double> ParseOrientationList(const std::string& text, const std::string& option);
+
+/// The same grammar for other quantities: `unit` names them in the messages ("metres").
+std::vector<double> ParseNumberList(const std::string& text, const std::string& option,
+                                    const std::string& unit);
 
 }  // namespace graspsynth

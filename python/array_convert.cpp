@@ -138,6 +138,19 @@ py::array ReadOnlyView(const double* first, py::ssize_t count, py::ssize_t strid
   return view;
 }
 
+std::optional<Eigen::Vector2d> AtArgument(const py::object& at) {
+  if (at.is_none()) return std::nullopt;
+  const auto array = DoubleArray::ensure(at);
+  if (!array || array.ndim() != 1 || array.shape(0) != 2) {
+    throw InputError("at must be (x, y): two numbers of metres, the object centre on the table");
+  }
+  const Eigen::Vector2d xy(array.data()[0], array.data()[1]);
+  if (!xy.allFinite())
+    throw InputError("at must be finite, not (" + std::to_string(xy.x()) + ", " +
+                     std::to_string(xy.y()) + ")");
+  return xy;
+}
+
 void CheckThreads(int threads) {
   if (threads < 0 || threads > 1024) {
     throw InputError("threads must be in 0..1024 (0: all cores), not " + std::to_string(threads));

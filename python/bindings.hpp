@@ -35,6 +35,11 @@ void CheckThreads(int threads);
 /// A float64 array argument, converted to C order when it is not already.
 using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
+/// The object position of an `at` argument: None, or (x, y) in metres (any sequence or array
+/// of two finite numbers). Throws InputError otherwise; whether it is on the table is the
+/// scene's check (SceneModel::CheckOnTable).
+std::optional<Eigen::Vector2d> AtArgument(const py::object& at);
+
 /// A new, uninitialized float64 array of `shape`.
 py::array_t<double> NewArray(const std::vector<py::ssize_t>& shape);
 

@@ -66,8 +66,10 @@ std::shared_ptr<Grasp> Synthesize(const Synthesizer& s, double theta_deg, const 
                                   bool refine, const std::string& reach,
                                   const std::optional<DoubleArray>& start, double clearance_margin,
                                   bool strict_thresholds, int perturb, uint64_t seed, int threads,
-                                  double min_robustness, bool physics, bool physics_fallback) {
+                                  double min_robustness, bool physics, bool physics_fallback,
+                                  const py::object& at) {
   if (!std::isfinite(theta_deg)) throw InputError("theta must be a finite number of degrees");
+  const SynthesisTask task = MakeSynthesisTask(s.model.scene(), theta_deg, AtArgument(at));
   ValidatedSynthesisOptions vo;
   SynthesisOptions& so = vo.synthesis;
   so.generation.method = ParseSynthesisMethod(method);
@@ -95,7 +97,7 @@ std::shared_ptr<Grasp> Synthesize(const Synthesizer& s, double theta_deg, const 
   {
     py::gil_scoped_release release;
     SynthesisData data(s.model);
-    grasp->validated = SynthesizeAndValidate(s.simulation, s.model, theta_deg, vo, &data);
+    grasp->validated = SynthesizeAndValidate(s.simulation, s.model, task, vo, &data);
   }
   const SynthesisResult& r = grasp->validated.synthesis;
   switch (r.status) {
@@ -287,8 +289,11 @@ threads at once, and releases the GIL.)doc")
            py::arg("perturb") = PhysicsGateOptions{}.perturbations,
            py::arg("seed") = PhysicsGateOptions{}.seed, py::arg("threads") = 0,
            py::arg("min_robustness") = PhysicsGateOptions{}.min_robustness,
-           py::arg("physics") = true, py::arg("physics_fallback") = true, R"doc(
+           py::arg("physics") = true, py::arg("physics_fallback") = true,
+           py::arg("at") = py::none(), R"doc(
 A grasp for object orientation theta (deg), checked in physics: `graspsynth synthesize`.
+at: (x, y), the object centre on the table (m, world; default: the scene's object centre);
+a library over placements interpolates between its demonstrated placements.
 
 method: "interp" (the paper's blend of the two nearest demonstrations), "line" (the line
 principle) or "nearest"; refine: the Ceres and NLopt refinement; reach: "auto", "spline" or

@@ -70,7 +70,8 @@ TrialOptions TrialOptionsOf(const std::string& fidelity, double time_step, doubl
 
 std::shared_ptr<JointTrajectory> MakeTrajectory(const DoubleArray& t, const DoubleArray& arm,
                                                 const DoubleArray& hand, double theta_deg,
-                                                const std::shared_ptr<RobotModel>& robot_arg) {
+                                                const std::shared_ptr<RobotModel>& robot_arg,
+                                                const py::object& object_xy) {
   if (t.ndim() != 1 || t.shape(0) < 1) {
     throw InputError("t must have shape (N,) with N >= 1 samples");
   }
@@ -84,6 +85,7 @@ std::shared_ptr<JointTrajectory> MakeTrajectory(const DoubleArray& t, const Doub
   if (!std::isfinite(theta_deg)) throw InputError("theta_deg must be a finite number of degrees");
   auto trajectory = std::make_shared<JointTrajectory>();
   trajectory->theta_deg = theta_deg;
+  trajectory->object_xy = AtArgument(object_xy);
   for (py::ssize_t i = 0; i < n; ++i) {
     TrajectorySample s;
     s.t = t.data()[i];
@@ -188,12 +190,15 @@ void BindTrajectory(py::module_& m) {
 A joint trajectory of the robot (format graspsynth-trajectory/1): what `graspsynth simulate`
 plays.
 
-Trajectory(t, arm, hand, theta_deg=0.0, robot=None) builds one from arrays t (N,) s strictly
-increasing, arm (N, 7) rad, hand (N, 16) rad, checked against the robot's joint limits.
+Trajectory(t, arm, hand, theta_deg=0.0, robot=None, object_xy=None) builds one from arrays t
+(N,) s strictly increasing, arm (N, 7) rad, hand (N, 16) rad, checked against the robot's joint
+limits; object_xy (x, y) m puts the object elsewhere on the table (default: the scene's object
+centre), and can be set later (the trials check that it is on the table).
 Trajectory.load(path) reads a trajectory file or a grasp file's trajectory. The arrays t, arm
 and hand are read-only views into the trajectory (no copy).)doc")
       .def(py::init(&MakeTrajectory), py::arg("t"), py::arg("arm"), py::arg("hand"),
-           py::arg("theta_deg") = 0.0, py::arg("robot") = py::none())
+           py::arg("theta_deg") = 0.0, py::arg("robot") = py::none(),
+           py::arg("object_xy") = py::none())
       .def_static(
           "load",
           [](const std::filesystem::path& path, const std::shared_ptr<RobotModel>& robot_arg) {
@@ -204,6 +209,14 @@ and hand are read-only views into the trajectory (no copy).)doc")
           py::arg("path"), py::arg("robot") = py::none(),
           "Reads a graspsynth-trajectory/1 file, or the trajectory of a graspsynth-grasp/1 file")
       .def_readonly("theta_deg", &JointTrajectory::theta_deg)
+      .def_property(
+          "object_xy",
+          [](const JointTrajectory& tr) -> py::object {
+            if (!tr.object_xy) return py::none();
+            return py::make_tuple(tr.object_xy->x(), tr.object_xy->y());
+          },
+          [](JointTrajectory& tr, const py::object& xy) { tr.object_xy = AtArgument(xy); },
+          "The object centre (x, y) on the table, m, or None: the scene's object centre")
       .def_property_readonly("duration", &JointTrajectory::duration, "s")
       .def("__len__", [](const JointTrajectory& tr) { return tr.samples.size(); })
       .def_property_readonly("t",
@@ -279,6 +292,7 @@ of mass, servo force, step). Both release the GIL, so Python threads run trials 
           "trial",
           [](const SimulationModel& model, const JointTrajectory& trajectory,
              const std::string& fidelity, double time_step, double hold, double record_interval) {
+            if (trajectory.object_xy) model.scene().CheckOnTable(*trajectory.object_xy);
             TrialOptions options = TrialOptionsOf(fidelity, time_step, hold);
             if (!(record_interval >= 0.0)) throw InputError("record_interval must be >= 0");
             options.record_interval = record_interval;
@@ -299,6 +313,7 @@ step; record_interval > 0 records the states every so many seconds. Returns a Tr
           [](const SimulationModel& model, const JointTrajectory& trajectory, int trials,
              uint64_t seed, int threads, bool physics, double noise_scale,
              const std::string& fidelity) {
+            if (trajectory.object_xy) model.scene().CheckOnTable(*trajectory.object_xy);
             const RobustnessOptions ro =
                 RobustnessOptionsOf(trials, seed, threads, physics, noise_scale,
                                     TrialOptionsOf(fidelity, 0.0, TrialOptions{}.hold));

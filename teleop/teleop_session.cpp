@@ -114,6 +114,7 @@ struct TeleopSession::Impl {
   Impl(const SimulationModel& m, TeleopOptions o) : model(m), options(std::move(o)) {
     std::string why;
     if (!options.IsValid(&why)) throw InputError("invalid teleoperation option: " + why);
+    if (options.object_xy) model.scene().CheckOnTable(*options.object_xy);
     glove = options.glove_map ? *options.glove_map : GloveMap::Default(model.robot().hand);
     tick = 1.0 / options.rate_hz;
     steps = std::max(1, static_cast<int>(std::ceil(tick / options.max_physics_step - 1e-9)));
@@ -139,6 +140,7 @@ struct TeleopSession::Impl {
     world_options.time_step = h;
     world_options.arm_mode = ArmMode::kKinematic;
     world_options.theta = theta_deg() * M_PI / 180.0;
+    world_options.object_xy = options.object_xy;
     const Vector7d& rest = rest_arms[orientation];
     world = std::make_unique<SimulationData>(model, world_options, rest, RestHand());
     kinematic = true;

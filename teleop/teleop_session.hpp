@@ -80,6 +80,9 @@ struct TeleopOptions {
   TrialJudgeOptions judge;
   /// Object orientations theta (deg) the session walks through, in order; at least one.
   std::vector<double> orientations_deg = {20, 30, 40, 50, 60, 70, 80, 90, 100};
+  /// The object centre on the table, world, m; empty: the scene's object centre. On the
+  /// scene's table (SceneModel::CheckOnTable, checked when the session starts).
+  std::optional<Eigen::Vector2d> object_xy;
   /// Folder the trials are written to (one v1 log each); empty: nothing is written.
   std::filesystem::path record_dir;
   /// Free text written as the logs' `operator` key (none when empty).

@@ -34,6 +34,13 @@ ViewerReplay ReplayOfTrajectory(JointTrajectory trajectory, const std::string& s
   GS_DEMAND(!trajectory.samples.empty(), "a replay needs at least one sample");
   ViewerReplay replay;
   replay.label = "trajectory " + source + " | " + ThetaText(trajectory.theta_deg);
+  if (trajectory.object_xy) {
+    std::ostringstream at;
+    at.setf(std::ios::fixed);
+    at.precision(3);
+    at << " at (" << trajectory.object_xy->x() << ", " << trajectory.object_xy->y() << ") m";
+    replay.label += at.str();
+  }
   replay.trajectory = std::move(trajectory);
   return replay;
 }
@@ -89,7 +96,7 @@ ViewerState ReplayStateAt(const ViewerReplay& replay, const SceneModel& scene, d
   state.t = t;
   state.arm = s.arm;
   state.hand = s.hand;
-  state.X_WO = scene.ObjectPose(replay.trajectory.theta_deg * kDeg);
+  state.X_WO = scene.ObjectPose(replay.trajectory.placement());
   state.text = replay.label;
   if (replay.p_WO.empty()) return state;
 

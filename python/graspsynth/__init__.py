@@ -130,7 +130,8 @@ def synthesize(library: Union[GraspLibrary, PathLike, None], theta: float, *,
 
     ``options`` are those of :meth:`Synthesizer.synthesize`: method ("interp", "line",
     "nearest"), refine, reach, start, clearance_margin, strict_thresholds, perturb, seed,
-    threads, min_robustness, physics, physics_fallback. For many grasps from one library,
+    threads, min_robustness, physics, physics_fallback, and at=(x, y): the object centre on the
+    table (m; default the scene's object centre). For many grasps from one library,
     build a :class:`Synthesizer` once."""
     synthesizer = Synthesizer(library, robot or default_robot(), scene or default_scene())
     return synthesizer.synthesize(theta, **options)

@@ -91,6 +91,20 @@ TEST_F(GeneralizeCommand, LeaveOneOutSynthesizesEachInnerOrientationWithoutIt) {
   }
 }
 
+TEST_F(GeneralizeCommand, AGridOfPositionsGivesEveryOrientationAtEveryPosition) {
+  const testing::CommandOutput r = RunGraspsynth(
+      "generalize --x -0.26,-0.24 --y 0.85 --orientations 60 --methods nearest --perturb 1 "
+      "--threads 2 --name g --out " +
+      dir_.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<std::string> lines = CsvLines("g");
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_EQ(lines[0].rfind("x,y,theta_deg,method,status", 0), 0u) << lines[0];
+  EXPECT_EQ(lines[1].rfind("-0.26,0.85,60,nearest,ok,", 0), 0u) << lines[1];
+  EXPECT_EQ(lines[2].rfind("-0.24,0.85,60,nearest,ok,", 0), 0u) << lines[2];
+  EXPECT_NE(ReadFileText(dir_ / "g.md").find("60 @ (-0.26, 0.85)"), std::string::npos);
+}
+
 TEST_F(GeneralizeCommand, BadOptionsAreNamedAndWriteNothing) {
   const std::string out = " --out " + dir_.string();
   for (const auto& [args, expected] : std::vector<std::pair<std::string, std::string>>{
@@ -99,6 +113,10 @@ TEST_F(GeneralizeCommand, BadOptionsAreNamedAndWriteNothing) {
            {"--orientations 30:20:1", "needs FROM <= TO"},
            {"--orientations 20,abc", "'abc' is not a finite number"},
            {"--noise-scale -1", "--noise-scale must be >= 0"},
+           {"--x -0.3", "--x and --y go together"},
+           {"--x a --y 0.8", "--x: 'a' is not a finite number of metres"},
+           {"--x -0.3 --y 5", "(-0.3, 5) m is not on the table"},
+           {"--x -0.3 --y 0.8 --leave-one-out", "it takes no --x or --y"},
        }) {
     const testing::CommandOutput r = RunGraspsynth("generalize " + args + out);
     EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;

@@ -84,6 +84,25 @@ INSTANTIATE_TEST_SUITE_P(SynthesizeCommand, ShippedObjectGrasp,
                          ::testing::Values("saucepan", "sugar_box", "mug"),
                          [](const auto& info) { return info.param; });
 
+TEST_F(SynthesizeCommand, AtPutsTheObjectElsewhereAndRefusesAPlaceOffTheTable) {
+  const testing::CommandOutput r = RunGraspsynth(Args("--theta 50 --at -0.27,0.87 --no-refine"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(ReadFileText(out_));
+  EXPECT_EQ(j["object_xy"], nlohmann::json::array({-0.27, 0.87}));
+  EXPECT_EQ(j["trajectory"]["object_xy"], nlohmann::json::array({-0.27, 0.87}));
+  fs::remove(out_);
+  for (const auto& [at, expected] : std::vector<std::pair<std::string, std::string>>{
+           {"5,5", "(5, 5) m is not on the table"},
+           {"-0.27", "--at needs X,Y"},
+           {"-0.27,nan", "--at needs X,Y"},
+       }) {
+    const testing::CommandOutput bad = RunGraspsynth(Args("--theta 50 --at " + at));
+    EXPECT_EQ(bad.exit_code, 2) << at << ": " << bad.err;
+    EXPECT_NE(bad.err.find(expected), std::string::npos) << at << ": " << bad.err;
+    EXPECT_FALSE(fs::exists(out_)) << at;
+  }
+}
+
 TEST_F(SynthesizeCommand, LineMethodGoesBeyondTheRange) {
   const testing::CommandOutput r = RunGraspsynth(Args("--theta 100 --method line --no-refine"));
   ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -132,6 +132,35 @@ def test_a_trial_gives_the_command_lines_outcome(gs, cli, cli_grasp, tmp_path):
     assert trial.states == {}  # nothing recorded unless asked
 
 
+def test_a_grasp_at_a_moved_placement_equals_the_command_lines(gs, cli, repo, tmp_path):
+    library = repo / "learning_data" / "placements" / "library.json"
+    path = tmp_path / "moved.json"
+    cli("synthesize", "--library", library, "--theta", THETA, "--at", "-0.27,0.87", *GATE,
+        "--out", path, expect=None)
+    expected = load_json(path)
+    grasp = gs.synthesize(str(library), THETA, at=(-0.27, 0.87), perturb=3, seed=7, threads=2,
+                          min_robustness=0.6)
+    assert without_wall_times(grasp.report) == without_wall_times(expected)
+    assert expected["object_xy"] == [-0.27, 0.87]
+    assert grasp.trajectory.object_xy == (-0.27, 0.87)
+    # the trial puts the object where the trajectory says, as `graspsynth simulate` does.
+    out = tmp_path / "sim.json"
+    cli("simulate", path, "--out", out, expect=None)
+    trial = gs.simulate(grasp)
+    assert trial.outcome == load_json(out)["nominal"]["outcome"]
+    with pytest.raises(gs.InputError, match="not on the table"):
+        gs.synthesize(str(library), THETA, at=(3.0, 0.9))
+    with pytest.raises(gs.InputError, match="at must be"):
+        gs.synthesize(str(library), THETA, at=(1.0, 2.0, 3.0))
+    t = grasp.trajectory
+    moved = gs.Trajectory(t.t, t.arm, t.hand, THETA, object_xy=(5.0, 5.0))
+    assert moved.object_xy == (5.0, 5.0)
+    with pytest.raises(gs.InputError, match="not on the table"):
+        gs.simulate(moved)
+    moved.object_xy = None
+    assert moved.object_xy is None
+
+
 def test_a_recorded_trial_gives_its_time_series(gs, grasp):
     trial = gs.simulate(grasp, record_interval=0.05)
     states = trial.states

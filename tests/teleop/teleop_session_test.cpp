@@ -86,6 +86,21 @@ TEST(TeleopSession, AnUnreachableRestPoseIsAnInputErrorNamingTheScene) {
                        "rest pose is out of reach");
 }
 
+TEST(TeleopSession, PutsTheObjectAtTheAskedPlacementAndRefusesOneOffTheTable) {
+  TeleopOptions options = SixtyDegrees();
+  options.object_xy = Eigen::Vector2d(-0.30, 0.90);
+  const TeleopSession session(ShippedSimulationModel(), options);
+  const Eigen::Isometry3d X_WO = session.object_pose();
+  EXPECT_NEAR(X_WO.translation().x(), -0.30, 1e-3);
+  EXPECT_NEAR(X_WO.translation().y(), 0.90, 1e-3);
+  const Eigen::Isometry3d expected = ShippedSimulationModel().scene().ObjectPose(
+      Placement{60.0 * M_PI / 180.0, options.object_xy});
+  EXPECT_LT((X_WO.linear() - expected.linear()).norm(), 1e-6);
+  options.object_xy = Eigen::Vector2d(3.0, 0.9);
+  GS_EXPECT_THROW_WITH(TeleopSession(ShippedSimulationModel(), options), InputError,
+                       "(3, 0.9) m is not on the table");
+}
+
 TEST(TeleopSession, SplitsTheTickIntoEqualPhysicsSteps) {
   TeleopSession session(ShippedSimulationModel(), SixtyDegrees());
   EXPECT_EQ(session.steps_per_tick(), 5);

@@ -146,6 +146,14 @@ TEST(ViewerReplay, TrajectoryStatesAreItsSamplesWithTheObjectAtRest) {
   EXPECT_TRUE(testing::PosesNear(state.X_WO, Scene().ObjectPose(30.0 * M_PI / 180.0), 1e-12));
   EXPECT_EQ(state.text, "trajectory grasp.json | theta 30.0 deg");
 
+  // a trajectory made for a moved object shows it there.
+  trajectory.object_xy = Eigen::Vector2d(-0.30, 0.90);
+  const ViewerReplay moved = ReplayOfTrajectory(trajectory, "grasp.json");
+  const ViewerState at = ReplayStateAt(moved, Scene(), 0.25);
+  EXPECT_TRUE(testing::PosesNear(
+      at.X_WO, Scene().ObjectPose(Placement{30.0 * M_PI / 180.0, trajectory.object_xy}), 1e-12));
+  EXPECT_EQ(at.text, "trajectory grasp.json | theta 30.0 deg at (-0.300, 0.900) m");
+
   const ViewerState rest = ReplayStateAt(RestReplay(), Scene(), 5.0);
   EXPECT_TRUE(rest.arm.isZero());
   EXPECT_DOUBLE_EQ(rest.t, 0.0);
