@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <tuple>
 
 #include "apps/cli_helpers.hpp"
 #include "common/errors.hpp"
@@ -79,22 +80,30 @@ int RunSelect(const SelectCommandOptions& o) {
   }
   std::printf("\n");
 
-  // one row per orientation with successful demonstrations.
-  std::map<double, int> successful;
-  for (const DemoScore& s : library.scores) ++successful[s.theta_deg];
-  std::map<double, const DemoScore*> selected;
+  // one row per placement with successful demonstrations (the orientation alone when every
+  // demonstration is at one position).
+  const bool positions = library.HasPositions();
+  using Key = std::tuple<double, double, double>;  // x, y, theta_deg
+  const auto key = [positions](const DemoScore& s) {
+    return positions ? Key{s.xy.x(), s.xy.y(), s.theta_deg} : Key{0.0, 0.0, s.theta_deg};
+  };
+  std::map<Key, int> successful;
+  for (const DemoScore& s : library.scores) ++successful[key(s)];
+  std::map<Key, const DemoScore*> selected;
   for (const DemoScore& s : library.scores) {
-    if (s.selected) selected[s.theta_deg] = &s;
+    if (s.selected) selected[key(s)] = &s;
   }
+  if (positions) std::printf("%7s  %7s  ", "x", "y");
   std::printf("%9s  %3s  %-32s  %6s  %s\n", "theta_deg", "n", "selected", "score", "95% CI");
-  for (const auto& [theta, n] : successful) {
-    const auto it = selected.find(theta);
+  for (const auto& [k, n] : successful) {
+    if (positions) std::printf("%7.3f  %7.3f  ", std::get<0>(k), std::get<1>(k));
+    const auto it = selected.find(k);
     if (it == selected.end()) {
-      std::printf("%9.2f  %3d  %-32s\n", theta, n, "(none: no replay succeeded)");
+      std::printf("%9.2f  %3d  %-32s\n", std::get<2>(k), n, "(none: no replay succeeded)");
       continue;
     }
     const DemoScore& s = *it->second;
-    std::printf("%9.2f  %3d  %-32s  %6.3f  [%.3f, %.3f]\n", theta, n, s.file.c_str(), s.score,
+    std::printf("%9.2f  %3d  %-32s  %6.3f  [%.3f, %.3f]\n", s.theta_deg, n, s.file.c_str(), s.score,
                 s.ci_low, s.ci_high);
   }
   if (!result.issues.empty()) {
@@ -107,9 +116,10 @@ int RunSelect(const SelectCommandOptions& o) {
                    issue.file.c_str(), issue.reason.c_str());
     }
   }
-  std::printf("\nwrote %s: %zu orientation(s) selected\n", o.out.c_str(), library.entries.size());
+  const char* what = library.HasPositions() ? "placement" : "orientation";
+  std::printf("\nwrote %s: %zu %s(s) selected\n", o.out.c_str(), library.entries.size(), what);
   if (library.entries.empty()) {
-    std::fprintf(stderr, "graspsynth select: no orientation could be selected\n");
+    std::fprintf(stderr, "graspsynth select: no %s could be selected\n", what);
     return 1;
   }
   return 0;

@@ -236,6 +236,9 @@ bool GraspLibrary::HasPositions() const {
       return true;
     }
   }
+  for (const DemoScore& s : scores) {
+    if ((s.xy - scores.front().xy).norm() > kSamePosition) return true;
+  }
   return false;
 }
 

@@ -82,7 +82,9 @@ struct GraspLibrary {
   /// One per placement, strictly increasing by PlacementBefore (one position: by theta).
   std::vector<LibraryEntry> entries;
 
-  /// True when the entries stand at more than one object position (format version 2).
+  /// True when the entries, or the scored demonstrations, stand at more than one object
+  /// position (format version 2: a selection over several positions stays one even when only
+  /// one of them has a representative).
   bool HasPositions() const;
 };
 

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "common/data_dir.hpp"
 #include "learning_data/grasp_library.hpp"
 #include "tests/learning_data/demo_fixtures.hpp"
 #include "tests/utils/run_command.hpp"
@@ -62,6 +63,36 @@ TEST(SelectCommand, SelectsPerOrientationWritesTheLibraryAndNamesTheBadFile) {
                                 " --perturb " + std::to_string(perturb) + " --seed 5 --threads 1");
   EXPECT_EQ(r1.exit_code, 0) << r1.err;
   EXPECT_EQ(ReadFileText(out), ReadFileText(out1));
+}
+
+// Logs at two object positions (from the shipped placements set): one representative per
+// placement, a version-2 library whose entries carry their placements.
+TEST(SelectCommand, LogsAtSeveralPositionsAreSelectedPerPlacement) {
+  const testing::TestFolder folder;
+  const auto demos = folder.path() / "demos";
+  std::filesystem::create_directories(demos);
+  const auto shipped = DataDirectory() / "learning_data" / "placements" / "demos";
+  for (const char* name :
+       {"x-0250_y+0850_theta060_trial01.csv", "x-0190_y+0910_theta060_trial01.csv",
+        "x-0190_y+0910_theta060_trial03.csv"}) {
+    std::filesystem::copy_file(shipped / name, demos / name);
+  }
+  const auto out = folder.path() / "library.json";
+  const auto r = RunGraspsynth("select " + demos.string() + " --out " + out.string() +
+                               " --perturb 3 --threads 2");
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_THAT(r.out, ::testing::ContainsRegex("-0.190 +0.910 +60.00 +2 +x-0190_y"));
+  EXPECT_THAT(r.out, ::testing::ContainsRegex("-0.250 +0.850 +60.00 +1 +x-0250_y"));
+  EXPECT_THAT(r.out, HasSubstr(": 2 placement(s) selected"));
+  const json j = json::parse(ReadFileText(out));
+  EXPECT_EQ(j.at("format"), "graspsynth-library/2");
+  ASSERT_EQ(j.at("entries").size(), 2u);
+  // sorted by x, then y, then theta; each with its placement.
+  EXPECT_NEAR(j["entries"][0]["placement"]["x"].get<double>(), -0.25, 1e-12);
+  EXPECT_EQ(j["entries"][1]["placement"]["theta_deg"], 60.0);
+  EXPECT_NEAR(j["entries"][1]["placement"]["y"].get<double>(), 0.91, 1e-12);
+  const GraspLibrary library = ReadGraspLibrary(out);
+  EXPECT_TRUE(library.HasPositions());
 }
 
 TEST(SelectCommand, AllReplaysPicksTheSameRepresentativeAndStopsNoDemonstration) {
