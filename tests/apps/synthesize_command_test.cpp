@@ -9,9 +9,11 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "common/data_dir.hpp"
 #include "learning_data/grasp_library.hpp"
 #include "tests/solver/synthesis_fixtures.hpp"
 #include "tests/utils/run_command.hpp"
+#include "tests/utils/simulation_fixtures.hpp"
 
 namespace graspsynth {
 namespace {
@@ -101,6 +103,27 @@ TEST_F(SynthesizeCommand, AtPutsTheObjectElsewhereAndRefusesAPlaceOffTheTable) {
     EXPECT_NE(bad.err.find(expected), std::string::npos) << at << ": " << bad.err;
     EXPECT_FALSE(fs::exists(out_)) << at;
   }
+}
+
+// The check: the shipped library over placements gives a grasp at a placement it was
+// not shown (-0.27, 0.87 m, 65 deg, inside the grid) that passes the gate, and simulate lifts
+// the pan with it again, where the grasp file puts it.
+TEST_F(SynthesizeCommand, TheShippedPlacementsLibraryGraspsAHeldOutPlacement) {
+  const std::string library =
+      (DataDirectory() / "learning_data" / "placements" / "library.json").string();
+  const testing::CommandOutput r =
+      RunGraspsynth("synthesize --library " + library + " --at -0.27,0.87 --theta 65 --out " +
+                    out_ + " --perturb " + std::to_string(testing::Scaled(10, 2)) + " --threads 2");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(ReadFileText(out_));
+  EXPECT_TRUE(j["validation"]["passed"].get<bool>()) << j["validation"].dump();
+  EXPECT_EQ(j["object_xy"], nlohmann::json::array({-0.27, 0.87}));
+  const std::string report = (dir_ / "report.json").string();
+  const testing::CommandOutput sim = RunGraspsynth("simulate " + out_ + " --out " + report);
+  EXPECT_EQ(sim.exit_code, 0) << sim.err;
+  const nlohmann::json played = nlohmann::json::parse(ReadFileText(report));
+  EXPECT_TRUE(played["nominal"]["success"].get<bool>()) << played["nominal"].dump();
+  EXPECT_EQ(played["object_xy"], nlohmann::json::array({-0.27, 0.87}));
 }
 
 TEST_F(SynthesizeCommand, LineMethodGoesBeyondTheRange) {
