@@ -14,8 +14,8 @@
 # interp+refine, line+refine), validated in physics (nominal + 10 perturbed replays, the physics
 # perturbed). Writes experiments/results/placements/ (analysis.json, inside.csv/.md,
 # outside.csv/.md, placements.md: the tables, the separation counts and the line fit;
-# surface.svg: success over the table's surface). Deterministic from --seed 1. About 30 minutes
-# on 2 cores.
+# surface.svg: success over the table's surface). Deterministic from --seed 1. Over an hour on
+# 2 cores.
 #
 #   experiments/placements.sh [BUILD_DIR]     (default: build)
 set -euo pipefail
