@@ -10,6 +10,8 @@
 
 #include "common/errors.hpp"
 #include "common/format.hpp"
+#include "kinematics/object_model.hpp"
+#include "kinematics/robot_description.hpp"
 
 namespace graspsynth::apps {
 
@@ -185,11 +187,81 @@ void CheckPhysicsFlags(const PhysicsPerturbationOptions& options) {
   if (!options.IsValid(&why)) throw InputError("bad physics perturbation flag: " + why);
 }
 
-ProgressBar::ProgressBar() : tty_(::isatty(STDERR_FILENO) != 0) {}
+namespace {
+
+std::unique_ptr<JobRunner>& TheProcessRunner() {
+  static std::unique_ptr<JobRunner> runner = std::make_unique<LocalJobRunner>();
+  return runner;
+}
+
+}  // namespace
+
+JobRunner& ProcessRunner() { return *TheProcessRunner(); }
+
+void SetProcessRunner(std::unique_ptr<JobRunner> runner) { TheProcessRunner() = std::move(runner); }
+
+void AddResumeFlag(CLI::App* app, bool* resume) {
+  app->add_flag("--resume", *resume,
+                "Take the finished jobs of an earlier run of this command that was stopped "
+                "(killed, preempted) and run only the others: the outputs are the bytes of an "
+                "uninterrupted run. The earlier run's arguments and inputs must be the same "
+                "(a difference is refused, named). Finished jobs are kept as they come in, in "
+                "a folder beside the outputs that the finished run removes");
+}
+
+RunIdentity CommandIdentity(const CLI::App& command) {
+  RunIdentity identity;
+  identity.command = command.get_name();
+  for (const CLI::Option* option : command.get_options()) {
+    const std::string name = option->get_name();
+    if (name == "--threads" || name == "--resume" || name == "--help" || name == "--quiet") {
+      continue;  // none of them changes a result
+    }
+    std::string value;
+    for (const std::string& r : option->results()) value += (value.empty() ? "" : " ") + r;
+    // an option left at its default counts as its default's value, where CLI11 knows it.
+    identity.Add(name, option->results().empty() ? option->get_default_str() : value);
+  }
+  return identity;
+}
+
+void AddModelFiles(const std::string& robot, const std::string& scene, const std::string& object,
+                   RunIdentity* identity) {
+  identity->AddFile("robot file",
+                    robot.empty() ? DefaultRobotDescriptionPath() : std::filesystem::path(robot));
+  identity->AddFile("scene file",
+                    scene.empty() ? DefaultSceneModelPath() : std::filesystem::path(scene));
+  if (!object.empty()) identity->AddFile("object file", ResolveObjectPath(object));
+}
+
+RunCheckpoint::RunCheckpoint(const std::filesystem::path& folder, const RunIdentity& identity,
+                             bool resume) {
+  if (!ProcessRunner().writes_outputs()) return;
+  folder_.emplace(folder, identity, resume);
+  ProcessRunner().set_resume_folder(&*folder_);
+  if (resume) {
+    std::fprintf(
+        stderr, "%s\n",
+        folder_->resumed()
+            ? ("resuming the run kept in " + folder.string()).c_str()
+            : ("--resume: no earlier run in " + folder.string() + ": starting afresh").c_str());
+  }
+}
+
+RunCheckpoint::~RunCheckpoint() {
+  if (folder_) ProcessRunner().set_resume_folder(nullptr);
+}
+
+void RunCheckpoint::Done() {
+  if (folder_) folder_->Remove();
+}
+
+ProgressBar::ProgressBar()
+    : tty_(::isatty(STDERR_FILENO) != 0), quiet_(!ProcessRunner().writes_outputs()) {}
 
 void ProgressBar::Update(const std::string& name, int done, int total, const std::string& what) {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (total <= 0) return;
+  if (total <= 0 || quiet_) return;
   if (!started_ || name != stage_) {
     if (tty_ && started_) std::fprintf(stderr, "\n");
     stage_ = name;

@@ -5,12 +5,15 @@
 /// (ParseOrientationList, common/orientation_list.hpp), the scene and object flags, the physics
 /// perturbation's flags, and a progress bar on stderr.
 
+#include <filesystem>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "common/job_runner.hpp"
 #include "common/orientation_list.hpp"
 #include "kinematics/scene_model.hpp"
 #include "motion/joint_trajectory.hpp"
@@ -75,8 +78,48 @@ void AddPhysicsFallbackFlag(CLI::App* app, bool* no_physics_fallback);
 /// off).
 void AddAllReplaysFlag(CLI::App* app, bool* all_replays);
 
+/// The runner of this process's job stages (common/job_runner.hpp): spread over an MPI job's
+/// processes when main() started one (SetProcessRunner), else this process's threads.
+JobRunner& ProcessRunner();
+/// Makes `runner` the process's runner (main(), before any command runs).
+void SetProcessRunner(std::unique_ptr<JobRunner> runner);
+
+/// Adds --resume to a long command: take the finished jobs of an earlier, interrupted run of
+/// the same command with the same arguments and inputs, and run only the others.
+void AddResumeFlag(CLI::App* app, bool* resume);
+
+/// The identity of the run of `command` (RunIdentity, common/job_runner.hpp): the command's
+/// name and the values given to each of its options (as given; an option not given counts as
+/// its default, or as empty where the command does not show its default), but --threads,
+/// --resume and --quiet, which change no result. The caller adds its input files.
+RunIdentity CommandIdentity(const CLI::App& command);
+
+/// Adds the fingerprints of the robot description, the scene file and the object file of
+/// --robot, --scene and --object (each empty for the shipped default) to `identity`. The files
+/// these name in turn (a scene's own object file, an object's meshes) are not fingerprinted.
+void AddModelFiles(const std::string& robot, const std::string& scene, const std::string& object,
+                   RunIdentity* identity);
+
+/// The resume folder of a run writing to `folder` (ProcessRunner's finished jobs go there as
+/// they come in, and `--resume` takes them back), on the process that writes the outputs;
+/// nothing on the others. Prints on stderr what a resume found. Throws InputError when
+/// `resume` is set and the earlier run differs from `identity` (naming what differs).
+class RunCheckpoint {
+ public:
+  RunCheckpoint(const std::filesystem::path& folder, const RunIdentity& identity, bool resume);
+  ~RunCheckpoint();
+  RunCheckpoint(const RunCheckpoint&) = delete;
+  RunCheckpoint& operator=(const RunCheckpoint&) = delete;
+  /// The run's outputs are written: the folder is removed.
+  void Done();
+
+ private:
+  std::optional<ResumeFolder> folder_;
+};
+
 /// A progress bar per named stage on stderr, redrawn in place on a terminal; elsewhere (logs,
-/// pipes) a line "NAME: DONE/TOTAL (WHAT)" at every tenth of the stage. Thread-safe.
+/// pipes) a line "NAME: DONE/TOTAL (WHAT)" at every tenth of the stage; nothing on the
+/// processes of an MPI job that do not write the outputs. Thread-safe.
 class ProgressBar {
  public:
   ProgressBar();
@@ -89,6 +132,7 @@ class ProgressBar {
 
  private:
   bool tty_;
+  bool quiet_;
   bool started_ = false;
   std::string stage_;
   int last_tenth_ = -1;

@@ -43,6 +43,7 @@ struct DemosOptions {
   int iterations = 3;
   double damping = 0.7;
   bool quiet = false;
+  bool resume = false;
 };
 
 // The operator of --config, or the shipped one of the scene's object.
@@ -138,15 +139,24 @@ void PrintPositions(const std::vector<OperatorTrial>& trials) {
   }
 }
 
-int Generate(const DemosOptions& o) {
+int Generate(const DemosOptions& o, const CLI::App& command) {
   const std::unique_ptr<SimulationModel> model = LoadModel(o);
   const OperatorOptions options = LoadOperator(o, model->scene());
+  RunIdentity identity = CommandIdentity(command);
+  identity.AddFile("operator file", o.config.empty()
+                                        ? DefaultOperatorOptionsPath(model->scene().object.name)
+                                        : fs::path(o.config));
+  AddModelFiles(o.robot, o.scene, o.object, &identity);
+  RunCheckpoint checkpoint(fs::path(o.out) / ".demos.resume", identity, o.resume);
   ProgressBar bar;
-  const std::vector<OperatorTrial> trials =
-      GenerateDemonstrations(*model, options, o.threads, [&](int done, int total) {
+  const std::vector<OperatorTrial> trials = GenerateDemonstrations(
+      *model, options, o.threads,
+      [&](int done, int total) {
         if (!o.quiet) bar.Update("simulating trials", done, total, "");
-      });
+      },
+      &ProcessRunner());
   bar.Finish();
+  if (!ProcessRunner().writes_outputs()) return 0;
   fs::create_directories(o.out);
   for (const OperatorTrial& t : trials) WriteDemoLog(fs::path(o.out) / t.log.source, t.log);
   OperatorOptions used = options;
@@ -154,6 +164,7 @@ int Generate(const DemosOptions& o) {
   PrintSummary(Analyze(*model, trials), trials, model->scene().object.paper_object);
   if (!options.positions.empty()) PrintPositions(trials);
   std::printf("wrote %zu logs and operator.json to %s\n", trials.size(), o.out.c_str());
+  checkpoint.Done();
   return 0;
 }
 
@@ -267,7 +278,10 @@ void AddDemosCommand(CLI::App& app, int* exit_code) {
   auto* generate = demos->add_subcommand(
       "generate",
       "Generate a demonstration set: one CSV log per trial (theta020_trial01.csv, ...) and the "
-      "operator.json that made it, into --out. The same config and seed give the same bytes.\n"
+      "operator.json that made it, into --out. The same config and seed give the same bytes,\n"
+      "whatever --threads is and whatever the number of processes under mpirun (README,\n"
+      "\"Running at scale\"). Finished trials are kept in OUT/.demos.resume/ until the end:\n"
+      "--resume after a kill runs only the others.\n"
       "Example:\n  graspsynth demos generate --out demos/ --seed 7 --trials-per-orientation 10");
   generate->add_option("--out", o->out, "Output folder")->required();
   generate->add_option("--x", o->x,
@@ -276,7 +290,8 @@ void AddDemosCommand(CLI::App& app, int* exit_code) {
                        "positions, else the scene's object centre");
   generate->add_option("--y", o->y, "Object positions: y of the object centre, m (see --x)");
   AddCommonOptions(generate, o.get());
-  generate->callback([o, exit_code] { *exit_code = Generate(*o); });
+  AddResumeFlag(generate, &o->resume);
+  generate->callback([o, exit_code, generate] { *exit_code = Generate(*o, *generate); });
 
   auto* calibrate = demos->add_subcommand(
       "calibrate",

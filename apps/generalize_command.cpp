@@ -45,6 +45,7 @@ struct GeneralizeOptions {
   std::string object;  // --object: a shipped object's name or an object file
   PhysicsPerturbationOptions physics = SynthesisTableOptions{}.perturbation.physics;
   bool no_physics_fallback = false;
+  bool resume = false;
 };
 
 std::vector<StudyMethod> ParseMethods(const std::string& text) {
@@ -67,7 +68,7 @@ std::vector<StudyMethod> ParseMethods(const std::string& text) {
   return methods;
 }
 
-int RunGeneralize(const GeneralizeOptions& o) {
+int RunGeneralize(const GeneralizeOptions& o, const CLI::App& command) {
   if (o.out.empty()) throw InputError("--out is required");
   if (fs::exists(o.out) && !fs::is_directory(o.out)) {
     throw InputError("--out '" + o.out + "' exists and is not a folder");
@@ -83,9 +84,8 @@ int RunGeneralize(const GeneralizeOptions& o) {
   const std::string library_name =
       o.library.empty() ? "the shipped library" : "`" + o.library + "`";
   const GraspLibrary library = ReadGraspLibrary(library_path);
-  const SimulationModel model(
-      LoadRobotModel(o.robot.empty() ? DefaultRobotDescriptionPath() : fs::path(o.robot)),
-      std::move(scene));
+  const fs::path robot_path = o.robot.empty() ? DefaultRobotDescriptionPath() : fs::path(o.robot);
+  const SimulationModel model(LoadRobotModel(robot_path), std::move(scene));
 
   SynthesisTableOptions table;
   table.methods = ParseMethods(o.methods);
@@ -99,6 +99,12 @@ int RunGeneralize(const GeneralizeOptions& o) {
   table.perturbation.physics = o.physics;
   std::string why;
   if (!table.perturbation.IsValid(&why)) throw InputError("--noise-scale: " + why);
+
+  table.runner = &ProcessRunner();
+  RunIdentity identity = CommandIdentity(command);
+  identity.AddFile("library file", library_path);
+  AddModelFiles(o.robot, o.scene, o.object, &identity);
+  RunCheckpoint checkpoint(fs::path(o.out) / ("." + o.name + ".resume"), identity, o.resume);
 
   ProgressBar bar;
   std::vector<StudyRow> rows;
@@ -133,6 +139,7 @@ int RunGeneralize(const GeneralizeOptions& o) {
     });
   }
   bar.Finish();
+  if (!ProcessRunner().writes_outputs()) return 0;
 
   std::ostringstream md;
   md << "# " << o.name << "\n\n"
@@ -156,6 +163,7 @@ int RunGeneralize(const GeneralizeOptions& o) {
   }
   std::printf("wrote %s and %s\n", (out / (o.name + ".csv")).string().c_str(),
               (out / (o.name + ".md")).string().c_str());
+  checkpoint.Done();
   return 0;
 }
 
@@ -171,7 +179,10 @@ void AddGeneralizeCommand(CLI::App& app, int* exit_code) {
       "With --leave-one-out, each inner orientation of the library is synthesized from the\n"
       "library without it. Writes OUT/NAME.csv (the study's synthesis CSV layout) and\n"
       "OUT/NAME.md (summary per method, the shortfalls with the simulator's reasons, every\n"
-      "grasp), atomically; the CSV is the same bytes for the same seed whatever --threads is.\n"
+      "grasp), atomically; the CSV is the same bytes for the same seed whatever --threads is,\n"
+      "and whatever the number of processes under mpirun (README, \"Running at scale\").\n"
+      "Each finished grasp is kept in OUT/.NAME.resume/ until the end: --resume after a\n"
+      "kill runs only the grasps that were not finished.\n"
       "Methods: interp, line or nearest, then +refine (both refinement stages), +ceres or\n"
       "+nlopt (one stage), then /arc (arc-length resampling of the blend), /spline or\n"
       "/joint (the reach; default auto) and /strict (the refinement's default thresholds\n"
@@ -216,11 +227,12 @@ void AddGeneralizeCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--name", opts->name, "Stem of the output files")->capture_default_str();
   cmd->add_option("--out", opts->out, "Output folder")->required();
   AddPhysicsFallbackFlag(cmd, &opts->no_physics_fallback);
+  AddResumeFlag(cmd, &opts->resume);
   AddPhysicsPerturbationFlags(cmd, &opts->physics);
   cmd->add_option("--robot", opts->robot, "Robot description (URDF); default: the shipped one");
   cmd->add_option("--scene", opts->scene, "Scene description (JSON); default: models/scene.json");
   AddObjectFlag(cmd, &opts->object);
-  cmd->callback([opts, exit_code] { *exit_code = RunGeneralize(*opts); });
+  cmd->callback([opts, exit_code, cmd] { *exit_code = RunGeneralize(*opts, *cmd); });
 }
 
 }  // namespace graspsynth::apps

@@ -3,10 +3,15 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <iostream>
+#include <memory>
+#include <string>
 
 #include "apps/analyze_command.hpp"
+#include "apps/cli_helpers.hpp"
 #include "apps/demos_command.hpp"
 #include "apps/generalize_command.hpp"
 #include "apps/kinematics_commands.hpp"
@@ -17,10 +22,38 @@
 #include "apps/teleop_command.hpp"
 #include "apps/view_command.hpp"
 #include "collision/library_info.hpp"
+#ifdef GRASPSYNTH_HAS_MPI
+#include "common/mpi_job_runner.hpp"
+#endif
 #include "simulation/library_info.hpp"
 #include "solver/library_info.hpp"
 
+namespace {
+
+// The MPI job this process belongs to, if any (README, "Running at scale"): its rank and size,
+// and how to end every rank after an error on this one.
+#ifdef GRASPSYNTH_HAS_MPI
+using Mpi = graspsynth::MpiSession;
+#else
+struct Mpi {
+  Mpi(int*, char***) {}
+  bool active() const { return false; }
+  int rank() const { return 0; }
+  int size() const { return 1; }
+  std::unique_ptr<graspsynth::JobRunner> MakeRunner() const {
+    return std::make_unique<graspsynth::LocalJobRunner>();
+  }
+  [[noreturn]] void AbortAll(int code) const { std::exit(code); }
+};
+#endif
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  const Mpi mpi(&argc, &argv);
+  graspsynth::apps::SetProcessRunner(mpi.MakeRunner());
+  // the other ranks compute; rank 0 alone prints and writes.
+  if (mpi.rank() > 0 && !std::freopen("/dev/null", "w", stdout)) mpi.AbortAll(2);
   CLI::App app{
       "graspsynth: demonstration-seeded grasp synthesis for a PA-10 arm with a Gifu Hand III.\n"
       "Run 'graspsynth <command> --help' for the options of one command."};
@@ -51,7 +84,14 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   } catch (const std::exception& e) {
-    std::cerr << "graspsynth: error: " << e.what() << "\n";
+    // a stage's error reaches every rank of an MPI job: rank 0 reports it.
+    if (dynamic_cast<const graspsynth::StageFailedElsewhere*>(&e)) return 2;
+    // an error that rank 0 meets, or that another rank meets alone (outside the stages whose
+    // errors go to every rank), ends the whole MPI job: the other ranks would wait for it.
+    std::cerr << "graspsynth: error: "
+              << (mpi.rank() > 0 ? "rank " + std::to_string(mpi.rank()) + ": " : std::string())
+              << e.what() << "\n";
+    if (mpi.size() > 1) mpi.AbortAll(2);
     return 2;
   }
   return exit_code;

@@ -33,9 +33,10 @@ struct SelectCommandOptions {
   std::string object;  // --object: a shipped object's name or an object file
   PhysicsPerturbationOptions physics = SelectionOptions{}.perturbation.physics;
   bool all_replays = false;
+  bool resume = false;
 };
 
-int RunSelect(const SelectCommandOptions& o) {
+int RunSelect(const SelectCommandOptions& o, const CLI::App& command) {
   const SceneModel scene = LoadScene(o.scene, o.object);
   const SimulationModel model(LoadRobotModel(o.robot.empty() ? DefaultRobotDescriptionPath()
                                                              : std::filesystem::path(o.robot)),
@@ -50,6 +51,13 @@ int RunSelect(const SelectCommandOptions& o) {
   options.perturbation.physics = o.physics;
   std::string why;
   if (!options.IsValid(&why)) throw InputError("select: " + why);
+  options.runner = &ProcessRunner();
+  RunIdentity identity = CommandIdentity(command);
+  identity.AddFile("demonstrations", o.directory);
+  AddModelFiles(o.robot, o.scene, o.object, &identity);
+  const std::filesystem::path out(o.out);
+  RunCheckpoint checkpoint(out.parent_path() / ("." + out.filename().string() + ".resume"),
+                           identity, o.resume);
 
   ProgressBar bar;
   const SelectionResult result =
@@ -58,8 +66,10 @@ int RunSelect(const SelectCommandOptions& o) {
                               bar.Update("selecting replays", done, total, file);
                             });
   bar.Finish();
+  if (!ProcessRunner().writes_outputs()) return 0;
   const GraspLibrary& library = result.library;
   WriteGraspLibrary(library, o.out);
+  checkpoint.Done();
 
   int unreadable = 0;
   for (const SelectionIssue& issue : result.issues) {
@@ -151,7 +161,9 @@ void AddSelectCommand(CLI::App& app, int* exit_code) {
       "the replays that ran, and `stopped` says why). The representatives and their scores are\n"
       "those of --all-replays, which runs every replay.\n\n"
       "Each demonstration's perturbations are seeded from --seed and its file name, so the same\n"
-      "--seed gives the same library, byte for byte, whatever --threads is.\n\n"
+      "--seed gives the same library, byte for byte, whatever --threads is, and whatever the\n"
+      "number of processes under mpirun (README, \"Running at scale\"). Finished jobs are kept\n"
+      "in .OUT.resume/ beside --out until the end: --resume after a kill runs only the others.\n\n"
       "The library (--out, graspsynth-library/1 or /2 JSON) holds every score (file, trial,\n"
       "theta_deg, trials, successes, score, ci_low, ci_high, nominal_success, seed, failures,\n"
       "selected; stopped when its replays stopped early) and per orientation the selected\n"
@@ -179,7 +191,8 @@ void AddSelectCommand(CLI::App& app, int* exit_code) {
   select->add_option("--scene", opts->scene,
                      "Scene description (JSON); default: models/scene.json");
   AddObjectFlag(select, &opts->object);
-  select->callback([opts, exit_code] { *exit_code = RunSelect(*opts); });
+  AddResumeFlag(select, &opts->resume);
+  select->callback([opts, exit_code, select] { *exit_code = RunSelect(*opts, *select); });
 }
 
 }  // namespace graspsynth::apps

@@ -39,6 +39,18 @@ graspsynth_require(ODE_FOUND "ODE 0.16 (double precision)" libode-dev)
 pkg_check_modules(TINYXML QUIET IMPORTED_TARGET tinyxml)
 graspsynth_require(TINYXML_FOUND "TinyXML" libtinyxml-dev)
 
+# MPI (Open MPI, libopenmpi-dev) is optional: without it the command runs on one machine's
+# threads, as before (README, "Running at scale").
+if(GRASPSYNTH_MPI)
+  # the C API from C++; the deprecated C++ bindings are not used.
+  set(MPI_CXX_SKIP_MPICXX ON)
+  find_package(MPI QUIET COMPONENTS CXX)
+  if(NOT MPI_CXX_FOUND)
+    message(STATUS "graspsynth: MPI not found (Debian package libopenmpi-dev): building without it")
+    set(GRASPSYNTH_MPI OFF)
+  endif()
+endif()
+
 if(GRASPSYNTH_BUILD_TESTS)
   find_package(GTest QUIET)
   graspsynth_require(GTest_FOUND "GoogleTest" "libgtest-dev libgmock-dev")

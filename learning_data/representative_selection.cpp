@@ -8,6 +8,7 @@
 #include <sstream>
 #include <utility>
 
+#include "common/byte_codec.hpp"
 #include "common/errors.hpp"
 #include "common/parallel.hpp"
 #include "learning_data/demo_replay.hpp"
@@ -25,8 +26,8 @@ std::string FileName(const std::string& source) {
 struct Scored {
   const DemoLog* log = nullptr;
   SegmentedTrial segmented;
-  DemoReplay replay;                    // the robot's replay of the log (RunNominal)
-  std::optional<SelectionIssue> issue;  // why it could not be replayed (RunNominal)
+  DemoReplay replay;                    // the robot's replay of the log (PrepareNominal)
+  std::optional<SelectionIssue> issue;  // why it could not be replayed (PrepareNominal)
   SelectionCandidate candidate;
 };
 
@@ -129,8 +130,10 @@ std::vector<Scored> SegmentLogs(const std::vector<DemoLog>& logs, const Selectio
 
 // Replays demonstration `s` unperturbed (its nominal trial). A demonstration the robot cannot
 // play keeps its issue in s->issue.
-void RunNominal(const SimulationModel& model, const SelectionOptions& options, Scored* s,
-                ProgressCounter* counter) {
+// What a demonstration's score knows before any trial: its file, placement and seed, and the
+// robot's replay of its log (or why there is none: it then scores 0, its replays counted).
+void PrepareNominal(const SimulationModel& model, const SelectionOptions& options, Scored* s,
+                    ProgressCounter* counter) {
   const DemoLog& log = *s->log;
   DemoScore& score = s->candidate.score;
   score.file = FileName(log.source);
@@ -148,10 +151,49 @@ void RunNominal(const SimulationModel& model, const SelectionOptions& options, S
     score.ci_high = 1.0;
     s->issue = SelectionIssue{score.file, SelectionIssueKind::kNotReplayable, s->replay.message};
     counter->Add(options.perturbations + 1, score.file);
-    return;
   }
-  score.nominal_success = RunTrial(model, s->replay.trajectory, options.trial).success();
-  counter->Add(1, score.file);
+}
+
+// The nominal replay's success, as a job's result bytes.
+std::string RunNominal(const SimulationModel& model, const SelectionOptions& options,
+                       const Scored& s, ProgressCounter* counter) {
+  ByteWriter w;
+  w.Bool(s.replay.ok && RunTrial(model, s.replay.trajectory, options.trial).success());
+  if (s.replay.ok) counter->Add(1, s.candidate.score.file);
+  return w.Take();
+}
+
+// The perturbed replays' part of the scores of an orientation's demonstrations (`order`), as
+// a job's result bytes, and back.
+std::string EncodeScores(const std::vector<Scored*>& order) {
+  ByteWriter w;
+  for (const Scored* s : order) {
+    const DemoScore& d = s->candidate.score;
+    w.Int(d.trials);
+    w.Int(d.successes);
+    w.Double(d.score);
+    w.Double(d.ci_low);
+    w.Double(d.ci_high);
+    w.String(d.failures);
+    w.String(d.stopped);
+  }
+  return w.Take();
+}
+
+void DecodeScores(const std::string& bytes, const std::string& source,
+                  const std::vector<Scored*>& order) {
+  ByteReader r(bytes, source);
+  for (Scored* s : order) {
+    DemoScore& d = s->candidate.score;
+    d.trials = r.Int32();
+    d.successes = r.Int32();
+    d.score = r.Double();
+    d.ci_low = r.Double();
+    d.ci_high = r.Double();
+    d.failures = r.String();
+    d.stopped = r.String();
+  }
+  r.Finish();
 }
 
 // Scores demonstration `s` by its perturbed replays. With `rival` (a demonstration of the same
@@ -244,7 +286,8 @@ void PickRepresentatives(const SelectionOptions& options, std::vector<Scored>* s
   for (size_t begin = 0; begin < all.size();) {
     size_t end = begin;
     Scored* best = &all[begin];
-    while (end < all.size() && SamePlacement(all[end].candidate.score, all[begin].candidate.score)) {
+    while (end < all.size() &&
+           SamePlacement(all[end].candidate.score, all[begin].candidate.score)) {
       // a demonstration whose replays stopped early cannot win (ScorePerturbed).
       if (all[end].candidate.score.stopped.empty() &&
           PreferredRepresentative(all[end].candidate, best->candidate)) {
@@ -294,8 +337,27 @@ SelectionResult SelectRepresentatives(const SimulationModel& model,
   robustness.trial = options.trial;
   ProgressCounter counter(static_cast<int>(scored.size()) * (options.perturbations + 1), progress);
   ParallelFor(static_cast<int>(scored.size()), options.threads, [&](int i) {
-    RunNominal(model, options, &scored[static_cast<size_t>(i)], &counter);
+    PrepareNominal(model, options, &scored[static_cast<size_t>(i)], &counter);
   });
+  LocalJobRunner local;
+  JobRunner& runner = options.runner ? *options.runner : local;
+  JobStage nominal;
+  nominal.name = "selection-nominal";
+  nominal.count = static_cast<int>(scored.size());
+  nominal.threads = options.threads;
+  nominal.run = [&](int i) {
+    return RunNominal(model, options, scored[static_cast<size_t>(i)], &counter);
+  };
+  nominal.finished = [&](int i, bool here) {
+    const Scored& s = scored[static_cast<size_t>(i)];
+    if (!here && s.replay.ok) counter.Add(1, s.candidate.score.file);
+  };
+  const std::vector<std::string> nominal_results = runner.Run(nominal);
+  for (size_t i = 0; i < scored.size(); ++i) {
+    ByteReader r(nominal_results[i], "nominal replay " + std::to_string(i));
+    scored[i].candidate.score.nominal_success = r.Bool();
+    r.Finish();
+  }
   for (const Scored& s : scored) {
     if (s.issue) result.issues.push_back(*s.issue);
   }
@@ -324,9 +386,25 @@ SelectionResult SelectRepresentatives(const SimulationModel& model,
                    [](const auto& a, const auto& b) { return a.size() > b.size(); });
   const ThreadSplit split = SplitThreads(options.threads, static_cast<int>(orientations.size()));
   robustness.threads = split.inner;
-  ParallelFor(static_cast<int>(orientations.size()), split.outer, [&](int k) {
-    ScoreOrientation(model, options, robustness, orientations[static_cast<size_t>(k)], &counter);
-  });
+  JobStage perturbed;
+  perturbed.name = "selection";
+  perturbed.count = static_cast<int>(orientations.size());
+  perturbed.threads = split.outer;
+  perturbed.run = [&](int k) {
+    const std::vector<Scored*>& order = orientations[static_cast<size_t>(k)];
+    ScoreOrientation(model, options, robustness, order, &counter);
+    return EncodeScores(order);
+  };
+  perturbed.finished = [&](int k, bool here) {
+    if (here) return;
+    for (const Scored* s : orientations[static_cast<size_t>(k)]) {
+      if (s->replay.ok) counter.Add(options.perturbations, s->candidate.score.file);
+    }
+  };
+  const std::vector<std::string> perturbed_results = runner.Run(perturbed);
+  for (size_t k = 0; k < orientations.size(); ++k) {
+    DecodeScores(perturbed_results[k], "selection job " + std::to_string(k), orientations[k]);
+  }
 
   PickRepresentatives(options, &scored, &result);
   for (const Scored& s : scored) library.scores.push_back(s.candidate.score);

@@ -37,6 +37,7 @@
 #include <string_view>
 #include <vector>
 
+#include "common/job_runner.hpp"
 #include "learning_data/demo_directory.hpp"
 #include "learning_data/demo_log.hpp"
 #include "learning_data/grasp_library.hpp"
@@ -79,6 +80,11 @@ struct SelectionOptions {
   /// An orientation gets a library entry only when its best demonstration scores above this
   /// (strictly), in [0, 1): by default at least one perturbed replay must succeed.
   double min_score = 0.0;
+  /// Where the replays run (common/job_runner.hpp): the nominal replays (stage
+  /// "selection-nominal", a job per demonstration) and the orientations' perturbed replays
+  /// (stage "selection", a job per placement, its demonstrations in turn for the early stop);
+  /// nullptr: on this process's threads. Not owned.
+  JobRunner* runner = nullptr;
 
   /// True when every value is in range (and the nested options are valid); otherwise false
   /// with the reason in `why` (if given).

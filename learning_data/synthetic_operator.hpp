@@ -25,8 +25,10 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "common/job_runner.hpp"
 #include "kinematics/robot_description.hpp"
 #include "kinematics/scene_model.hpp"
 #include "learning_data/demo_log.hpp"
@@ -62,10 +64,18 @@ std::string_view OutcomeName(const OperatorTrial& trial);
 using OperatorProgress = std::function<void(int done, int total)>;
 
 /// Generates and simulates every trial of every plan at every position (positions in their
-/// order, orientations in plan order, trials in index order). Trials run on `threads` workers (0: all cores); the result does not depend
-/// on the thread count. Throws InputError for invalid options.
+/// order, orientations in plan order, trials in index order). Trials run on `threads` workers
+/// (0: all cores), as the jobs of stage "demos" of `runner` (common/job_runner.hpp: spread over
+/// an MPI job's processes, kept in a resume folder; nullptr: this process's threads); the
+/// result does not depend on either. Throws InputError for invalid options.
 std::vector<OperatorTrial> GenerateDemonstrations(const SimulationModel& model,
                                                   const OperatorOptions& options, int threads = 0,
-                                                  const OperatorProgress& progress = {});
+                                                  const OperatorProgress& progress = {},
+                                                  JobRunner* runner = nullptr);
+
+/// The bytes of a trial (common/byte_codec.hpp), for the job runner, and back. Decode throws
+/// InputError naming `source` for bytes that are not one.
+std::string EncodeOperatorTrial(const OperatorTrial& trial);
+OperatorTrial DecodeOperatorTrial(std::string_view bytes, const std::string& source);
 
 }  // namespace graspsynth

@@ -11,6 +11,7 @@
 #include "kinematics/arm_ik.hpp"
 #include "kinematics/pose_math.hpp"
 #include "solver/analysis_report.hpp"
+#include "solver/study_codec.hpp"
 #include "solver/study_report.hpp"
 #include "solver/validated_synthesis.hpp"
 
@@ -154,7 +155,7 @@ namespace {
 
 // The row of (theta, method) of a table with `seed`, before anything is known of it.
 StudyRow NewRow(double theta, const StudyMethod& method, uint64_t seed,
-               const std::optional<Eigen::Vector2d>& at = {}) {
+                const std::optional<Eigen::Vector2d>& at = {}) {
   StudyRow row;
   row.theta_deg = theta;
   row.at = at;
@@ -190,12 +191,19 @@ std::vector<StudyRow> SynthesisTable(const SimulationModel& model, const GraspLi
     }
   }
   ProgressCounter counter(static_cast<int>(rows.size()) * per_row, progress);
-  // rows are independent: they run side by side, each on its share of the threads (one, when
-  // there are more rows than threads), so that no thread waits for another's nominal trial or
-  // last replay but at the very end.
+  // rows are independent jobs: they run side by side, each on its share of the threads (one,
+  // when there are more rows than threads), so that no thread waits for another's nominal trial
+  // or last replay but at the very end; with an MPI runner, on every process.
   const ThreadSplit split = SplitThreads(options.threads, static_cast<int>(rows.size()));
-  ParallelFor(static_cast<int>(rows.size()), split.outer, [&](int i) {
-    StudyRow& row = rows[static_cast<size_t>(i)];
+  JobStage stage;
+  stage.name = options.stage;
+  stage.count = static_cast<int>(rows.size());
+  stage.threads = split.outer;
+  stage.finished = [&](int i, bool here) {
+    if (!here) counter.Add(per_row, rows[static_cast<size_t>(i)].method);
+  };
+  stage.run = [&](int i) {
+    StudyRow row = rows[static_cast<size_t>(i)];
     const double theta = row.theta_deg;
     const std::string what =
         (row.at ? "at " + Deg(row.at->x()) + "," + Deg(row.at->y()) + " " : std::string()) +
@@ -213,12 +221,12 @@ std::vector<StudyRow> SynthesisTable(const SimulationModel& model, const GraspLi
     SynthesisData data(synthesis);
     int counted = 0;  // of the row's per_row (a fallback's second gate counts no further)
     const ValidatedSynthesis v =
-        SynthesizeAndValidate(model, synthesis, MakeSynthesisTask(model.scene(), theta, row.at),
-                              vo, &data, [&](int done, int) {
-          const int now = std::clamp(1 + done, counted, per_row);
-          counter.Add(now - counted, what);
-          counted = now;
-        });
+        SynthesizeAndValidate(model, synthesis, MakeSynthesisTask(model.scene(), theta, row.at), vo,
+                              &data, [&](int done, int) {
+                                const int now = std::clamp(1 + done, counted, per_row);
+                                counter.Add(now - counted, what);
+                                counted = now;
+                              });
     const SynthesisResult& s = v.synthesis;
     const PhysicsGateResult& gate = v.gate;
     row.synthesis_s = v.synthesis_s;
@@ -251,7 +259,13 @@ std::vector<StudyRow> SynthesisTable(const SimulationModel& model, const GraspLi
       row.force_closure = gate.quality.force_closure;
     }
     counter.Add(per_row - counted, what);
-  });
+    return EncodeStudyRow(row);
+  };
+  LocalJobRunner local;
+  const std::vector<std::string> done = (options.runner ? *options.runner : local).Run(stage);
+  for (size_t i = 0; i < rows.size(); ++i) {
+    rows[i] = DecodeStudyRow(done[i], stage.name + " job " + std::to_string(i));
+  }
   return rows;
 }
 
@@ -271,6 +285,7 @@ std::vector<StudyRow> LeaveOneOutTable(
     table.orientations = {library.entries[k].theta_deg};
     std::ostringstream stage;
     stage << "without " << library.entries[k].theta_deg;
+    table.stage = options.stage + "-without-" + std::to_string(k);
     const std::vector<StudyRow> part =
         SynthesisTable(model, without, table, [&](int done, int total, const std::string& w) {
           if (progress) progress(stage.str(), done, total, w);
@@ -297,6 +312,7 @@ std::vector<StudyRow> SynthesisStage(const SimulationModel& model, const StudyOp
   table.physics_fallback = options.physics_fallback;
   table.seed = options.seed;
   table.threads = options.threads;
+  table.runner = options.runner;
   const auto table_progress = [&](int done, int total, const std::string& what) {
     if (progress) progress(StudyStage::kSynthesis, done, total, what);
   };
@@ -360,6 +376,7 @@ StudyResult RunStudy(const SimulationModel& model, const StudyOptions& options,
   selection.seed = options.seed;
   selection.threads = options.threads;
   selection.early_stop = options.selection_early_stop;
+  selection.runner = options.runner;
   selection.segmentation = options.analysis.segmentation;
   result.selection = SelectRepresentatives(model, demos.logs, options.demos.string(), selection,
                                            [&](int done, int total, const std::string& file) {

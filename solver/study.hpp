@@ -24,6 +24,7 @@
 #include <string_view>
 #include <vector>
 
+#include "common/job_runner.hpp"
 #include "learning_data/representative_selection.hpp"
 #include "simulation/perturbation.hpp"
 #include "simulation/robustness.hpp"
@@ -101,6 +102,10 @@ struct StudyOptions {
   /// Table I, `comparison` and `reachability` of the result stay empty, and analysis.json's
   /// paper_comparison is null.
   bool paper_object = true;
+  /// Where the selection's and the synthesis' jobs run (common/job_runner.hpp): spread over
+  /// an MPI job's processes, kept in a resume folder; nullptr: this process's threads. Not
+  /// owned.
+  JobRunner* runner = nullptr;
 
   /// The comparison with the paper's Table I: null for an object that is not the paper's.
   const PaperComparisonOptions* PaperComparison() const {
@@ -138,8 +143,8 @@ struct StudyRow {
   /// The object centre on the table, world, m; empty: the scene's object centre (the files
   /// then have no position columns).
   std::optional<Eigen::Vector2d> at;
-  std::string method;      ///< StudyMethod::Label()
-  std::string message;     ///< the synthesis' message when status is not "ok"
+  std::string method;   ///< StudyMethod::Label()
+  std::string message;  ///< the synthesis' message when status is not "ok"
   /// The method used; unset when the synthesis did not succeed (the files write "").
   std::optional<SynthesisMethod> used;
   bool fallback = false;           ///< a method other than the requested one was used
@@ -228,14 +233,19 @@ struct SynthesisTableOptions {
   /// An interp blend whose nominal trial fails gives way to the unblendable bracket's
   /// fallbacks (solver/validated_synthesis.hpp).
   bool physics_fallback = true;
+  /// Where the rows run (common/job_runner.hpp): spread over the processes of an MPI job, or
+  /// kept in a resume folder as they finish; nullptr: on this process's threads. Not owned.
+  JobRunner* runner = nullptr;
+  /// The job stage's name (each table of one run has its own, for the resume folder).
+  std::string stage = "synthesis";
 };
 
 /// Progress of the synthesis table: replays done of their total, and the row being worked on.
 using SynthesisTableProgress = std::function<void(int done, int total, const std::string& what)>;
 
 /// A grasp for every position, orientation and method from `library`, each validated by the
-/// physics gate: rows by position, then orientation, then method. Rows whose synthesis fails keep its status and
-/// message. Throws InputError for a library the synthesis cannot use.
+/// physics gate: rows by position, then orientation, then method. Rows whose synthesis fails keep
+/// its status and message. Throws InputError for a library the synthesis cannot use.
 std::vector<StudyRow> SynthesisTable(const SimulationModel& model, const GraspLibrary& library,
                                      const SynthesisTableOptions& options,
                                      const SynthesisTableProgress& progress = {});

@@ -25,6 +25,7 @@ add_dependencies(apps_synthesize_command_test graspsynth)
 graspsynth_test(solver/shipped_demos_test.cpp LIBS graspsynth::solver)
 # Tests of the end-to-end study (solver/study.hpp) and of `graspsynth run`.
 graspsynth_test(solver/study_test.cpp LIBS graspsynth::solver nlohmann_json::nlohmann_json)
+graspsynth_test(solver/study_codec_test.cpp LIBS graspsynth::solver)
 graspsynth_test(apps/generalize_command_test.cpp)
 add_dependencies(apps_generalize_command_test graspsynth)
 graspsynth_test(apps/run_command_test.cpp LIBS nlohmann_json::nlohmann_json)
@@ -38,4 +39,11 @@ if(CMAKE_BUILD_TYPE STREQUAL "Release")
   add_dependencies(apps_headline_results_test graspsynth)
   gtest_discover_tests(apps_headline_results_test DISCOVERY_TIMEOUT 60
                        PROPERTIES TIMEOUT 1500 LABELS headline)
+endif()
+# The scale-out of generalize: resume after a kill, and (with MPI, not under the sanitizers,
+# where Open MPI's own allocations would be reported) mpirun -n 3 against one process.
+graspsynth_test(apps/scale_out_test.cpp)
+add_dependencies(apps_scale_out_test graspsynth)
+if(GRASPSYNTH_MPI AND NOT GRASPSYNTH_SANITIZE)
+  target_compile_definitions(apps_scale_out_test PRIVATE GRASPSYNTH_MPIEXEC="${MPIEXEC_EXECUTABLE}")
 endif()

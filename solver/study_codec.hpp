@@ -1,0 +1,21 @@
+#pragma once
+
+/// @file
+/// A synthesis table's row (StudyRow) as bytes, for the job runner (common/job_runner.hpp): a
+/// row synthesized by another process of an MPI job, or kept in a resume folder, comes back as
+/// the same values, every number to the bit.
+
+#include <string>
+#include <string_view>
+
+#include "solver/study.hpp"
+
+namespace graspsynth {
+
+/// The bytes of `row` (common/byte_codec.hpp).
+std::string EncodeStudyRow(const StudyRow& row);
+
+/// The row EncodeStudyRow wrote. Throws InputError naming `source` for bytes that are not one.
+StudyRow DecodeStudyRow(std::string_view bytes, const std::string& source);
+
+}  // namespace graspsynth

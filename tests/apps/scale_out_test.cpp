@@ -1,0 +1,199 @@
+// Tests of the scale-out (README, "Running at scale"): a generalize sweep killed midway (SIGKILL)
+// and resumed with --resume ends with the bytes of an uninterrupted run; a resume with another
+// seed is refused naming it; and, where the build has MPI, generalize, demos generate and
+// select under `mpirun -n 3` write the bytes of the single-process run.
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "tests/utils/run_command.hpp"
+
+namespace graspsynth {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using testing::ReadFileText;
+using testing::RunGraspsynth;
+
+// A reduced sweep: a few grasps, each with a nominal trial and one perturbed replay (a nominal
+// trial alone under the sanitizers, which run it ten times slower).
+#ifdef GRASPSYNTH_SANITIZED
+const char* const kSweep = "generalize --orientations 40:70:10 --methods nearest --perturb 0 ";
+#else
+const char* const kSweep =
+    "generalize --orientations 40:70:10 --methods nearest,interp --perturb 1 ";
+#endif
+
+class ScaleOut : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("graspsynth_scale_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  static std::vector<std::string> Words(const std::string& text) {
+    std::istringstream in(text);
+    std::vector<std::string> words;
+    for (std::string w; in >> w;) words.push_back(w);
+    return words;
+  }
+
+  // Starts `graspsynth <args>` in the background, its output thrown away.
+  static pid_t Start(const std::string& args) {
+    std::vector<std::string> words = Words(args);
+    words.insert(words.begin(), testing::GraspsynthBinary());
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+      const int null = ::open("/dev/null", O_WRONLY);
+      ::dup2(null, STDOUT_FILENO);
+      ::dup2(null, STDERR_FILENO);
+      std::vector<char*> argv;
+      for (std::string& w : words) argv.push_back(w.data());
+      argv.push_back(nullptr);
+      ::execv(argv[0], argv.data());
+      ::_exit(127);
+    }
+    return pid;
+  }
+
+  static int JobFiles(const fs::path& folder) {
+    std::error_code ec;
+    int n = 0;
+    for (fs::recursive_directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+      if (it->path().extension() == ".job") ++n;
+    }
+    return n;
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(ScaleOut, AKilledSweepResumesToTheBytesOfAnUninterruptedOne) {
+  const fs::path whole = dir_ / "whole", killed = dir_ / "killed";
+  testing::CommandOutput r = RunGraspsynth(std::string(kSweep) + "--out " + whole.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+
+  // killed once the first grasps are kept, long before the last.
+  const std::string args = std::string(kSweep) + "--threads 1 --out " + killed.string();
+  const pid_t pid = Start(args);
+  ASSERT_GT(pid, 0);
+  const fs::path kept = killed / ".generalization.resume";
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(5);
+  int status = 0;
+  bool exited = false;
+  while (JobFiles(kept) < 1 && std::chrono::steady_clock::now() < deadline) {
+    if (::waitpid(pid, &status, WNOHANG) == pid) {
+      exited = true;
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_FALSE(exited) << "the sweep ended before it could be killed";
+  ::kill(pid, SIGKILL);
+  ::waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status));
+  const int before = JobFiles(kept);
+  ASSERT_GE(before, 1);
+  EXPECT_FALSE(fs::exists(killed / "generalization.csv"));
+
+  r = RunGraspsynth(args + " --resume");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("resuming the run kept in"));
+  EXPECT_EQ(ReadFileText(killed / "generalization.csv"),
+            ReadFileText(whole / "generalization.csv"));
+  EXPECT_FALSE(fs::exists(kept)) << "the finished run leaves its resume folder behind";
+}
+
+TEST_F(ScaleOut, AResumeWithAnotherSeedIsRefusedNamingIt) {
+  // an earlier run's folder, as a killed run leaves it (its identity written first).
+  const std::string args = std::string(kSweep) + "--out " + dir_.string();
+  const pid_t pid = Start(args);
+  ASSERT_GT(pid, 0);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(2);
+  while (!fs::exists(dir_ / ".generalization.resume" / "run.json") &&
+         std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ::kill(pid, SIGKILL);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  ASSERT_TRUE(fs::exists(dir_ / ".generalization.resume" / "run.json"));
+
+  const testing::CommandOutput r = RunGraspsynth(args + " --seed 7 --resume");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("--resume: the unfinished run in"));
+  EXPECT_THAT(r.err, HasSubstr("with --seed '1', now '7'"));
+  EXPECT_FALSE(fs::exists(dir_ / "generalization.csv"));
+  // the earlier run's kept work is still there for a resume with its own arguments.
+  EXPECT_TRUE(fs::exists(dir_ / ".generalization.resume" / "run.json"));
+}
+
+#ifdef GRASPSYNTH_MPIEXEC
+// Runs `graspsynth <args>` as an MPI job of `ranks` processes; its stdout in *out.
+int RunMpi(int ranks, const std::string& args, const fs::path& dir, std::string* out) {
+  const std::string mpirun =
+      std::string(GRASPSYNTH_MPIEXEC) + " --oversubscribe -n " + std::to_string(ranks) + " " +
+      (::geteuid() == 0 ? "--allow-run-as-root " : "") + testing::GraspsynthBinary() + " " + args +
+      " > " + (dir / "out").string() + " 2> " + (dir / "err").string();
+  const int status = std::system(mpirun.c_str());
+  *out = ReadFileText(dir / "out") + ReadFileText(dir / "err");
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST_F(ScaleOut, ThreeMpiRanksWriteTheBytesOfOneProcess) {
+  const fs::path one = dir_ / "one", three = dir_ / "three";
+  testing::CommandOutput r =
+      RunGraspsynth(std::string(kSweep) + "--threads 1 --out " + one.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  fs::create_directories(dir_);
+  std::string out;
+  ASSERT_EQ(RunMpi(3, std::string(kSweep) + "--threads 2 --out " + three.string(), dir_, &out), 0)
+      << out;
+  EXPECT_EQ(ReadFileText(three / "generalization.csv"), ReadFileText(one / "generalization.csv"));
+  // rank 0 alone reports: one summary line per method, not three.
+  EXPECT_EQ(out.find("nearest: "), out.rfind("nearest: ")) << out;
+  EXPECT_FALSE(fs::exists(three / ".generalization.resume"));
+}
+
+TEST_F(ScaleOut, DemonstrationsAndTheSelectionUnderThreeRanksAreTheBytesOfOneProcess) {
+  fs::create_directories(dir_);
+  const std::string demos = "demos generate --trials-per-orientation 1 --quiet --threads 1 ";
+  testing::CommandOutput r = RunGraspsynth(demos + "--out " + (dir_ / "d1").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::string out;
+  ASSERT_EQ(RunMpi(3, demos + "--out " + (dir_ / "d3").string(), dir_, &out), 0) << out;
+  int logs = 0;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir_ / "d1")) {
+    const fs::path name = e.path().filename();
+    EXPECT_EQ(ReadFileText(dir_ / "d3" / name), ReadFileText(e.path())) << name;
+    logs += e.path().extension() == ".csv" ? 1 : 0;
+  }
+  EXPECT_EQ(logs, 9);
+
+  const std::string select = "select " + (dir_ / "d1").string() + " --perturb 1 --threads 1 ";
+  r = RunGraspsynth(select + "--out " + (dir_ / "one.json").string());
+  ASSERT_LE(r.exit_code, 1) << r.err;
+  ASSERT_EQ(RunMpi(3, select + "--out " + (dir_ / "three.json").string(), dir_, &out), r.exit_code)
+      << out;
+  EXPECT_EQ(ReadFileText(dir_ / "three.json"), ReadFileText(dir_ / "one.json"));
+}
+#endif
+
+}  // namespace
+}  // namespace graspsynth
