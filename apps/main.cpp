@@ -37,7 +37,6 @@ using Mpi = graspsynth::MpiSession;
 #else
 struct Mpi {
   Mpi(int*, char***) {}
-  bool active() const { return false; }
   int rank() const { return 0; }
   int size() const { return 1; }
   std::unique_ptr<graspsynth::JobRunner> MakeRunner() const {

@@ -125,8 +125,6 @@ class JobRunner {
   /// Whether this process writes the outputs and reports progress (the only process, or the
   /// first of an MPI job).
   virtual bool writes_outputs() const { return true; }
-  /// The processes the jobs are spread over (1 without MPI).
-  virtual int processes() const { return 1; }
 
   /// Keeps finished jobs in `folder` from now on (nullptr: nowhere). Not owned.
   void set_resume_folder(const ResumeFolder* folder) { resume_ = folder; }

@@ -98,7 +98,6 @@ class MpiJobRunner final : public JobRunner {
     return rank_ == 0 ? Coordinate(stage) : Work(stage);
   }
   bool writes_outputs() const override { return rank_ == 0; }
-  int processes() const override { return size_; }
 
  private:
   // Rank 0: hands out the jobs to its own threads and to the other ranks' requests, keeps the

@@ -26,8 +26,6 @@ class MpiSession {
   MpiSession(const MpiSession&) = delete;
   MpiSession& operator=(const MpiSession&) = delete;
 
-  /// Whether MPI was initialized.
-  bool active() const { return active_; }
   int rank() const { return rank_; }
   int size() const { return size_; }
   /// Ends every process of the job with `code` (after an error on one of them, which the
