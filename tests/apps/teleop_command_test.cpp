@@ -230,9 +230,12 @@ TEST(TeleopCommand, AReplayedTrialIsRecordedAgainWithTheSameOutcome) {
 
 TEST(TeleopCommand, AShippedSyntheticTrialIsRecordedAgainOverAnAuthenticatedLink) {
   // a trial of the synthetic operator (learning_data/demos), made by a different path than the
-  // scripted grasp: its own rest pose, reach and hook grip.
+  // scripted grasp: its own rest pose, reach and hook grip. Over a live link the commands reach
+  // the server's ticks with some jitter, so the replay is a slightly perturbed trial: the test
+  // takes the orientation's representative (score 1.0 in learning_data/library.json), not a
+  // marginal one (trial 1 scores 0.7, tilted in 3 of 20 replays, and tilted once in CI).
   const DemoLog original = ReadDemoLog(fs::path(::testing::SourceDir()) / "learning_data" /
-                                       "demos" / "theta100_trial01.csv");
+                                       "demos" / "theta100_trial08.csv");
   // over an authenticated link (teleop-keygen, --key-file at both ends).
   ExpectRecordedAgain(original, "100", "synthetic", true);
 }
