@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <optional>
 
 #include <algorithm>
 #include <cerrno>
@@ -15,7 +16,6 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -59,12 +59,8 @@ void WriteText(const fs::path& path, const std::string& text) {
   if (!out) throw InputError("cannot write '" + path.string() + "'");
 }
 
-std::string ReadText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+// The file's text, or nothing when there is none (gnuplot wrote no log or no figure).
+std::string ReadText(const fs::path& path) { return ReadWholeFile(path).value_or(""); }
 
 // Runs `program script` with stdout and stderr sent to `log`; throws with a clear message when
 // the program cannot be started or fails.

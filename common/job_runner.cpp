@@ -2,10 +2,8 @@
 
 #include <algorithm>
 #include <cctype>
-#include <fstream>
-#include <iterator>
 #include <nlohmann/json.hpp>
-#include <sstream>
+#include <optional>
 #include <system_error>
 
 #include "common/atomic_file.hpp"
@@ -23,13 +21,10 @@ namespace fs = std::filesystem;
 constexpr const char* kResumeFormat = "graspsynth-resume/1";
 constexpr const char* kJobFormat = "graspsynth-job/1";
 
-std::string ReadWholeFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("cannot read '" + path.string() + "'");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw InputError("error while reading '" + path.string() + "'");
-  return ss.str();
+std::string ReadFileOrThrow(const fs::path& path) {
+  std::optional<std::string> bytes = ReadWholeFile(path);
+  if (!bytes) throw InputError("cannot read '" + path.string() + "'");
+  return std::move(*bytes);
 }
 
 std::string Quoted(const std::string& s) { return "'" + s + "'"; }
@@ -91,7 +86,7 @@ std::string IdentityJson(const RunIdentity& identity) {
 
 RunIdentity& RunIdentity::AddFile(std::string name, const fs::path& path) {
   std::error_code ec;
-  if (!fs::is_directory(path, ec)) return Add(std::move(name), Fingerprint(ReadWholeFile(path)));
+  if (!fs::is_directory(path, ec)) return Add(std::move(name), Fingerprint(ReadFileOrThrow(path)));
   std::vector<fs::path> files;
   for (fs::recursive_directory_iterator it(path, ec), end; !ec && it != end; it.increment(ec)) {
     if (it->is_regular_file(ec)) files.push_back(it->path());
@@ -101,7 +96,7 @@ RunIdentity& RunIdentity::AddFile(std::string name, const fs::path& path) {
   std::string listing;
   for (const fs::path& f : files) {
     listing +=
-        f.lexically_relative(path).generic_string() + " " + Fingerprint(ReadWholeFile(f)) + "\n";
+        f.lexically_relative(path).generic_string() + " " + Fingerprint(ReadFileOrThrow(f)) + "\n";
   }
   return Add(std::move(name), Fingerprint(listing));
 }
@@ -154,7 +149,7 @@ std::optional<std::string> ResumeFolder::Load(const std::string& stage, int inde
   std::error_code ec;
   if (!fs::exists(path, ec)) return std::nullopt;
   try {
-    JobFile job = ParseJobFile(ReadWholeFile(path), path.string());
+    JobFile job = ParseJobFile(ReadFileOrThrow(path), path.string());
     if (job.stage != stage || job.index != index) return std::nullopt;
     return std::move(job.result);
   } catch (const InputError&) {

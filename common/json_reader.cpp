@@ -1,9 +1,10 @@
 #include "common/json_reader.hpp"
+#include "common/atomic_file.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "common/errors.hpp"
@@ -97,11 +98,9 @@ JsonReader JsonReader::Parse(std::string_view text, const std::string& source) {
 }
 
 JsonReader JsonReader::Load(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string() + ": cannot read the file (missing or unreadable)");
-  std::stringstream text;
-  text << in.rdbuf();
-  return Parse(text.str(), path.string());
+  const std::optional<std::string> text = ReadWholeFile(path);
+  if (!text) throw InputError(path.string() + ": cannot read the file (missing or unreadable)");
+  return Parse(*text, path.string());
 }
 
 std::string JsonReader::Shown() const {

@@ -3,11 +3,11 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <memory>
+#include <optional>
 #include <set>
-#include <sstream>
 
+#include "common/atomic_file.hpp"
 #include "common/data_dir.hpp"
 #include "common/errors.hpp"
 #include "common/json_reader.hpp"
@@ -308,11 +308,9 @@ ObjectModel ParseObjectModel(std::string_view json_text, const std::string& sour
 }
 
 ObjectModel LoadObjectModel(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError("cannot open object description '" + path.string() + "'");
-  std::stringstream text;
-  text << in.rdbuf();
-  return ParseObjectModel(text.str(), path.string(), path.parent_path());
+  const std::optional<std::string> text = ReadWholeFile(path);
+  if (!text) throw InputError("cannot open object description '" + path.string() + "'");
+  return ParseObjectModel(*text, path.string(), path.parent_path());
 }
 
 std::filesystem::path DefaultObjectDirectory() { return DataDirectory() / "models" / "objects"; }

@@ -3,19 +3,19 @@
 #include <console_bridge/console.h>
 #include <tinyxml.h>
 #include <urdf_parser/urdf_parser.h>
+#include <optional>
 
 #include <Eigen/Eigenvalues>
 #include <array>
 #include <cmath>
 #include <exception>
-#include <fstream>
-#include <iterator>
 #include <map>
 #include <mutex>
 #include <set>
 #include <sstream>
 #include <utility>
 
+#include "common/atomic_file.hpp"
 #include "common/data_dir.hpp"
 #include "common/errors.hpp"
 #include "kinematics/pose_math.hpp"
@@ -435,11 +435,9 @@ RobotModel LoadRobotModel(const std::filesystem::path& path) {
   if (!std::filesystem::is_regular_file(path, ec)) {
     throw InputError(source + ": robot description is not a regular file");
   }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(source + ": robot description could not be opened");
-  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  if (in.bad()) throw InputError(source + ": robot description could not be read");
-  return ParseRobotModel(text, source);
+  const std::optional<std::string> text = ReadWholeFile(path);
+  if (!text) throw InputError(source + ": robot description could not be opened");
+  return ParseRobotModel(*text, source);
 }
 
 std::filesystem::path DefaultRobotDescriptionPath() {

@@ -2,9 +2,10 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
-#include <fstream>
+#include <optional>
 #include <sstream>
 
+#include "common/atomic_file.hpp"
 #include "common/data_dir.hpp"
 #include "common/errors.hpp"
 #include "common/json_reader.hpp"
@@ -150,11 +151,9 @@ SceneModel ParseSceneModel(std::string_view json_text, const std::string& source
 }
 
 SceneModel LoadSceneModel(const std::filesystem::path& path, const std::string& object_override) {
-  std::ifstream in(path);
-  if (!in) throw InputError("cannot open scene description '" + path.string() + "'");
-  std::stringstream text;
-  text << in.rdbuf();
-  return ParseSceneModel(text.str(), path.string(), path.parent_path(), object_override);
+  const std::optional<std::string> text = ReadWholeFile(path);
+  if (!text) throw InputError("cannot open scene description '" + path.string() + "'");
+  return ParseSceneModel(*text, path.string(), path.parent_path(), object_override);
 }
 
 std::filesystem::path DefaultSceneModelPath() { return DataDirectory() / "models" / "scene.json"; }

@@ -6,11 +6,11 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
 #include <map>
 #include <optional>
 #include <sstream>
 
+#include "common/atomic_file.hpp"
 #include "common/errors.hpp"
 #include "common/text_input.hpp"
 
@@ -247,13 +247,10 @@ TriangleMesh LoadTriangleMesh(const std::filesystem::path& path, double scale) {
   if (ext != ".stl" && ext != ".obj") {
     throw InputError(path.string() + ": unknown mesh format '" + ext + "' (expected .stl or .obj)");
   }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("cannot open mesh '" + path.string() + "'");
-  std::stringstream bytes;
-  bytes << in.rdbuf();
-  const std::string data = bytes.str();
-  return ext == ".stl" ? ParseStl(data, scale, path.string())
-                       : ParseObj(data, scale, path.string());
+  const std::optional<std::string> data = ReadWholeFile(path);
+  if (!data) throw InputError("cannot open mesh '" + path.string() + "'");
+  return ext == ".stl" ? ParseStl(*data, scale, path.string())
+                       : ParseObj(*data, scale, path.string());
 }
 
 void CheckSolidMesh(const TriangleMesh& mesh, const MeshLimits& limits) {

@@ -1,9 +1,9 @@
 #include "learning_data/demo_log.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <utility>
 
@@ -368,12 +368,9 @@ DemoLog ParseDemoLog(std::string_view text, const std::string& source) {
 }
 
 DemoLog ReadDemoLog(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("cannot open demonstration log '" + path.string() + "'");
-  std::ostringstream contents;
-  contents << in.rdbuf();
-  if (in.bad()) throw InputError("error while reading '" + path.string() + "'");
-  return ParseDemoLog(contents.str(), path.string());
+  const std::optional<std::string> contents = ReadWholeFile(path);
+  if (!contents) throw InputError("cannot open demonstration log '" + path.string() + "'");
+  return ParseDemoLog(*contents, path.string());
 }
 
 namespace {

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "common/atomic_file.hpp"
@@ -145,11 +145,9 @@ void CheckJointLimits(const JointTrajectory& trajectory, const ArmModel& arm, co
 
 JointTrajectory LoadJointTrajectory(const std::filesystem::path& path, const ArmModel& arm,
                                     const HandModel& hand) {
-  std::ifstream in(path);
-  if (!in) throw InputError("cannot open trajectory file '" + path.string() + "'");
-  std::stringstream text;
-  text << in.rdbuf();
-  JointTrajectory trajectory = ParseJointTrajectory(text.str(), path.string());
+  const std::optional<std::string> text = ReadWholeFile(path);
+  if (!text) throw InputError("cannot open trajectory file '" + path.string() + "'");
+  JointTrajectory trajectory = ParseJointTrajectory(*text, path.string());
   CheckJointLimits(trajectory, arm, hand, path.string());
   return trajectory;
 }

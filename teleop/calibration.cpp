@@ -1,9 +1,9 @@
 #include "teleop/calibration.hpp"
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
+#include <optional>
 
+#include "common/atomic_file.hpp"
 #include "common/data_dir.hpp"
 #include "common/errors.hpp"
 #include "common/json_reader.hpp"
@@ -35,11 +35,9 @@ TeleopCalibration ParseTeleopCalibration(std::string_view json_text, const std::
 }
 
 TeleopCalibration LoadTeleopCalibration(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string() + ": cannot be read");
-  std::stringstream text;
-  text << in.rdbuf();
-  return ParseTeleopCalibration(text.str(), path.string());
+  const std::optional<std::string> text = ReadWholeFile(path);
+  if (!text) throw InputError(path.string() + ": cannot be read");
+  return ParseTeleopCalibration(*text, path.string());
 }
 
 std::filesystem::path DefaultTeleopCalibrationPath() {

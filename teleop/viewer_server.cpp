@@ -6,16 +6,16 @@
 #include <poll.h>
 #include <sys/socket.h>
 #include <unistd.h>
+#include <optional>
 
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cstring>
-#include <fstream>
-#include <sstream>
 #include <string_view>
 
+#include "common/atomic_file.hpp"
 #include "common/errors.hpp"
 #include "teleop/http_request.hpp"
 
@@ -41,12 +41,15 @@ constexpr AssetFile kAssetFiles[] = {
 
 std::string SystemError(const std::string& what) { return what + ": " + std::strerror(errno); }
 
-std::shared_ptr<const std::string> ReadWholeFile(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return nullptr;
-  std::ostringstream text;
-  text << in.rdbuf();
-  return std::make_shared<const std::string>(std::move(text).str());
+std::shared_ptr<const std::string> ReadAsset(const std::filesystem::path& path) {
+  std::optional<std::string> text;
+  try {
+    text = ReadWholeFile(path);
+  } catch (const InputError&) {
+    return nullptr;
+  }
+  if (!text) return nullptr;
+  return std::make_shared<const std::string>(std::move(*text));
 }
 
 const char* ReasonPhrase(int status) {
@@ -126,7 +129,7 @@ ViewerServer::ViewerServer(std::string scene_json, const ViewerServerOptions& op
 
   for (const AssetFile& file : kAssetFiles) {
     const std::filesystem::path path = options.asset_dir / file.file;
-    Asset asset{file.content_type, ReadWholeFile(path), ""};
+    Asset asset{file.content_type, ReadAsset(path), ""};
     if (!asset.body) {
       missing_assets_.push_back(path.string());
       asset.missing_message =
