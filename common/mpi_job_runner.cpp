@@ -81,11 +81,153 @@ class SharedRuntimeError final : public std::runtime_error, public StageFailedEl
   using std::runtime_error::runtime_error;
 };
 
+// Rethrows a stage's error on rank 0 (kOk: nothing).
+void Rethrow(Ending ending, const std::string& message) {
+  if (ending == Ending::kInputError) throw InputError(message);
+  if (ending == Ending::kOtherError) throw std::runtime_error(message);
+}
+
 // The first error of a stage, on rank 0.
 struct StageError {
   Ending ending = Ending::kOk;
   std::string message;
   std::exception_ptr local;  // when one of rank 0's own threads threw it
+};
+
+// Rank 0's part of a stage: hands out the jobs to its own threads and to the other ranks'
+// requests, keeps the results, then sends them (or the first error) to every rank.
+class StageCoordinator {
+ public:
+  StageCoordinator(const JobStage& stage, const ResumeFolder* resume, int size)
+      : stage_(stage),
+        results_(stage, resume),
+        threads_of_(static_cast<size_t>(size), -1),
+        retired_(static_cast<size_t>(size)) {}
+
+  std::vector<std::string> Run() {
+    StartOwnThreads();
+    ServeOtherRanks();
+    for (std::thread& t : pool_) t.join();
+    return Finish();
+  }
+
+ private:
+  // The next job to hand out, or -1 once none is left or the stage failed.
+  int Take() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return error_.ending != Ending::kOk || next_ >= results_.todo().size()
+               ? -1
+               : results_.todo()[next_++];
+  }
+
+  // Keeps the stage's first error.
+  void Fail(Ending ending, std::string message, std::exception_ptr local) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (error_.ending == Ending::kOk) error_ = {ending, std::move(message), std::move(local)};
+  }
+
+  void Guarded(const std::function<void()>& f) {
+    try {
+      f();
+    } catch (const InputError& e) {
+      Fail(Ending::kInputError, e.what(), std::current_exception());
+    } catch (const std::exception& e) {
+      Fail(Ending::kOtherError, e.what(), std::current_exception());
+    }
+  }
+
+  void StartOwnThreads() {
+    const int threads = WorkerCount(stage_.threads, static_cast<int>(results_.todo().size()));
+    for (int t = 0; t < threads; ++t) {
+      pool_.emplace_back([this] {
+        for (int i = Take(); i >= 0; i = Take()) {
+          Guarded([&] { results_.Add(i, stage_.run(i), true); });
+        }
+      });
+    }
+  }
+
+  // The other ranks' worker threads: each says hello, then brings a result (or an error) with
+  // each request, until it is told that nothing is left.
+  void ServeOtherRanks() {
+    const int others = static_cast<int>(threads_of_.size()) - 1;
+    int ranks_done = 0;
+    std::string message;
+    while (ranks_done < others) {
+      const int from = ReceiveGently(&message);
+      Guarded([&] { Handle(message, from); });
+      const int assigned = Take();
+      MPI_Request request;
+      MPI_Isend(&assigned, 1, MPI_INT, from, kTagAssign, MPI_COMM_WORLD, &request);
+      WaitGently(&request);
+      const auto rank = static_cast<size_t>(from);
+      if (assigned < 0 && ++retired_[rank] == threads_of_[rank]) ++ranks_done;
+    }
+  }
+
+  // The next message to rank 0 from any rank (into `message`); returns its sender. Probes
+  // without spinning a core, as WaitGently does.
+  static int ReceiveGently(std::string* message) {
+    auto pause = std::chrono::microseconds(50);
+    int flag = 0;
+    MPI_Status status;
+    for (;;) {
+      MPI_Iprobe(MPI_ANY_SOURCE, kTagToRoot, MPI_COMM_WORLD, &flag, &status);
+      if (flag) break;
+      std::this_thread::sleep_for(pause);
+      pause = std::min(pause * 2, std::chrono::microseconds(1000));
+    }
+    int count = 0;
+    MPI_Get_count(&status, MPI_BYTE, &count);
+    message->assign(static_cast<size_t>(count), '\0');
+    MPI_Recv(message->data(), count, MPI_BYTE, status.MPI_SOURCE, kTagToRoot, MPI_COMM_WORLD,
+             MPI_STATUS_IGNORE);
+    return status.MPI_SOURCE;
+  }
+
+  void Handle(const std::string& message, int from) {
+    ByteReader r(message, "the message of rank " + std::to_string(from));
+    const Carries carries = r.EnumValue(Carries::kError);
+    const int64_t value = r.IntIn(0, INT_MAX);
+    std::string payload = r.String();
+    r.Finish();
+    if (carries == Carries::kHello) {
+      threads_of_[static_cast<size_t>(from)] = static_cast<int>(value);
+    } else if (carries == Carries::kResult) {
+      if (value >= stage_.count) throw std::runtime_error("a result for no job");
+      results_.Add(static_cast<int>(value), std::move(payload), false);
+    } else {
+      Fail(static_cast<Ending>(value), std::move(payload), nullptr);
+    }
+  }
+
+  // Sends every result, or the stage's error, to every rank, and returns the results or
+  // rethrows the error here.
+  std::vector<std::string> Finish() {
+    ByteWriter w;
+    w.EnumValue(error_.ending);
+    w.String(error_.message);
+    std::vector<std::string> all;
+    if (error_.ending == Ending::kOk) {
+      all = results_.Take();
+      w.UInt(all.size());
+      for (const std::string& r : all) w.String(r);
+    }
+    std::string bytes = w.Take();
+    Broadcast(&bytes);
+    if (error_.local) std::rethrow_exception(error_.local);
+    Rethrow(error_.ending, error_.message);
+    return all;
+  }
+
+  const JobStage& stage_;
+  StageResults results_;
+  std::mutex mutex_;  // next_ and error_
+  size_t next_ = 0;
+  StageError error_;
+  std::vector<std::thread> pool_;
+  std::vector<int> threads_of_;  // per rank: its worker threads (from its hello)
+  std::vector<int> retired_;     // per rank: its threads told that nothing is left
 };
 
 class MpiJobRunner final : public JobRunner {
@@ -95,108 +237,11 @@ class MpiJobRunner final : public JobRunner {
 
   std::vector<std::string> Run(const JobStage& stage) override {
     DemandValidStage(stage);
-    return rank_ == 0 ? Coordinate(stage) : Work(stage);
+    return rank_ == 0 ? StageCoordinator(stage, resume_folder(), size_).Run() : Work(stage);
   }
   bool writes_outputs() const override { return rank_ == 0; }
 
  private:
-  // Rank 0: hands out the jobs to its own threads and to the other ranks' requests, keeps the
-  // results, then sends them (or the first error) to every rank.
-  std::vector<std::string> Coordinate(const JobStage& stage) {
-    StageResults results(stage, resume_folder());
-    const std::vector<int>& todo = results.todo();
-    std::mutex mutex;
-    size_t next = 0;
-    StageError error;
-    const auto take = [&]() -> int {
-      std::lock_guard<std::mutex> lock(mutex);
-      return error.ending != Ending::kOk || next >= todo.size() ? -1 : todo[next++];
-    };
-    const auto fail = [&](Ending ending, std::string message, std::exception_ptr local) {
-      std::lock_guard<std::mutex> lock(mutex);
-      if (error.ending == Ending::kOk) error = {ending, std::move(message), std::move(local)};
-    };
-    const auto guarded = [&](const std::function<void()>& f) {
-      try {
-        f();
-      } catch (const InputError& e) {
-        fail(Ending::kInputError, e.what(), std::current_exception());
-      } catch (const std::exception& e) {
-        fail(Ending::kOtherError, e.what(), std::current_exception());
-      }
-    };
-    std::vector<std::thread> pool;
-    const int local_threads = WorkerCount(stage.threads, static_cast<int>(todo.size()));
-    for (int t = 0; t < local_threads; ++t) {
-      pool.emplace_back([&] {
-        for (int i = take(); i >= 0; i = take())
-          guarded([&] { results.Add(i, stage.run(i), true); });
-      });
-    }
-    // the other ranks' worker threads: each says hello, then brings a result (or an error)
-    // with each request, until it is told that nothing is left.
-    std::vector<int> threads_of(static_cast<size_t>(size_), -1),
-        retired(static_cast<size_t>(size_));
-    int ranks_done = 0;
-    auto pause = std::chrono::microseconds(50);
-    while (ranks_done < size_ - 1) {
-      int flag = 0;
-      MPI_Status status;
-      MPI_Iprobe(MPI_ANY_SOURCE, kTagToRoot, MPI_COMM_WORLD, &flag, &status);
-      if (!flag) {
-        std::this_thread::sleep_for(pause);
-        pause = std::min(pause * 2, std::chrono::microseconds(1000));
-        continue;
-      }
-      pause = std::chrono::microseconds(50);
-      int count = 0;
-      MPI_Get_count(&status, MPI_BYTE, &count);
-      std::string message(static_cast<size_t>(count), '\0');
-      const int from = status.MPI_SOURCE;
-      MPI_Recv(message.data(), count, MPI_BYTE, from, kTagToRoot, MPI_COMM_WORLD,
-               MPI_STATUS_IGNORE);
-      guarded([&] {
-        ByteReader r(message, "the message of rank " + std::to_string(from));
-        const Carries carries = r.EnumValue(Carries::kError);
-        const int64_t value = r.IntIn(0, INT_MAX);
-        std::string payload = r.String();
-        r.Finish();
-        if (carries == Carries::kHello) {
-          threads_of[static_cast<size_t>(from)] = static_cast<int>(value);
-        } else if (carries == Carries::kResult) {
-          if (value >= stage.count) throw std::runtime_error("a result for no job");
-          results.Add(static_cast<int>(value), std::move(payload), false);
-        } else {
-          fail(static_cast<Ending>(value), std::move(payload), nullptr);
-        }
-      });
-      const int assigned = take();
-      MPI_Request request;
-      MPI_Isend(&assigned, 1, MPI_INT, from, kTagAssign, MPI_COMM_WORLD, &request);
-      WaitGently(&request);
-      if (assigned < 0 &&
-          ++retired[static_cast<size_t>(from)] == threads_of[static_cast<size_t>(from)]) {
-        ++ranks_done;
-      }
-    }
-    for (std::thread& t : pool) t.join();
-
-    ByteWriter w;
-    w.EnumValue(error.ending);
-    w.String(error.message);
-    std::vector<std::string> all;
-    if (error.ending == Ending::kOk) {
-      all = results.Take();
-      w.UInt(all.size());
-      for (const std::string& r : all) w.String(r);
-    }
-    std::string bytes = w.Take();
-    Broadcast(&bytes);
-    if (error.local) std::rethrow_exception(error.local);
-    Rethrow(error.ending, error.message);
-    return all;
-  }
-
   // Any other rank: its worker threads ask rank 0 for jobs until none is left, then the stage's
   // results come from rank 0.
   std::vector<std::string> Work(const JobStage& stage) {
@@ -248,11 +293,6 @@ class MpiJobRunner final : public JobRunner {
     for (std::string& s : all) s = r.String();
     r.Finish();
     return all;
-  }
-
-  static void Rethrow(Ending ending, const std::string& message) {
-    if (ending == Ending::kInputError) throw InputError(message);
-    if (ending == Ending::kOtherError) throw std::runtime_error(message);
   }
 
   int rank_;
