@@ -162,6 +162,9 @@ std::string FallbackReason::Text() const {
     if (kind == FallbackKind::kTurnedDemo) {
       f << "; used its heaviest robust vertex " << used_placement
         << " moved and turned with the object";
+    } else if (kind == FallbackKind::kPartialBlend) {
+      f << "; blended the vertices that can be, " << used_placement
+        << ", moved and turned with the object";
     } else {
       f << "; no robust vertex moved with the object is reachable with " << min_psi_width / kDeg
         << " deg of arm angle; used the plain blend, left to the refinement";

@@ -55,6 +55,7 @@ enum class FallbackKind {
   kTurnedDemo,       ///< unblendable bracket: the nearer (or robust) end turned with the object
   kLinePrinciple,    ///< unblendable bracket, the turned end unreachable: the line principle
   kPlainBlend,       ///< unblendable bracket, nothing else reachable: the plain blend
+  kPartialBlend,     ///< unblendable cell: the blend of its vertices that can be blended
 };
 
 /// Why a method other than the requested one was used, and the figures of what was tried.
@@ -72,7 +73,8 @@ struct FallbackReason {
   /// (bracket_reason says how).
   bool blend_failed = false;
   /// A library over placements (placement_motion.hpp): the query's cell, its vertices and
-  /// weights in words, in place of the bracket; and the vertex used (kTurnedDemo).
+  /// weights in words, in place of the bracket; the vertex used (kTurnedDemo) or the vertices
+  /// blended with their weights (kPartialBlend).
   std::string cell;
   std::string used_placement;
 

@@ -1,6 +1,8 @@
 #include "solver/placement_motion.hpp"
 
+#include <algorithm>
 #include <sstream>
+#include <vector>
 
 #include "kinematics/pose_math.hpp"
 
@@ -24,7 +26,8 @@ void UseVertex(const SynthesisModel& model, const SynthesisTask& task, int i,
   const LibraryEntry& e = model.library().entries[static_cast<size_t>(i)];
   const Placement to{task.placement.theta, model.scene().CentreXY(task.placement)};
   const Placement from = e.placement();
-  r->motion = from.theta == to.theta && *from.xy == *to.xy ? e.motion : TurnWithObject(e.motion, to);
+  r->motion =
+      from.theta == to.theta && *from.xy == *to.xy ? e.motion : TurnWithObject(e.motion, to);
   r->sources = {Source(model.library(), i, 1.0)};
 }
 
@@ -118,6 +121,39 @@ int HeaviestRobust(const SynthesisModel& model, const PlacementCell& cell, doubl
   return best;
 }
 
+// The heaviest robust vertex (HeaviestRobust) and every other vertex with weight that can be
+// blended with those kept before it, heaviest first, the weights scaled to sum to one; fewer
+// than two vertices, or all of them (the cell itself, which cannot be blended), give an empty
+// cell.
+PlacementCell BlendableSubcell(const SynthesisModel& model, const PlacementCell& cell,
+                               const BracketOptions& options) {
+  const int anchor = HeaviestRobust(model, cell, options.min_score);
+  std::vector<size_t> order(cell.vertices.size());
+  for (size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return cell.weights[a] > cell.weights[b]; });
+  PlacementCell sub = cell;
+  sub.vertices = {anchor};
+  sub.weights.clear();
+  for (size_t k = 0; k < cell.vertices.size(); ++k) {
+    if (cell.vertices[k] == anchor) sub.weights = {cell.weights[k]};
+  }
+  for (size_t k : order) {
+    if (cell.vertices[k] == anchor || cell.weights[k] <= 0.0) continue;
+    sub.vertices.push_back(cell.vertices[k]);
+    sub.weights.push_back(cell.weights[k]);
+    if (!CellReason(model, sub, options).empty()) {
+      sub.vertices.pop_back();
+      sub.weights.pop_back();
+    }
+  }
+  if (sub.vertices.size() < 2 || sub.vertices.size() == cell.vertices.size()) return {};
+  double total = 0.0;
+  for (double w : sub.weights) total += w;
+  for (double& w : sub.weights) w /= total;
+  return sub;
+}
+
 void GenerateCellInterp(const SynthesisModel& model, const SynthesisTask& task,
                         const Eigen::Vector3d& query, const MotionGenerationOptions& options,
                         MotionGenerationResult* r) {
@@ -145,6 +181,19 @@ void GenerateCellInterp(const SynthesisModel& model, const SynthesisTask& task,
   FallbackReason& f = r->fallback;
   f.bracket_reason = why;
   f.cell = CellText(model, cell);
+  if (!options.reject_blend) {
+    const PlacementCell sub = BlendableSubcell(model, cell, options.bracket);
+    MotionGenerationResult partial;
+    if (!sub.vertices.empty()) UseCellBlend(model, task, sub, options, &partial);
+    if (!sub.vertices.empty() &&
+        Reachable(model.robot(), partial.motion, options.branch, options.min_psi_width)) {
+      r->motion = std::move(partial.motion);
+      r->sources = std::move(partial.sources);
+      f.kind = FallbackKind::kPartialBlend;
+      f.used_placement = CellText(model, sub);
+      return;
+    }
+  }
   const int vertex = HeaviestRobust(model, cell, options.bracket.min_score);
   MotionGenerationResult turned;
   UseVertex(model, task, vertex, &turned);
@@ -154,7 +203,8 @@ void GenerateCellInterp(const SynthesisModel& model, const SynthesisTask& task,
     r->used = SynthesisMethod::kNearest;
     f.kind = FallbackKind::kTurnedDemo;
     f.used_deg = model.library().entries[static_cast<size_t>(vertex)].theta_deg;
-    f.used_placement = PlacementText(model.triangulation().placements()[static_cast<size_t>(vertex)]);
+    f.used_placement =
+        PlacementText(model.triangulation().placements()[static_cast<size_t>(vertex)]);
     return;
   }
   f.min_psi_width = options.min_psi_width;

@@ -13,9 +13,12 @@
 ///   (bracket.hpp), when its grasps lie on different sides of the handle, their orientations
 ///   relative to the object differ by more than BracketOptions::max_orientation_change, or a
 ///   vertex with weight is weak while another is not; nor when its blend failed its nominal
-///   trial in physics (MotionGenerationOptions::reject_blend). It then falls back to the
-///   heaviest robust vertex moved and turned with the object when that is reachable, else to
-///   the plain blend, left to the refinement. Outside the hull: kOutOfRange, naming the hull.
+///   trial in physics (MotionGenerationOptions::reject_blend). It then falls back, in this
+///   order, to the blend of the vertices that can be blended (the heaviest robust vertex and,
+///   heaviest first, each other vertex that passes those tests with the ones kept, the weights
+///   scaled to sum to one; at least two vertices, not after a failed blend, and reachable), to
+///   the heaviest robust vertex moved and turned with the object when that is reachable, else
+///   to the plain blend, left to the refinement. Outside the hull: kOutOfRange, naming the hull.
 /// - nearest: the nearest demonstrated placement in the placement space (theta scaled by
 ///   kDefaultThetaLength), moved and turned with the object.
 /// - line: the line principle (fitted over the position nearest the scene's object centre,

@@ -96,7 +96,7 @@ void WriteFallback(ByteWriter& w, const FallbackReason& f) {
 
 FallbackReason ReadFallback(ByteReader& r) {
   FallbackReason f;
-  f.kind = r.EnumValue(FallbackKind::kPlainBlend);
+  f.kind = r.EnumValue(FallbackKind::kPartialBlend);
   f.bracket_reason = r.String();
   f.lower_deg = r.Double();
   f.upper_deg = r.Double();

@@ -8,7 +8,8 @@ namespace {
 
 // True for an interp grasp that is the plain blend of a bracket (no fallback taken).
 bool IsBlend(const SynthesisResult& s) {
-  return s.ok() && s.requested == SynthesisMethod::kInterp && !s.fallback &&
+  const bool blended = !s.fallback || s.fallback_reason.kind == FallbackKind::kPartialBlend;
+  return s.ok() && s.requested == SynthesisMethod::kInterp && blended &&
          s.bracket.kind == BracketKind::kInside;
 }
 

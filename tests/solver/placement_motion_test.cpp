@@ -6,6 +6,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "common/errors.hpp"
 #include "kinematics/pose_math.hpp"
 #include "simulation/trial.hpp"
@@ -22,8 +24,8 @@ using testing::Model406080;
 using testing::ShippedSimulationModel;
 
 const std::vector<Eigen::Vector2d>& Positions() {
-  static const std::vector<Eigen::Vector2d> p = {{-0.28, 0.82}, {-0.28, 0.88}, {-0.22, 0.82},
-                                                 {-0.22, 0.88}};
+  static const std::vector<Eigen::Vector2d> p = {
+      {-0.28, 0.82}, {-0.28, 0.88}, {-0.22, 0.82}, {-0.22, 0.88}};
   return p;
 }
 
@@ -118,7 +120,8 @@ TEST(PlacementMotion, OutsideTheHullInterpIsRefusedAndNearestMovesTheNearest) {
   // the grasp keeps its place relative to the object.
   const GraspingMotion& e = PlacementsModel().library().entries[1].motion;
   const SceneModel& scene = PlacementsModel().scene();
-  const Eigen::Isometry3d X_from = scene.ObjectPose(Placement{e.theta, Eigen::Vector2d(-0.28, 0.82)});
+  const Eigen::Isometry3d X_from =
+      scene.ObjectPose(Placement{e.theta, Eigen::Vector2d(-0.28, 0.82)});
   const Eigen::Isometry3d X_to = scene.ObjectPose(Placement{62.0 * kDeg, outside});
   const Eigen::Isometry3d X_OG_from = X_from.inverse() * WaypointPose(e.grasp());
   const Eigen::Isometry3d X_OG_to = X_to.inverse() * WaypointPose(n.motion.grasp());
@@ -135,6 +138,55 @@ TEST(PlacementMotion, AGraspAtAHeldOutPlacementIsPlayedWithTheObjectThere) {
   EXPECT_EQ(*s.trajectory.object_xy, Eigen::Vector2d(-0.25, 0.85));
   const TrialResult trial = RunTrial(ShippedSimulationModel(), s.trajectory);
   EXPECT_TRUE(trial.success()) << trial.BriefReport();
+}
+
+TEST(PlacementMotion, ACellWithAWeakVertexBlendsItsOtherVerticesAndAFailedBlendTakesOne) {
+  // the 60 deg grasp at (-0.28, 0.82) is weak: a cell that holds it with the robust ones cannot
+  // be blended, and its robust vertices are blended instead, with their weights scaled.
+  static const SynthesisModel model = [] {
+    GraspLibrary library = PlacementsModel().library();
+    library.entries[1].score = 0.2;
+    return SynthesisModel(ShippedSimulationModel().robot(), ShippedSimulationModel().scene(),
+                          library);
+  }();
+  const Eigen::Vector2d at(-0.27, 0.83);
+  const SynthesisTask task = MakeSynthesisTask(model.scene(), 57.0, at);
+  const PlacementCell cell =
+      model.triangulation().Locate(PlacementCoordinates(model.scene(), task.placement));
+  ASSERT_THAT(cell.vertices, ::testing::Contains(1));
+  ASSERT_GE(cell.vertices.size(), 3u);
+
+  MotionGenerationOptions options;
+  const MotionGenerationResult r = GenerateGraspingMotion(model, task, options);
+  ASSERT_TRUE(r.ok()) << r.message;
+  EXPECT_EQ(r.used, SynthesisMethod::kInterp);
+  EXPECT_EQ(r.fallback.kind, FallbackKind::kPartialBlend);
+  EXPECT_THAT(r.fallback.Text(), HasSubstr("a vertex is weak"));
+  EXPECT_THAT(r.fallback.Text(), HasSubstr("blended the vertices that can be"));
+  ASSERT_EQ(r.sources.size(), cell.vertices.size() - 1);
+  double kept = 0.0;
+  for (size_t k = 0; k < cell.vertices.size(); ++k)
+    kept += cell.vertices[k] == 1 ? 0.0 : cell.weights[k];
+  double sum = 0.0;
+  for (const SourceDemo& source : r.sources) {
+    EXPECT_NE(source.entry, 1);
+    const auto k =
+        static_cast<size_t>(std::find(cell.vertices.begin(), cell.vertices.end(), source.entry) -
+                            cell.vertices.begin());
+    ASSERT_LT(k, cell.vertices.size());
+    EXPECT_NEAR(source.weight, cell.weights[k] / kept, 1e-12);
+    sum += source.weight;
+  }
+  EXPECT_NEAR(sum, 1.0, 1e-12);
+  EXPECT_TRUE(MatricesNear(r.motion.p_WO.head<2>(), at, 1e-12));
+
+  // when that blend has failed its nominal trial, the heaviest robust vertex is used alone.
+  options.reject_blend = true;
+  const MotionGenerationResult again = GenerateGraspingMotion(model, task, options);
+  ASSERT_TRUE(again.ok()) << again.message;
+  EXPECT_EQ(again.fallback.kind, FallbackKind::kTurnedDemo);
+  ASSERT_EQ(again.sources.size(), 1u);
+  EXPECT_NE(again.sources[0].entry, 1);
 }
 
 TEST(PlacementMotion, AnObjectOffTheTableIsRefused) {
