@@ -128,18 +128,18 @@ int HeaviestRobust(const SynthesisModel& model, const PlacementCell& cell, doubl
 PlacementCell BlendableSubcell(const SynthesisModel& model, const PlacementCell& cell,
                                const BracketOptions& options) {
   const int anchor = HeaviestRobust(model, cell, options.min_score);
+  // the anchor first (a single vertex can always be blended), then the others heaviest first
   std::vector<size_t> order(cell.vertices.size());
   for (size_t k = 0; k < order.size(); ++k) order[k] = k;
-  std::stable_sort(order.begin(), order.end(),
-                   [&](size_t a, size_t b) { return cell.weights[a] > cell.weights[b]; });
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return (cell.vertices[a] == anchor) != (cell.vertices[b] == anchor)
+               ? cell.vertices[a] == anchor
+               : cell.weights[a] > cell.weights[b];
+  });
   PlacementCell sub = cell;
-  sub.vertices = {anchor};
+  sub.vertices.clear();
   sub.weights.clear();
-  for (size_t k = 0; k < cell.vertices.size(); ++k) {
-    if (cell.vertices[k] == anchor) sub.weights = {cell.weights[k]};
-  }
   for (size_t k : order) {
-    if (cell.vertices[k] == anchor || cell.weights[k] <= 0.0) continue;
     sub.vertices.push_back(cell.vertices[k]);
     sub.weights.push_back(cell.weights[k]);
     if (!CellReason(model, sub, options).empty()) {
