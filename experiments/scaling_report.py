@@ -143,10 +143,9 @@ def main(out):
     # its own measured time per trial
     rng = random.Random(1)
     n_big = BIG_SWEEP_TRIALS // BIG_SWEEP_TRIALS_PER_GRASP
-    big = []
-    for _ in range(n_big):
-        s, g, n = grasps[rng.randrange(len(grasps))]
-        big.append(s + g / n * BIG_SWEEP_TRIALS_PER_GRASP)
+    big_rows = [grasps[rng.randrange(len(grasps))] for _ in range(n_big)]
+    big = [s + g / n * BIG_SWEEP_TRIALS_PER_GRASP for s, g, n in big_rows]
+
     # finer jobs (one trial each) for the same sweeps: a grasp's synthesis goes with its first
     # trial
     def one_trial_jobs(rows, per_grasp=None):
@@ -157,10 +156,6 @@ def main(out):
         return jobs
 
     small_fine = one_trial_jobs(grasps)
-    big_rows = []
-    rng = random.Random(1)
-    for _ in range(n_big):
-        big_rows.append(grasps[rng.randrange(len(grasps))])
     big_fine = one_trial_jobs(big_rows, BIG_SWEEP_TRIALS_PER_GRASP)
 
     lines = [
