@@ -121,13 +121,12 @@ int HeaviestRobust(const SynthesisModel& model, const PlacementCell& cell, doubl
   return best;
 }
 
-// The heaviest robust vertex (HeaviestRobust) and every other vertex with weight that can be
-// blended with those kept before it, heaviest first, the weights scaled to sum to one; fewer
-// than two vertices, or all of them (the cell itself, which cannot be blended), give an empty
-// cell.
-PlacementCell BlendableSubcell(const SynthesisModel& model, const PlacementCell& cell,
+// The cell's vertex `anchor` (its heaviest robust one, HeaviestRobust) and every other vertex
+// with weight that can be blended with those kept before it, heaviest first, the weights scaled
+// to sum to one; fewer than two vertices, or all of them (the cell itself, which cannot be
+// blended), give an empty cell.
+PlacementCell BlendableSubcell(const SynthesisModel& model, const PlacementCell& cell, int anchor,
                                const BracketOptions& options) {
-  const int anchor = HeaviestRobust(model, cell, options.min_score);
   // the anchor first (a single vertex can always be blended), then the others heaviest first
   std::vector<size_t> order(cell.vertices.size());
   for (size_t k = 0; k < order.size(); ++k) order[k] = k;
@@ -181,12 +180,14 @@ void GenerateCellInterp(const SynthesisModel& model, const SynthesisTask& task,
   FallbackReason& f = r->fallback;
   f.bracket_reason = why;
   f.cell = CellText(model, cell);
-  if (!options.reject_blend) {
-    const PlacementCell sub = BlendableSubcell(model, cell, options.bracket);
+  const int vertex = HeaviestRobust(model, cell, options.bracket.min_score);
+  const PlacementCell sub = options.reject_blend
+                                ? PlacementCell{}
+                                : BlendableSubcell(model, cell, vertex, options.bracket);
+  if (!sub.vertices.empty()) {
     MotionGenerationResult partial;
-    if (!sub.vertices.empty()) UseCellBlend(model, task, sub, options, &partial);
-    if (!sub.vertices.empty() &&
-        Reachable(model.robot(), partial.motion, options.branch, options.min_psi_width)) {
+    UseCellBlend(model, task, sub, options, &partial);
+    if (Reachable(model.robot(), partial.motion, options.branch, options.min_psi_width)) {
       r->motion = std::move(partial.motion);
       r->sources = std::move(partial.sources);
       f.kind = FallbackKind::kPartialBlend;
@@ -194,7 +195,6 @@ void GenerateCellInterp(const SynthesisModel& model, const SynthesisTask& task,
       return;
     }
   }
-  const int vertex = HeaviestRobust(model, cell, options.bracket.min_score);
   MotionGenerationResult turned;
   UseVertex(model, task, vertex, &turned);
   if (Reachable(model.robot(), turned.motion, options.branch, options.min_psi_width)) {

@@ -4,7 +4,6 @@ take the method whose seed-2 rows did better (nominal success, then successes; t
 interp+refine) and score that choice on the seed-1 rows of ../inside.csv, which chose nothing."""
 import csv
 import statistics
-import sys
 from pathlib import Path
 
 here = Path(__file__).resolve().parent
@@ -32,4 +31,3 @@ print(f"{len(placements)} screened placements: interp+refine {statistics.mean(pl
       f"screened {statistics.mean(chosen):.3f} (picked interp+refine {picks['interp+refine']}, "
       f"nearest {picks['nearest']})")
 print(f"the inside grid's {len(grid)} rows: {statistics.mean(grid):.3f} -> {after:.3f}")
-sys.exit(0)
