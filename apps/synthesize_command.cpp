@@ -30,6 +30,7 @@ struct SynthesizeOptions {
   std::string reach = "auto";
   double clearance_margin = 0.005;
   bool strict_thresholds = false;
+  bool grip_slide = false;
   bool no_refine = false;
   std::string start;
   uint64_t seed = PhysicsGateOptions{}.seed;
@@ -87,6 +88,10 @@ int RunSynthesize(const SynthesizeOptions& o) {
   so.reach.method = ParseReachMethod(o.reach);
   so.refinement.clearance_margin = o.clearance_margin;
   if (o.strict_thresholds) so.source_thresholds.reset();
+  if (o.grip_slide) {
+    if (o.no_refine) throw InputError("--grip-slide needs the refinement (drop --no-refine)");
+    so.grip_slide = GripSlideOptions{};
+  }
   if (!o.start.empty()) so.start = ParseStart(o.start);
   ValidatedSynthesisOptions vo;
   vo.synthesis = so;
@@ -117,6 +122,10 @@ int RunSynthesize(const SynthesizeOptions& o) {
   if (!v.rejected_blend.empty()) {
     std::cerr << "the blend failed its nominal trial in physics: " << v.rejected_blend << "\n";
   }
+  if (!v.rejected_slide.empty()) {
+    std::cerr << "the slid grip failed its nominal trial in physics, so the grip was not slid: "
+              << v.rejected_slide << "\n";
+  }
   std::cerr << "synthesized theta " << o.theta << " deg"
             << (at ? " at (" + std::to_string(at->x()) + ", " + std::to_string(at->y()) + ") m"
                    : std::string())
@@ -127,6 +136,14 @@ int RunSynthesize(const SynthesizeOptions& o) {
             << "generate " << s.generate_s * 1e3 << " ms, refine " << s.refine_s * 1e3
             << " ms, joints " << s.joints_s * 1e3 << " ms\n";
   if (s.refined) std::cerr << "refinement: " << s.refinement.BriefReport() << "\n";
+  if (so.grip_slide && !std::isfinite(s.grip_radius)) {
+    std::cerr << "grip slide: not run (the object has no handle, or the library no fitted line "
+                 "principle to say where the hand holds it)\n";
+  } else if (so.grip_slide) {
+    std::cerr << "grip slide: the grip held the handle " << s.grip_radius * 1e3
+              << " mm from the object's centre; slid " << s.grip_slide * 1e3 << " mm toward it"
+              << (v.rejected_slide.empty() ? "" : " (the slid grip was rejected)") << "\n";
+  }
   const PhysicsGateResult& gate = v.gate;
   std::cerr << "physics gate: " << (gate.passed ? "passed" : "FAILED") << ": " << gate.reason
             << "; quality: epsilon " << gate.quality.epsilon << ", volume " << gate.quality.volume
@@ -188,6 +205,11 @@ void AddSynthesizeCommand(CLI::App& app, int* exit_code) {
   cmd->add_flag("--strict-thresholds", opts->strict_thresholds,
                 "Refine to the default clearance, penetration and contact thresholds even where "
                 "the source demonstrations, which held the object in physics, break them");
+  cmd->add_flag("--grip-slide", opts->grip_slide,
+                "After the refinement, slide a grasp that holds the handle within 4 cm of its end "
+                "in toward the object's centre (by up to 5 cm, then half and a quarter of it; the "
+                "first that keeps the refinement's constraints and 2 cm between arm and object "
+                "is kept; a slid grip whose nominal trial fails gives way to the unslid one)");
   cmd->add_option("--start", opts->start,
                   "Start arm configuration q1,...,q7 in radians (default: the rest pose for the "
                   "grasp orientation)");

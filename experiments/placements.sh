@@ -12,10 +12,14 @@
 #   that 3 x 3 run, is demonstrated there and left out of the tables);
 # each by the four methods (nearest moved and turned, interp over the Delaunay cells,
 # interp+refine, line+refine), validated in physics (nominal + 10 perturbed replays, the physics
-# perturbed). Writes experiments/results/placements/ (analysis.json, inside.csv/.md,
-# outside.csv/.md, placements.md: the tables, the separation counts and the line fit;
-# surface.svg: success over the table's surface). Deterministic from --seed 1. Over an hour on
-# 2 cores.
+# perturbed);
+# - interp+refine/slide (the grip slide after the refinement) at the inside placements, and,
+#   beside interp+refine, at 56 placements the slide's rule was not written from (x -0.265,
+#   -0.235 m, y 0.835, 0.865 m, 21..99 deg every 6 deg).
+# Writes experiments/results/placements/ (analysis.json, inside.csv/.md, inside_slide.csv/.md,
+# outside.csv/.md, check.csv/.md, placements.md: the tables, the separation counts, the slide's
+# check and the line fit; surface.svg: success over the table's surface). Deterministic from
+# --seed 1. About 1 h 50 min on 2 cores.
 #
 #   experiments/placements.sh [BUILD_DIR]     (default: build)
 set -euo pipefail
@@ -34,6 +38,14 @@ echo "== held-out placements inside the grid"
 "${graspsynth}" generalize --library "${library}" --x -0.28:-0.22:0.03 --y 0.82:0.88:0.03 \
   --orientations 23:98:5 --methods "${methods}" --perturb 10 --seed 1 --name inside \
   --out "${out}"
+echo "== the grip slide at the held-out placements inside the grid"
+"${graspsynth}" generalize --library "${library}" --x -0.28:-0.22:0.03 --y 0.82:0.88:0.03 \
+  --orientations 23:98:5 --methods interp+refine/slide --perturb 10 --seed 1 \
+  --name inside_slide --out "${out}"
+echo "== the grip slide checked at placements between those"
+"${graspsynth}" generalize --library "${library}" --x -0.265,-0.235 --y 0.835,0.865 \
+  --orientations 21:99:6 --methods interp+refine,interp+refine/slide --perturb 10 --seed 1 \
+  --name check --out "${out}"
 echo "== held-out placements outside the grid"
 "${graspsynth}" generalize --library "${library}" --x -0.35,-0.25,-0.15 --y 0.75,0.85,0.95 \
   --orientations 30,60,90 --methods "${methods}" --perturb 10 --seed 1 --name outside \

@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
 """The tables and the surface plot of experiments/placements.sh.
 
-Reads OUT/analysis.json, OUT/inside.csv and OUT/outside.csv (graspsynth generalize over
-placements) and the library; writes OUT/placements.md (per method: synthesized, nominal
-success, passed the gate, mean robustness; the placements where the methods separate, with the
-nearest demonstration's failure; the line principle over placements) and OUT/surface.svg
-(gnuplot: per method, the nominal success over the orientations at each position on the table).
+Reads OUT/analysis.json, OUT/inside.csv, OUT/inside_slide.csv, OUT/outside.csv and
+OUT/check.csv (graspsynth generalize over placements) and the library; writes OUT/placements.md
+(per method: synthesized, nominal success, passed the gate, mean robustness; the placements
+where the methods separate, with the nearest demonstration's failure; the grip slide on the
+placements it was checked on, per orientation; the line principle over placements) and
+OUT/surface.svg (gnuplot: per method, the nominal success over the orientations at each
+position on the table).
 
     experiments/placements_report.py OUT LIBRARY
 """
@@ -17,7 +19,7 @@ import subprocess
 import sys
 import tempfile
 
-METHODS = ["nearest", "interp", "interp+refine", "line+refine"]
+METHODS = ["nearest", "interp", "interp+refine", "line+refine", "interp+refine/slide"]
 
 
 def read_rows(path):
@@ -105,6 +107,30 @@ def separations(rows):
     return blend_wins, nearest_wins, examples
 
 
+def slide_check_section(rows):
+    """The grip slide against interp+refine on the check placements, per orientation."""
+    if not rows:
+        return ""
+    mean = collections.defaultdict(lambda: collections.defaultdict(list))
+    for r in rows:
+        mean[r["method"]][float(r["theta_deg"])].append(float(r["robustness"]))
+    plain, slid = mean["interp+refine"], mean["interp+refine/slide"]
+    table, _, _ = method_table(rows)
+    lines = ["## The grip slide on placements it was not designed on (%d placements)\n" %
+             len({key(r) for r in rows}),
+             "The grip slide's rule (a grip within 4 cm of the handle's end slides in) was "
+             "written from the inside grid's failures; these placements (between the inside "
+             "grid's positions, at orientations it does not have) check it. Each method draws "
+             "its own perturbed replays, so rows whose grasp the slide leaves as it is differ by "
+             "replay noise alone.\n", table,
+             "\n| orientation (deg) | interp+refine | interp+refine/slide |", "|---:|---:|---:|"]
+    for theta in sorted(plain):
+        a, b = plain[theta], slid.get(theta, [])
+        lines.append("| %g | %.3f | %s |" % (theta, sum(a) / len(a),
+                                             "%.3f" % (sum(b) / len(b)) if b else "-"))
+    return "\n".join(lines) + "\n"
+
+
 def line_section(analysis_path):
     if not os.path.exists(analysis_path):
         return ""
@@ -148,7 +174,7 @@ def surface_plot(out, rows, library_placements):
     with tempfile.TemporaryDirectory() as tmp:
         files = []
         for m in METHODS:
-            path = os.path.join(tmp, m.replace("+", "_") + ".dat")
+            path = os.path.join(tmp, m.replace("+", "_").replace("/", "_") + ".dat")
             with open(path, "w") as f:
                 for (method, x, y), (ok, n) in sorted(share.items()):
                     if method == m:
@@ -158,9 +184,9 @@ def surface_plot(out, rows, library_placements):
         with open(demos, "w") as f:
             for x, y in sorted({(p[0], p[1]) for p in library_placements}):
                 f.write("%g %g\n" % (x, y))
-        script = ["set terminal svg size 1000,900 font 'sans,11'",
+        script = ["set terminal svg size 1500,900 font 'sans,11'",
                   "set output '%s'" % os.path.join(out, "surface.svg"),
-                  "set multiplot layout 2,2 title 'Nominal success over the orientations, per "
+                  "set multiplot layout 2,3 title 'Nominal success over the orientations, per "
                   "object position (crosses: demonstrated positions)'",
                   "set xrange [-0.37:-0.13]", "set yrange [0.73:0.97]", "set size ratio -1",
                   "set cbrange [0:1]", "set palette defined (0 'red', 0.5 'yellow', 1 'green')",
@@ -178,7 +204,9 @@ def main():
     out, library = sys.argv[1], sys.argv[2]
     placements = demonstrated(library)
     # rows at a demonstrated placement (the grid's centre in the outside run) are not held out.
-    inside = [r for r in read_rows(os.path.join(out, "inside.csv")) if key(r) not in placements]
+    inside = [r for r in read_rows(os.path.join(out, "inside.csv")) +
+              read_rows(os.path.join(out, "inside_slide.csv")) if key(r) not in placements]
+    check = [r for r in read_rows(os.path.join(out, "check.csv")) if key(r) not in placements]
     outside = [r for r in read_rows(os.path.join(out, "outside.csv")) if key(r) not in placements]
     md = ["# Placements: the pan anywhere on the table\n",
           "Written by experiments/placements.sh from %s (%d demonstrated placements at %d "
@@ -206,6 +234,7 @@ def main():
                       if losses else ""))
         if examples:
             md.append("\n" + "\n".join(examples) + "\n")
+    md.append("\n" + slide_check_section(check))
     md.append("\n" + line_section(os.path.join(out, "analysis.json")))
     surface_plot(out, inside + outside, placements)
     md.append("\n![success over the table](surface.svg)\n")

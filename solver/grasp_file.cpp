@@ -101,6 +101,9 @@ json RefinementJson(const SynthesisResult& s) {
   ref["thresholds"] = {{"clearance_margin_m", s.clearance_margin},
                        {"penetration_tolerance_m", s.penetration_tolerance},
                        {"contact_tolerance_m", s.contact_tolerance}};
+  if (std::isfinite(s.grip_radius)) {  // the grip slide ran (only when asked for)
+    ref["grip_slide"] = {{"grip_radius_m", s.grip_radius}, {"slid_m", s.grip_slide}};
+  }
   return ref;
 }
 

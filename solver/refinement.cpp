@@ -388,7 +388,8 @@ RefinementConstraints EvaluateRefinementConstraints(
   sd.max_distance = std::max(0.05, 2.0 * options.clearance_margin);
   sd.epa_tolerance = 1e-4;
   double closest = std::numeric_limits<double>::infinity();
-  auto check = [&](const MotionWaypoint& w, const HandVector& f, double* into) {
+  auto check = [&](const MotionWaypoint& w, const HandVector& f, double* into,
+                   double* arm_object = nullptr) {
     ++c.states;
     const std::optional<Vector7d> q =
         SolveWristPose(robot, WaypointPose(w), branch, psi, q_near, 5.0 * kDeg);
@@ -403,6 +404,11 @@ RefinementConstraints EvaluateRefinementConstraints(
     const SignedDistanceResult r =
         SignedDistance(collision, GroupSet::Robot(), GroupSet::World(), data, sd);
     *into = std::min(*into, r.distance);
+    if (arm_object) {
+      *arm_object =
+          SignedDistance(collision, CollisionGroup::kArm, CollisionGroup::kObject, data, sd)
+              .distance;
+    }
     if (r.distance < closest && r.shape_a >= 0) {
       closest = r.distance;
       c.closest_pair = r.BriefReport();
@@ -410,7 +416,8 @@ RefinementConstraints EvaluateRefinementConstraints(
   };
   for (int i : s.far) check(motion.waypoints[i], motion.waypoints[i].f, &c.approach_clearance);
   for (int i : s.near) check(motion.waypoints[i], motion.waypoints[i].f, &c.grasp_clearance);
-  check(motion.grasp(), motion.waypoints[s.approach_end].f, &c.grasp_clearance);
+  check(motion.grasp(), motion.waypoints[s.approach_end].f, &c.grasp_clearance,
+        &c.arm_object_clearance);
   c.min_psi_width = std::min(WidestArmAngleWidth(robot, WaypointPose(motion.pregrasp()), branch),
                              WidestArmAngleWidth(robot, WaypointPose(motion.grasp()), branch));
   c.contact_error = std::numeric_limits<double>::quiet_NaN();

@@ -107,12 +107,16 @@ struct RefinementConstraints {
   double approach_clearance = 0.0;  ///< m, min over the far approach states (>= margin)
   double grasp_clearance = 0.0;     ///< m, min over the near states and the grasp (>= -tol)
   std::string closest_pair;         ///< the pair of the smaller of the two, in words
-  double contact_error = 0.0;       ///< m (<= contact_tolerance); NaN without handle_in_hand
-  double min_psi_width = 0.0;       ///< rad (>= min_psi_width)
-  bool reachable = false;           ///< every checked pose has an IK solution on the branch
-  int states = 0;                   ///< states checked
-  bool feasible = false;            ///< every constraint holds (to 1e-5 m)
-  double violation = 0.0;           ///< sum of the violations, m (rad counted as 0.1 m per rad)
+  /// m, the arm's links (the hand not counted) from the object at the grasp (not a constraint
+  /// of the refinement; the grip slide keeps it). Distances beyond the larger of 5 cm and twice
+  /// the clearance margin are reported as that bound or more.
+  double arm_object_clearance = 0.0;
+  double contact_error = 0.0;  ///< m (<= contact_tolerance); NaN without handle_in_hand
+  double min_psi_width = 0.0;  ///< rad (>= min_psi_width)
+  bool reachable = false;      ///< every checked pose has an IK solution on the branch
+  int states = 0;              ///< states checked
+  bool feasible = false;       ///< every constraint holds (to 1e-5 m)
+  double violation = 0.0;      ///< sum of the violations, m (rad counted as 0.1 m per rad)
 };
 
 /// Ceres stage figures.

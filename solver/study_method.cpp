@@ -12,6 +12,7 @@ std::string StudyMethod::Label() const {
   if (resample == ResampleMode::kArcLength) label += "/arc";
   if (reach != ReachMethod::kAuto) label += std::string("/") + ToString(reach);
   if (!thresholds_from_sources) label += "/strict";
+  if (grip_slide) label += "/slide";
   return label;
 }
 
@@ -20,6 +21,7 @@ SynthesisOptions StudyMethod::Options() const {
   o.generation.method = method;
   o.generation.blend.resample = resample;
   if (!thresholds_from_sources) o.source_thresholds.reset();
+  if (grip_slide) o.grip_slide = GripSlideOptions{};
   o.refinement_stages.clear();
   if (refine && ceres) o.refinement_stages.push_back(RefinementStage::kCeres);
   if (refine && nlopt) o.refinement_stages.push_back(RefinementStage::kNlopt);
@@ -31,7 +33,8 @@ StudyMethod ParseStudyMethod(const std::string& label) {
   const auto fail = [&](const std::string& part) {
     return InputError("unknown method '" + label + "': '" + part +
                       "' is not known (a method interp, line or nearest, then optionally "
-                      "+refine, +ceres or +nlopt, /arc, /spline or /joint, /strict; e.g. "
+                      "+refine, +ceres or +nlopt, /arc, /spline or /joint, /strict, /slide (with "
+                      "a refinement); e.g. "
                       "interp+refine/arc)");
   };
   StudyMethod m;
@@ -60,6 +63,8 @@ StudyMethod ParseStudyMethod(const std::string& label) {
       m.reach = ParseReachMethod(part.substr(1));
     } else if (part == "/strict" && m.thresholds_from_sources) {
       m.thresholds_from_sources = false;
+    } else if (part == "/slide" && !m.grip_slide && m.refine) {
+      m.grip_slide = true;
     } else {
       throw fail(part);
     }

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "common/errors.hpp"
@@ -63,6 +64,19 @@ bool SynthesisOptions::IsValid(std::string* why) const {
     if (why) *why = "start must be finite when given";
     return false;
   }
+  if (grip_slide) {
+    const GripSlideOptions& g = *grip_slide;
+    if (!(std::isfinite(g.tip_margin) && std::isfinite(g.max_distance) &&
+          std::isfinite(g.min_arm_clearance) && g.tip_margin >= 0.0 && g.max_distance > 0.0 &&
+          g.halvings >= 0 && g.min_arm_clearance >= 0.0)) {
+      if (why) {
+        *why =
+            "the grip slide needs tip_margin >= 0, max_distance > 0, halvings >= 0 and "
+            "min_arm_clearance >= 0";
+      }
+      return false;
+    }
+  }
   return true;
 }
 
@@ -115,10 +129,11 @@ StartCheckResult CheckStart(const SynthesisModel& model, const SynthesisTask& ta
   return r;
 }
 
-MotionRefinementResult RefineSynthesizedMotion(
-    const SynthesisModel& model, const SynthesisTask& task, const MotionGenerationResult& generated,
-    const GraspingMotion& motion, const Vector7d& q_start, const MotionRefinementOptions& options,
-    CollisionData* data) {
+namespace {
+
+// What the refinement knows about `task` besides the motion.
+RefinementInputs TaskRefinementInputs(const SynthesisModel& model, const SynthesisTask& task,
+                                      const Vector7d& q_start) {
   RefinementInputs in;
   in.X_WO = task.X_WO;
   in.q_start = q_start;
@@ -126,6 +141,44 @@ MotionRefinementResult RefineSynthesizedMotion(
     in.wrist_line = model.line().wrist_line.line;
     in.handle_in_hand = model.line().handle_in_hand;
   }
+  return in;
+}
+
+}  // namespace
+
+GripSlideResult SlideGrip(const SynthesisModel& model, const SynthesisTask& task,
+                          const GraspingMotion& motion, const Vector7d& q_start,
+                          const RefinementOptions& thresholds, const GripSlideOptions& options,
+                          CollisionData* data) {
+  GripSlideResult r{motion, 0.0, std::numeric_limits<double>::quiet_NaN()};
+  const ObjectModel& object = model.scene().object;
+  if (!object.handle || !model.line().valid) return r;
+  const Eigen::Vector3d along = object.HandleDirection(task.X_WO);
+  const Eigen::Vector3d grip = WaypointPose(motion.grasp()) * model.line().handle_in_hand;
+  r.grip_radius = (grip - task.X_WO.translation()).dot(along);
+  double d = std::min(options.max_distance,
+                      r.grip_radius - (object.handle->end_radius - options.tip_margin));
+  if (!(d > 0.0)) return r;
+  const RefinementInputs in = TaskRefinementInputs(model, task, q_start);
+  for (int k = 0; k <= options.halvings; ++k, d *= 0.5) {
+    GraspingMotion moved = motion;
+    for (MotionWaypoint& w : moved.waypoints) w.p_WH -= d * along;
+    const RefinementConstraints c = EvaluateRefinementConstraints(
+        model.robot(), model.scene(), model.collision(), moved, in, thresholds, data);
+    if (c.feasible && c.arm_object_clearance >= options.min_arm_clearance) {
+      r.motion = std::move(moved);
+      r.distance = d;
+      return r;
+    }
+  }
+  return r;
+}
+
+MotionRefinementResult RefineSynthesizedMotion(
+    const SynthesisModel& model, const SynthesisTask& task, const MotionGenerationResult& generated,
+    const GraspingMotion& motion, const Vector7d& q_start, const MotionRefinementOptions& options,
+    CollisionData* data) {
+  const RefinementInputs in = TaskRefinementInputs(model, task, q_start);
   MotionRefinementResult r;
   r.used = options.refinement;
   if (options.source_thresholds) {
@@ -231,16 +284,25 @@ SynthesisResult SynthesizeGrasp(const SynthesisModel& model, const SynthesisTask
   // 3. refinement.
   const auto t_refine = Clock::now();
   r.motion = generated.motion;
+  RefinementOptions used = options.refinement;
   if (options.refines()) {
     MotionRefinementResult refined = RefineSynthesizedMotion(
         model, task, generated, generated.motion, r.start,
         {options.refinement, options.source_thresholds, options.refinement_stages}, data);
+    used = refined.used;
     r.clearance_margin = refined.used.clearance_margin;
     r.penetration_tolerance = refined.used.penetration_tolerance;
     r.contact_tolerance = refined.used.contact_tolerance;
     r.motion = std::move(refined.motion);
     r.refinement = std::move(refined.report);
     r.refined = true;
+  }
+  if (options.grip_slide && options.refines()) {
+    const GripSlideResult slid =
+        SlideGrip(model, task, r.motion, r.start, used, *options.grip_slide, data);
+    r.motion = slid.motion;
+    r.grip_slide = slid.distance;
+    r.grip_radius = slid.grip_radius;
   }
   r.refine_s = Since(t_refine);
 

@@ -19,6 +19,7 @@
 /// entered once and its pose X_WO computed once, which every stage reads; SynthesisOptions
 /// says which optional stages run (solver/study_method.hpp builds it from a method's label).
 
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -49,6 +50,29 @@ namespace graspsynth {
 /// the source. It has no parameter: its presence in SynthesisOptions is the choice.
 struct SourceThresholdsOptions {};
 
+/// The grip slide: a grasp that holds the handle at its end is moved along the handle's axis
+/// toward the object's centre, so that all of the hand's fingers hold the bar and the weight's
+/// moment about the grip, which only friction couples between the fingertips resist (ODE has
+/// no torsional friction), is smaller. The grip is the point of the handle's axis the hand
+/// holds (the line principle's handle point in the hand, moved with the grasp); its radius is
+/// its distance from the object's centre along the handle. A grip farther out than the
+/// handle's end less tip_margin is slid in by the excess (at most max_distance), then by half
+/// of it, `halvings` times; the first slide whose motion keeps the refinement's constraints
+/// (with the thresholds the refinement used) and keeps the arm's links at least
+/// min_arm_clearance from the object at the grasp is kept; none: the motion is kept. Objects
+/// without a handle, and libraries without a fitted line principle, are not moved.
+///
+/// The default tip margin is half the span of the Gifu hand's four finger bases across the palm
+/// (+-0.033 m, ../shared/reference/robot.md) plus a fingertip's half-width. The arm clearance
+/// keeps the slide from bringing the forearm down onto the object's body (measured on the
+/// placements grid: experiments/results/placements/levers/README.md).
+struct GripSlideOptions {
+  double tip_margin = 0.04;         ///< m, >= 0
+  double max_distance = 0.05;       ///< m, > 0
+  int halvings = 2;                 ///< >= 0
+  double min_arm_clearance = 0.02;  ///< m, >= 0
+};
+
 /// The synthesis pipeline: each stage's options, in pipeline order. The optional stages run
 /// when present: the thresholds stage when source_thresholds holds a value, each refinement
 /// stage named in refinement_stages.
@@ -70,6 +94,9 @@ struct SynthesisOptions {
   RefinementStages refinement_stages = {RefinementStage::kCeres, RefinementStage::kNlopt};
   /// The parameters of the refinement stages (and of the thresholds they enforce).
   RefinementOptions refinement;
+  /// 3c. The grip slide after the refinement stages (see GripSlideOptions); std::nullopt or no
+  /// refinement stage: none.
+  std::optional<GripSlideOptions> grip_slide;
   /// 4. The reach (its start_given is set by SynthesizeGrasp from `start`).
   ReachPlanOptions reach;
   /// The lift after the grasp; height and duration come from the sources' library entries
@@ -116,6 +143,8 @@ struct SynthesisResult {
   /// The thresholds the refinement used (the thresholds stage applied), m.
   double clearance_margin = 0.0, penetration_tolerance = 0.0, contact_tolerance = 0.0;
   RefinementReport refinement;
+  double grip_slide = 0.0;  ///< m the grip slide moved the motion toward the object's centre
+  double grip_radius = std::numeric_limits<double>::quiet_NaN();  ///< m, before the grip slide
   Vector7d start = Vector7d::Zero();
   ReachMethod reach_used = ReachMethod::kSpline;  ///< kSpline or kJoint
   std::string reach_reason;                       ///< why that reach, in words
@@ -157,6 +186,21 @@ struct MotionRefinementOptions {
   /// The refinement stages, in order.
   RefinementStages stages = {RefinementStage::kCeres, RefinementStage::kNlopt};
 };
+
+/// The grip slide's motion, how far it moved toward the object's centre, m (0: not moved), and
+/// the grip's radius before the slide, m (NaN: no handle or no line principle).
+struct GripSlideResult {
+  GraspingMotion motion;
+  double distance = 0.0;
+  double grip_radius = 0.0;
+};
+
+/// The grip slide (GripSlideOptions) of `motion` for `task`, played from `q_start`, checked
+/// against the refinement's constraints with `thresholds`' values.
+GripSlideResult SlideGrip(const SynthesisModel& model, const SynthesisTask& task,
+                          const GraspingMotion& motion, const Vector7d& q_start,
+                          const RefinementOptions& thresholds, const GripSlideOptions& options,
+                          CollisionData* data);
 
 /// The refined motion, the refinement's report and the thresholds it used.
 struct MotionRefinementResult {

@@ -13,6 +13,52 @@ bool IsBlend(const SynthesisResult& s) {
          s.bracket.kind == BracketKind::kInside;
 }
 
+// A synthesis and its gate.
+struct GatedGrasp {
+  SynthesisResult synthesis;
+  PhysicsGateResult gate;
+  bool gate_run = false;
+  std::string rejected_slide;  ///< the slid grip's nominal outcome, when it gave way
+};
+
+// Synthesizes with `synthesis` and gates the grasp. A slid grip (SynthesisOptions::grip_slide)
+// whose nominal trial fails gives way to the same synthesis without the slide. Adds the wall
+// times to *v's.
+GatedGrasp SynthesizeAndGate(const SimulationModel& simulation, const SynthesisModel& model,
+                             const SynthesisTask& task, const SynthesisOptions& synthesis,
+                             const ValidatedSynthesisOptions& options, SynthesisData* data,
+                             const ProgressCallback& progress, ValidatedSynthesis* v) {
+  GatedGrasp g;
+  const auto synthesize = [&](const SynthesisOptions& o) {
+    const auto t0 = WallClock::now();
+    g.synthesis = SynthesizeGrasp(model, task, o, data);
+    v->synthesis_s += SecondsSince(t0);
+    return g.synthesis.ok();
+  };
+  const auto gate = [&] {
+    g.gate = RunPhysicsGate(simulation, g.synthesis.trajectory, options.gate, progress);
+    g.gate_run = true;
+    v->gate_s += g.gate.time_s;
+  };
+  if (!synthesize(synthesis)) return g;
+  gate();
+  if (g.synthesis.grip_slide > 0.0 && !g.gate.nominal.success()) {
+    SynthesisOptions unslid = synthesis;
+    unslid.grip_slide.reset();
+    const std::string why =
+        std::string(ToString(g.gate.nominal.outcome)) + " (" + g.gate.nominal.reason + ")";
+    GatedGrasp slid = g;
+    if (synthesize(unslid)) {
+      g.rejected_slide = why;
+      g.synthesis.grip_radius = slid.synthesis.grip_radius;  // where the grip was, unslid
+      gate();
+    } else {
+      g = std::move(slid);
+    }
+  }
+  return g;
+}
+
 }  // namespace
 
 ValidatedSynthesis SynthesizeAndValidate(const SimulationModel& simulation,
@@ -28,26 +74,25 @@ ValidatedSynthesis SynthesizeAndValidate(const SimulationModel& simulation,
                                          const ValidatedSynthesisOptions& options,
                                          SynthesisData* data, const ProgressCallback& progress) {
   ValidatedSynthesis v;
-  auto t0 = WallClock::now();
-  v.synthesis = SynthesizeGrasp(model, task, options.synthesis, data);
-  v.synthesis_s = SecondsSince(t0);
-  if (!v.synthesis.ok()) return v;
-  v.gate = RunPhysicsGate(simulation, v.synthesis.trajectory, options.gate, progress);
-  v.gate_run = true;
-  v.gate_s = v.gate.time_s;
+  GatedGrasp first =
+      SynthesizeAndGate(simulation, model, task, options.synthesis, options, data, progress, &v);
+  v.synthesis = std::move(first.synthesis);
+  v.gate = std::move(first.gate);
+  v.gate_run = first.gate_run;
+  v.rejected_slide = std::move(first.rejected_slide);
+  if (!v.gate_run) return v;
   if (!options.physics_fallback || !IsBlend(v.synthesis) || v.gate.nominal.success()) return v;
   SynthesisOptions retry = options.synthesis;
   retry.generation.reject_blend = true;
-  t0 = WallClock::now();
-  SynthesisResult fallback = SynthesizeGrasp(model, task, retry, data);
-  v.synthesis_s += SecondsSince(t0);
-  if (!fallback.ok()) return v;  // the blend, with its failed gate, is what there is
+  GatedGrasp fallback =
+      SynthesizeAndGate(simulation, model, task, retry, options, data, progress, &v);
+  if (!fallback.gate_run) return v;  // the blend, with its failed gate, is what there is
   v.rejected_blend =
       std::string(ToString(v.gate.nominal.outcome)) + " (" + v.gate.nominal.reason + ")";
-  fallback.fallback_reason.bracket_reason += ": " + v.rejected_blend;
-  v.synthesis = std::move(fallback);
-  v.gate = RunPhysicsGate(simulation, v.synthesis.trajectory, options.gate, progress);
-  v.gate_s += v.gate.time_s;
+  fallback.synthesis.fallback_reason.bracket_reason += ": " + v.rejected_blend;
+  v.synthesis = std::move(fallback.synthesis);
+  v.gate = std::move(fallback.gate);
+  v.rejected_slide = std::move(fallback.rejected_slide);
   return v;
 }
 

@@ -11,7 +11,9 @@
 /// perturbed replays, so the robustness that is reported is that of the grasp returned, scored
 /// on replays that chose nothing. Measured on the shipped library: every blend of the 60 and
 /// 70 deg representatives at 63-65 deg drops the pan, while the 60 deg one turned with the
-/// object lifts it (README.md, "Robustness under the contact model").
+/// object lifts it (README.md, "Robustness under the contact model"). Likewise, a grasp whose
+/// grip was slid (SynthesisOptions::grip_slide) and whose nominal trial fails is synthesized
+/// again without the slide and that grasp is gated, before the blend's fallback is considered.
 
 #include <string>
 
@@ -35,6 +37,9 @@ struct ValidatedSynthesis {
   PhysicsGateResult gate;
   /// The rejected blend's nominal outcome and reason ("" when no blend was rejected).
   std::string rejected_blend;
+  /// The slid grip's nominal outcome and reason when it gave way to the unslid one (the kept
+  /// grasp's; "" when no slide was rejected).
+  std::string rejected_slide;
   double synthesis_s = 0.0;  ///< wall time of the synthesis (both runs), s
   double gate_s = 0.0;       ///< wall time of the gate (both runs), s
 };

@@ -126,6 +126,36 @@ TEST_F(SynthesizeCommand, TheShippedPlacementsLibraryGraspsAHeldOutPlacement) {
   EXPECT_EQ(played["object_xy"], nlohmann::json::array({-0.27, 0.87}));
 }
 
+// --grip-slide: at 28 deg the placements library's grasps hold the pan's handle at its end (the
+// grip about 37 cm out on a handle that ends at 38 cm); the slide moves it in, the file says by
+// how much, and the slid grasp lifts the pan.
+TEST_F(SynthesizeCommand, GripSlideMovesAGripAtTheHandlesEndInward) {
+  const std::string library =
+      (DataDirectory() / "learning_data" / "placements" / "library.json").string();
+  const testing::CommandOutput r =
+      RunGraspsynth("synthesize --library " + library + " --at -0.25,0.85 --theta 28 " +
+                    "--grip-slide --perturb 0 --out " + out_);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, ::testing::HasSubstr("grip slide: the grip held the handle"));
+  const nlohmann::json j = nlohmann::json::parse(ReadFileText(out_));
+  const nlohmann::json& slide = j["refinement"]["grip_slide"];
+  EXPECT_GT(slide["grip_radius_m"].get<double>(), 0.34) << slide.dump();
+  EXPECT_GT(slide["slid_m"].get<double>(), 0.0) << slide.dump();
+  EXPECT_TRUE(j["validation"]["passed"].get<bool>()) << j["validation"].dump();
+
+  // without the flag the file has no grip_slide, and --no-refine refuses the flag.
+  ASSERT_EQ(RunGraspsynth("synthesize --library " + library +
+                          " --at -0.25,0.85 --theta 28 --perturb 0 --out " + out_)
+                .exit_code,
+            0);
+  EXPECT_FALSE(nlohmann::json::parse(ReadFileText(out_))["refinement"].contains("grip_slide"));
+  const testing::CommandOutput bad =
+      RunGraspsynth("synthesize --library " + library +
+                    " --at -0.25,0.85 --theta 28 --grip-slide --no-refine --out " + out_ + "x");
+  EXPECT_EQ(bad.exit_code, 2) << bad.err;
+  EXPECT_THAT(bad.err, ::testing::HasSubstr("--grip-slide needs the refinement"));
+}
+
 TEST_F(SynthesizeCommand, LineMethodGoesBeyondTheRange) {
   const testing::CommandOutput r = RunGraspsynth(Args("--theta 100 --method line --no-refine"));
   ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -370,7 +370,8 @@ TEST(StudyReportMarkdown, SaysWhyFig8IsMissing) {
 TEST(StudyMethod, LabelsRoundTripThroughTheParser) {
   for (const std::string label :
        {"interp", "interp+refine", "line+refine", "nearest", "interp+ceres", "interp+nlopt",
-        "interp+refine/arc", "interp/arc/joint", "line+nlopt/spline", "interp+refine/strict"}) {
+        "interp+refine/arc", "interp/arc/joint", "line+nlopt/spline", "interp+refine/strict",
+        "interp+refine/slide", "nearest+refine/strict/slide"}) {
     EXPECT_EQ(ParseStudyMethod(label).Label(), label);
   }
   const StudyMethod m = ParseStudyMethod("interp+ceres/arc/spline");
@@ -382,6 +383,10 @@ TEST(StudyMethod, LabelsRoundTripThroughTheParser) {
   EXPECT_EQ(o.generation.blend.resample, ResampleMode::kArcLength);
   EXPECT_EQ(o.reach.method, ReachMethod::kSpline);
   EXPECT_FALSE(ParseStudyMethod("interp").Options().refines());
+  EXPECT_FALSE(ParseStudyMethod("interp+refine").Options().grip_slide.has_value());
+  EXPECT_TRUE(ParseStudyMethod("interp+refine/slide").Options().grip_slide.has_value());
+  // the slide checks the refinement's constraints: without a refinement it is refused.
+  EXPECT_THROW(ParseStudyMethod("interp/slide"), InputError);
 }
 
 TEST(StudyMethod, EachLabelBuildsThePipelineItNames) {

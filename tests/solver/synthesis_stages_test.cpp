@@ -1,6 +1,7 @@
 // Each stage of the synthesis pipeline (solver/synthesis.hpp) on its own.
 #include <gtest/gtest.h>
 
+#include "kinematics/rest_pose.hpp"
 #include "simulation/scripted_grasp.hpp"
 #include "solver/motion_generation.hpp"
 #include "solver/reach_planning.hpp"
@@ -155,6 +156,76 @@ TEST(ThresholdsFromSources, LoosensOnlyWhereTheSourcesWentPastTheOptions) {
   EXPECT_EQ(r.min_psi_width, o.min_psi_width);
   const RefinementOptions same = ThresholdsFromSources(o, {});
   EXPECT_EQ(same.clearance_margin, o.clearance_margin);
+}
+
+// The grip slide moves every waypoint the same way, along the handle toward the object's
+// centre, by the grip's excess over the handle's end less the tip margin, or by the longest of
+// its halvings whose motion keeps the refinement's constraints and the arm's clearance.
+TEST(GripSlide, SlidesAGripAtTheHandlesEndInAlongTheHandle) {
+  const SynthesisModel& model = Model406080();
+  ASSERT_TRUE(model.line().valid);
+  const SynthesisTask task = MakeSynthesisTask(model.scene(), 60.0);
+  const GraspingMotion& m = Library406080().entries[1].motion;  // 60 deg: the scripted grasp
+  const Vector7d start =
+      DefaultRestConfiguration(model.robot(), model.scene(), m.grasp().q_WH.toRotationMatrix());
+  SynthesisData data(model);
+  const Eigen::Vector3d h = model.scene().object.HandleDirection(task.X_WO);
+  const double end = model.scene().object.Handle("the test").end_radius;
+  const auto slid_by = [&](const GripSlideResult& r) {
+    EXPECT_EQ(r.motion.waypoints.size(), m.waypoints.size());
+    double along = 0.0;
+    for (size_t i = 0; i < m.waypoints.size(); ++i) {
+      const Eigen::Vector3d d = r.motion.waypoints[i].p_WH - m.waypoints[i].p_WH;
+      along = -d.dot(h);
+      EXPECT_NEAR((d + along * h).norm(), 0.0, 1e-12) << i;  // only along the handle
+      EXPECT_NEAR(along, r.distance, 1e-12) << i;
+      EXPECT_TRUE(r.motion.waypoints[i].q_WH.isApprox(m.waypoints[i].q_WH, 0.0));
+      EXPECT_EQ(r.motion.waypoints[i].f, m.waypoints[i].f);
+    }
+    return along;
+  };
+  RefinementInputs in;
+  in.X_WO = task.X_WO;
+  in.q_start = start;
+  const RefinementOptions thresholds;
+  const auto slide = [&](double tip_margin, double max_distance, int halvings,
+                         double min_arm_clearance = 0.02) {
+    return SlideGrip(model, task, m, start, thresholds,
+                     {tip_margin, max_distance, halvings, min_arm_clearance}, data.collision());
+  };
+
+  // the scripted pinch holds the handle well inside its end: the defaults leave it.
+  const GripSlideResult kept = SlideGrip(model, task, m, start, thresholds, {}, data.collision());
+  const double grip = kept.grip_radius;
+  EXPECT_GT(grip, model.scene().object.Handle("the test").start_radius);
+  EXPECT_LT(grip, end - GripSlideOptions{}.tip_margin);
+  EXPECT_EQ(kept.distance, 0.0);
+  EXPECT_EQ(slid_by(kept), 0.0);
+
+  // a margin that puts the grip 2 cm too far out slides it in by 2 cm.
+  const GripSlideResult two_cm = slide(end - grip + 0.02, 0.05, 2);
+  EXPECT_NEAR(two_cm.distance, 0.02, 1e-12);
+  EXPECT_NEAR(slid_by(two_cm), two_cm.distance, 1e-12);
+  EXPECT_TRUE(EvaluateRefinementConstraints(model.robot(), model.scene(), model.collision(),
+                                            two_cm.motion, in, thresholds, data.collision())
+                  .feasible);
+  EXPECT_EQ(slide(end - grip + 0.2, 0.02, 2).distance, 0.02);  // at most max_distance
+
+  // 30 cm toward the centre puts the hand in the pan's body: refused, the motion is kept.
+  const GripSlideResult far = slide(end + 0.3, 0.3, 0);
+  EXPECT_EQ(far.distance, 0.0);
+  EXPECT_EQ(slid_by(far), 0.0);
+  // the first feasible halving is taken: 30 cm, 15 cm and 7.5 cm do not fit, 3.75 cm does.
+  const GripSlideResult halved = slide(end + 0.3, 0.3, 3);
+  EXPECT_EQ(halved.distance, 0.0375);
+  EXPECT_NEAR(slid_by(halved), 0.0375, 1e-12);
+
+  // a slide that keeps the constraints but not the arm's clearance from the object is refused.
+  const double arm = EvaluateRefinementConstraints(model.robot(), model.scene(), model.collision(),
+                                                   two_cm.motion, in, thresholds, data.collision())
+                         .arm_object_clearance;
+  EXPECT_GE(arm, 0.02);
+  EXPECT_EQ(slide(end - grip + 0.02, 0.05, 0, arm + 0.001).distance, 0.0);
 }
 
 TEST(CheckStart, TheRestPoseIsFreeAndAStartBeyondTheLimitsIsNamed) {
