@@ -2,7 +2,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <limits>
 #include <sstream>
 
 #include "common/errors.hpp"
@@ -150,7 +149,7 @@ GripSlideResult SlideGrip(const SynthesisModel& model, const SynthesisTask& task
                           const GraspingMotion& motion, const Vector7d& q_start,
                           const RefinementOptions& thresholds, const GripSlideOptions& options,
                           CollisionData* data) {
-  GripSlideResult r{motion, 0.0, std::numeric_limits<double>::quiet_NaN()};
+  GripSlideResult r{motion};
   const ObjectModel& object = model.scene().object;
   if (!object.handle || !model.line().valid) return r;
   const Eigen::Vector3d along = object.HandleDirection(task.X_WO);

@@ -192,7 +192,7 @@ struct MotionRefinementOptions {
 struct GripSlideResult {
   GraspingMotion motion;
   double distance = 0.0;
-  double grip_radius = 0.0;
+  double grip_radius = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// The grip slide (GripSlideOptions) of `motion` for `task`, played from `q_start`, checked

@@ -13,6 +13,11 @@ bool IsBlend(const SynthesisResult& s) {
          s.bracket.kind == BracketKind::kInside;
 }
 
+// A nominal trial's outcome and reason, as the rejected blend and slide report them.
+std::string NominalText(const TrialResult& nominal) {
+  return std::string(ToString(nominal.outcome)) + " (" + nominal.reason + ")";
+}
+
 // A synthesis and its gate.
 struct GatedGrasp {
   SynthesisResult synthesis;
@@ -28,32 +33,30 @@ GatedGrasp SynthesizeAndGate(const SimulationModel& simulation, const SynthesisM
                              const SynthesisTask& task, const SynthesisOptions& synthesis,
                              const ValidatedSynthesisOptions& options, SynthesisData* data,
                              const ProgressCallback& progress, ValidatedSynthesis* v) {
-  GatedGrasp g;
   const auto synthesize = [&](const SynthesisOptions& o) {
     const auto t0 = WallClock::now();
-    g.synthesis = SynthesizeGrasp(model, task, o, data);
+    SynthesisResult s = SynthesizeGrasp(model, task, o, data);
     v->synthesis_s += SecondsSince(t0);
-    return g.synthesis.ok();
+    return s;
   };
+  GatedGrasp g;
   const auto gate = [&] {
     g.gate = RunPhysicsGate(simulation, g.synthesis.trajectory, options.gate, progress);
     g.gate_run = true;
     v->gate_s += g.gate.time_s;
   };
-  if (!synthesize(synthesis)) return g;
+  g.synthesis = synthesize(synthesis);
+  if (!g.synthesis.ok()) return g;
   gate();
   if (g.synthesis.grip_slide > 0.0 && !g.gate.nominal.success()) {
     SynthesisOptions unslid = synthesis;
     unslid.grip_slide.reset();
-    const std::string why =
-        std::string(ToString(g.gate.nominal.outcome)) + " (" + g.gate.nominal.reason + ")";
-    GatedGrasp slid = g;
-    if (synthesize(unslid)) {
-      g.rejected_slide = why;
-      g.synthesis.grip_radius = slid.synthesis.grip_radius;  // where the grip was, unslid
+    SynthesisResult plain = synthesize(unslid);
+    if (plain.ok()) {
+      g.rejected_slide = NominalText(g.gate.nominal);
+      plain.grip_radius = g.synthesis.grip_radius;  // where the grip was, unslid
+      g.synthesis = std::move(plain);
       gate();
-    } else {
-      g = std::move(slid);
     }
   }
   return g;
@@ -87,8 +90,7 @@ ValidatedSynthesis SynthesizeAndValidate(const SimulationModel& simulation,
   GatedGrasp fallback =
       SynthesizeAndGate(simulation, model, task, retry, options, data, progress, &v);
   if (!fallback.gate_run) return v;  // the blend, with its failed gate, is what there is
-  v.rejected_blend =
-      std::string(ToString(v.gate.nominal.outcome)) + " (" + v.gate.nominal.reason + ")";
+  v.rejected_blend = NominalText(v.gate.nominal);
   fallback.synthesis.fallback_reason.bracket_reason += ": " + v.rejected_blend;
   v.synthesis = std::move(fallback.synthesis);
   v.gate = std::move(fallback.gate);
