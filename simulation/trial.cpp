@@ -69,6 +69,7 @@ SimulationData MakeTrialWorld(const SimulationModel& model, const JointTrajector
   world_options.object_xy = trajectory.object_xy;
   world_options.proximity_margin = options.proximity_margin;
   world_options.physics = options.physics;
+  world_options.finger_mounts = options.finger_mounts;
   return SimulationData(model, world_options, trajectory.samples.front().arm,
                         trajectory.samples.front().hand);
 }

@@ -54,6 +54,8 @@ struct TrialOptions : TrialJudgeOptions {
   double record_interval = 0.0;
   /// Changes of the physics in this trial's world (WorldOptions::physics; none by default).
   PhysicsVariation physics;
+  /// kFast: each finger on a kinematic mount of its own (WorldOptions::finger_mounts).
+  bool finger_mounts = true;
 
   /// True when every value is finite and in range; otherwise false with the reason.
   bool IsValid(std::string* why) const;

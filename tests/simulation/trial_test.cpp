@@ -81,6 +81,32 @@ TEST(RunTrial, TheDynamicWristFastPathAgreesWithFullDetail) {
   EXPECT_NEAR(r.lift, f.lift, 0.002);
 }
 
+// The fingers on kinematic mounts of their own (the default) and on the one wrist body are the
+// same constraints solved as different systems: the same trial, step for step, to roundoff.
+TEST(RunTrial, TheFingerMountsChangeTheSolveNotTheTrial) {
+  TrialOptions shared;
+  shared.finger_mounts = false;
+  shared.record_interval = 0.1;
+  TrialOptions mounted = shared;
+  mounted.finger_mounts = true;
+  const TrialResult a = RunTrial(ShippedSimulationModel(), ExampleTrajectory(), shared);
+  const TrialResult b = RunTrial(ShippedSimulationModel(), ExampleTrajectory(), mounted);
+  EXPECT_EQ(a.outcome, TrialOutcome::kSuccess) << a.BriefReport();
+  EXPECT_EQ(b.outcome, a.outcome) << b.BriefReport();
+  EXPECT_EQ(b.statistics.dynamic_steps, a.statistics.dynamic_steps);
+  EXPECT_EQ(b.statistics.kinematic_steps, a.statistics.kinematic_steps);
+  EXPECT_NEAR(b.lift, a.lift, 1e-6);  // 1e-13 m measured
+  ASSERT_EQ(b.states.size(), a.states.size());
+  for (size_t i = 0; i < a.states.size(); ++i) {
+    EXPECT_LT((b.states[i].X_WO.translation() - a.states[i].X_WO.translation()).norm(), 1e-6)
+        << "at " << a.states[i].t << " s";
+    EXPECT_LT((b.states[i].hand - a.states[i].hand).cwiseAbs().maxCoeff(), 1e-5)
+        << "at " << a.states[i].t << " s";
+  }
+  // the mounts are no bodies of the robot's.
+  EXPECT_EQ(b.counts.bodies, a.counts.bodies);
+}
+
 TEST(RunTrial, TheHandKeptOpenDoesNotLift) {
   for (Fidelity fidelity : {Fidelity::kFast, Fidelity::kFull}) {
     TrialOptions o;
