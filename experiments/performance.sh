@@ -31,7 +31,7 @@ study_time() {
     >"${tmp}/study_${threads}.txt" 2>/dev/null
   grep -o '"total_s": [0-9.]*' "${tmp}/study_${threads}/timing.json" | awk '{printf "%.1f", $2}'
 }
-echo "graspsynth run with 2 threads, then 1 thread (about 17 minutes)..." >&2
+echo "graspsynth run with 2 threads, then 1 thread (about 20 minutes)..." >&2
 t2="$(study_time 2)"
 t1="$(study_time 1)"
 cp "${tmp}/study_2/report.md" "${out}/study_report.md"

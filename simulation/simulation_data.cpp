@@ -575,8 +575,8 @@ struct SimulationData::Impl {
   // included, and factors each island's constraint matrix whole; a kinematic wrist has zero
   // inverse mass, so the fingers do not act on each other through it, but on one shared body
   // they would be solved as one system of about 120 rows. On mounts of their own, fingers
-  // that do not touch the same object are islands of their own (a 20-link hand with no
-  // contact: 6.5x fewer solver operations per step, measured on ODE 0.16).
+  // that do not touch the same object are islands of their own (five 4-link chains on a
+  // kinematic palm in stand-alone ODE 0.16: 110 us a step on the shared palm, 17 us on mounts).
   std::array<dBodyID, kFingers> mounts{};
   // Moves every mount to the wrist body's pose and velocity.
   void SyncMounts() {

@@ -12,10 +12,11 @@
 ///   contacts see their motion) or are dynamic bodies on hinge joints driven by motors
 ///   (ArmMode::kDynamic); the base link is static geometry;
 /// - with a kinematic wrist, each finger's base hinge hangs from a kinematic mount of its own
-///   that copies the wrist body's pose and velocity before every step, so that ODE solves
-///   the fingers that touch nothing, or touch the object apart from the others, as islands of
-///   their own instead of one system through the shared wrist (WorldOptions::finger_mounts;
-///   the benchmark trial 1.5x faster, the states changed at roundoff only);
+///   that copies the wrist body's pose and velocity before every step, so that ODE solves a
+///   finger that touches nothing as an island of its own, and the object only with the
+///   fingers that touch it, instead of the whole hand as one system through the shared wrist
+///   (WorldOptions::finger_mounts; the benchmark trial 1.5x faster, the states changed at
+///   roundoff only);
 /// - the 20 finger links are dynamic bodies on hinge joints, driven by implicit motors
 ///   (dParamVel, capped by dParamFMax = the joint's effort); each DIP's target is its PIP's
 ///   measured angle (the four DIP couplings);
