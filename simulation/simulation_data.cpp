@@ -581,14 +581,15 @@ struct SimulationData::Impl {
   // Moves every mount to the wrist body's pose and velocity.
   void SyncMounts() {
     const dBodyID w = arm[kArmDof - 1].body;
+    const dReal* p = dBodyGetPosition(w);
+    const dReal* q = dBodyGetQuaternion(w);
+    const dReal* v = dBodyGetLinearVel(w);
+    const dReal* a = dBodyGetAngularVel(w);
     for (dBodyID m : mounts) {
-      if (!m) continue;
-      const dReal* p = dBodyGetPosition(w);
+      if (!m) continue;  // not built yet (AddFingerJoints), or none: a dynamic wrist
       dBodySetPosition(m, p[0], p[1], p[2]);
-      dBodySetQuaternion(m, dBodyGetQuaternion(w));
-      const dReal* v = dBodyGetLinearVel(w);
+      dBodySetQuaternion(m, q);
       dBodySetLinearVel(m, v[0], v[1], v[2]);
-      const dReal* a = dBodyGetAngularVel(w);
       dBodySetAngularVel(m, a[0], a[1], a[2]);
     }
   }
