@@ -89,6 +89,15 @@ void RunTrials(benchmark::State& state, const TrialOptions& options,
 void BM_TrialFast(benchmark::State& state) { RunTrials(state, TrialOptions{}); }
 BENCHMARK(BM_TrialFast)->Unit(benchmark::kMillisecond)->MinTime(3.0);
 
+// The same trial stepped by ODE's dWorldStep instead of the structured solve (the default,
+// WorldOptions::structured_solver): what the solve wins.
+void BM_TrialFastOdeStep(benchmark::State& state) {
+  TrialOptions o;
+  o.structured_solver = false;
+  RunTrials(state, o);
+}
+BENCHMARK(BM_TrialFastOdeStep)->Unit(benchmark::kMillisecond)->MinTime(3.0);
+
 // The fast path with the pan's body and handle as triangle meshes (ODE trimeshes; the same
 // trial and foot): what meshes cost against the primitives they replace.
 void BM_TrialFastMeshPan(benchmark::State& state) {

@@ -229,9 +229,11 @@ bool Simulate(const SimulationModel& model, OperatorTrial* trial) {
   TrialOptions options;
   options.hold = 0.05;  // the log holds the lifted pan itself
   options.record_interval = 0.5 / log.metadata.sample_rate_hz.value_or(60.0);
-  // the shipped sets were simulated with the fingers on the one wrist body: the same
-  // physics, and their object columns reproduce byte for byte only on that solve.
+  // the shipped sets were simulated with the fingers on the one wrist body and ODE's own
+  // step: the same physics, and their object columns reproduce byte for byte only on that
+  // solve.
   options.finger_mounts = false;
+  options.structured_solver = false;
   const TrialResult result = RunTrial(model, replay.trajectory, options);
   trial->outcome = result.outcome;
   trial->reason = result.reason;

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <deque>
 #include <functional>
+#include <limits>
 #include <mutex>
 #include <sstream>
 #include <vector>
@@ -17,6 +18,7 @@
 #include "common/errors.hpp"
 #include "kinematics/pose_math.hpp"
 #include "kinematics/triangle_mesh.hpp"
+#include "simulation/constraint_solver.hpp"
 #include "simulation/library_info.hpp"
 
 #ifndef dDOUBLE
@@ -42,6 +44,8 @@ enum class Role { kTable, kObject, kArm, kPalm, kFinger, kProxy };
 constexpr unsigned long kCatTable = 1, kCatHandle = 2, kCatArm = 4, kCatPalm = 8, kCatFinger = 16,
                         kCatPan = 32, kCatFoot = 64;
 constexpr unsigned long kCatRobot = kCatArm | kCatPalm | kCatFinger;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // How far outside a joint's range its ODE stop lies, rad.
 constexpr double kStopMargin = 2.0 * M_PI / 180.0;
@@ -561,6 +565,7 @@ struct SimulationData::Impl {
       }
       finger_joints[j] =
           MakeHinge(fingers[j].body, parent, X_WParent * hj.joint.X_PJ, hj.joint.axis_J);
+      hinges[j] = HingeFrames(finger_joints[j], fingers[j].body, parent);
       // stops a little outside the range: the servo targets lie inside it, and a motor
       // holding a joint right at its stop fights the stop's correction.
       dJointSetHingeParam(finger_joints[j], dParamLoStop, hj.joint.lower - kStopMargin);
@@ -713,6 +718,7 @@ struct SimulationData::Impl {
     report = ContactReport{};
     hand_object.clear();
     feedback_contact.clear();
+    pending.clear();
     dSpaceCollide(space, this, &Impl::NearCallback);
   }
 
@@ -772,6 +778,24 @@ struct SimulationData::Impl {
     const double cfm = 1.0 / (h * kp + kd);
     dBodyID ba = dGeomGetBody(a), bb = dGeomGetBody(b);
     const bool hand_pair = ra == Role::kObject && (rb == Role::kPalm || rb == Role::kFinger);
+    if (options.structured_solver && arm_kinematic()) {
+      // the structured step makes the rows itself (StepStructured); dJointAttach(j, 0, b)
+      // would swap the bodies and turn the normal, which is done here alike.
+      for (int i = 0; i < n; ++i) {
+        PendingContact pc;
+        pc.geom = cg[i];
+        pc.b0 = ba ? ba : bb;
+        pc.b1 = ba ? bb : nullptr;
+        pc.normal_sign = ba ? 1.0 : -1.0;
+        pc.mu = mu;
+        pc.erp = erp;
+        pc.cfm = cfm;
+        pc.hand_object = hand_pair ? static_cast<int>(hand_object.size()) - n + i : -1;
+        pending.push_back(pc);
+        ++report.total;
+      }
+      return;
+    }
     for (int i = 0; i < n; ++i) {
       dContact c{};
       c.surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM;
@@ -791,6 +815,260 @@ struct SimulationData::Impl {
       }
       ++report.total;
     }
+  }
+
+  // ---- the structured step (WorldOptions::structured_solver) ----
+  // ODE's dWorldStep for the fast fidelity's world (every arm body kinematic), with the same
+  // rows (hinges, their motors and stops, soft contacts with pyramid friction), the same
+  // right-hand sides and integration, but solved by SolveConstraints: each finger's equality
+  // rows are eliminated on their own before the pivoting solve of the bounded rows.
+
+  // a hinge's anchor and axis in each of its bodies' frames, as ODE keeps them.
+  struct HingeFrame {
+    dBodyID b0 = nullptr, b1 = nullptr;
+    Eigen::Vector3d anchor0 = Eigen::Vector3d::Zero(), anchor1 = Eigen::Vector3d::Zero();
+    Eigen::Vector3d axis0 = Eigen::Vector3d::Zero(), axis1 = Eigen::Vector3d::Zero();
+  };
+  std::array<HingeFrame, kHandJoints> hinges;
+  static HingeFrame HingeFrames(dJointID j, dBodyID b0, dBodyID b1) {
+    HingeFrame f;
+    f.b0 = b0;
+    f.b1 = b1;
+    dVector3 a, a2, axis, out;
+    dJointGetHingeAnchor(j, a);
+    dJointGetHingeAnchor2(j, a2);
+    dJointGetHingeAxis(j, axis);
+    dBodyGetPosRelPoint(b0, a[0], a[1], a[2], out);
+    f.anchor0 = Eigen::Vector3d(out[0], out[1], out[2]);
+    dBodyGetPosRelPoint(b1, a2[0], a2[1], a2[2], out);
+    f.anchor1 = Eigen::Vector3d(out[0], out[1], out[2]);
+    dBodyVectorFromWorld(b0, axis[0], axis[1], axis[2], out);
+    f.axis0 = Eigen::Vector3d(out[0], out[1], out[2]);
+    dBodyVectorFromWorld(b1, axis[0], axis[1], axis[2], out);
+    f.axis1 = Eigen::Vector3d(out[0], out[1], out[2]);
+    return f;
+  }
+
+  // a contact made by the last collision pass, for the structured step.
+  struct PendingContact {
+    dContactGeom geom{};
+    dBodyID b0 = nullptr, b1 = nullptr;  // b0 is never null (ODE's order)
+    double normal_sign = 1.0;            // -1: geom.normal turned, the bodies swapped
+    double mu = 0.0, erp = 0.0, cfm = 0.0;
+    int hand_object = -1;  // index into hand_object of an object-hand contact
+  };
+  std::vector<PendingContact> pending;
+  std::vector<SolverBody> solver_bodies;
+  std::vector<ConstraintRow> rows;
+  ConstraintSolverData solver;
+
+  static Eigen::Vector3d V3(const dReal* v) { return Eigen::Vector3d(v[0], v[1], v[2]); }
+  static Eigen::Matrix3d R3(const dReal* R) {
+    Eigen::Matrix3d m;
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) m(r, c) = R[4 * r + c];
+    }
+    return m;
+  }
+  // ODE's dPlaneSpace: two unit vectors perpendicular to n and to each other.
+  static void PlaneSpace(const Eigen::Vector3d& n, Eigen::Vector3d* p, Eigen::Vector3d* q) {
+    if (std::fabs(n.z()) > M_SQRT1_2) {
+      const double a = n.y() * n.y() + n.z() * n.z();
+      const double k = 1.0 / std::sqrt(a);
+      *p = Eigen::Vector3d(0.0, -n.z() * k, n.y() * k);
+      *q = Eigen::Vector3d(a * k, -n.x() * p->z(), n.x() * p->y());
+    } else {
+      const double a = n.x() * n.x() + n.y() * n.y();
+      const double k = 1.0 / std::sqrt(a);
+      *p = Eigen::Vector3d(-n.y() * k, n.x() * k, 0.0);
+      *q = Eigen::Vector3d(-n.z() * p->y(), n.z() * p->x(), a * k);
+    }
+  }
+
+  // the solver index of a moving body (the finger links, then the object), -1 for others.
+  int SolverIndex(dBodyID b) const {
+    if (!b) return -1;
+    if (b == object.body) return kHandJoints;
+    for (int j = 0; j < kHandJoints; ++j) {
+      if (fingers[j].body == b) return j;
+    }
+    return -1;
+  }
+
+  // Adds a row on b0 (moving) and b1 (moving, kinematic or null); the velocity of a
+  // kinematic b1 goes into c, as ODE's right-hand side has it.
+  void AddRow(dBodyID b0, dBodyID b1, const Eigen::Vector3d& lin0, const Eigen::Vector3d& ang0,
+              const Eigen::Vector3d& lin1, const Eigen::Vector3d& ang1, double c, double cfm,
+              double lo, double hi, int findex) {
+    ConstraintRow r;
+    r.body = {SolverIndex(b0), SolverIndex(b1)};
+    r.lin = {lin0, lin1};
+    r.ang = {ang0, ang1};
+    r.c = c;
+    for (int k = 0; k < 2; ++k) {
+      const dBodyID b = k == 0 ? b0 : b1;
+      if (b && r.body[k] < 0) {
+        r.c -= r.lin[k].dot(V3(dBodyGetLinearVel(b))) + r.ang[k].dot(V3(dBodyGetAngularVel(b)));
+        r.lin[k].setZero();
+        r.ang[k].setZero();
+      }
+    }
+    r.cfm = cfm;
+    r.lo = lo;
+    r.hi = hi;
+    r.findex = findex;
+    rows.push_back(r);
+  }
+
+  void AddHingeRows(int j) {
+    const SimulationOptions& so = model->options();
+    const HingeFrame& f = hinges[j];
+    const double k = so.erp / h;
+    const Eigen::Vector3d p0 = V3(dBodyGetPosition(f.b0)), p1 = V3(dBodyGetPosition(f.b1));
+    const Eigen::Matrix3d R0 = R3(dBodyGetRotation(f.b0)), R1 = R3(dBodyGetRotation(f.b1));
+    const Eigen::Vector3d a0 = R0 * f.anchor0, a1 = R1 * f.anchor1;
+    const Eigen::Vector3d z = Eigen::Vector3d::Zero();
+    // the anchors coincide (three rows).
+    for (int i = 0; i < 3; ++i) {
+      const Eigen::Vector3d e = Eigen::Vector3d::Unit(i);
+      AddRow(f.b0, f.b1, e, a0.cross(e), -e, -a1.cross(e), k * ((a1[i] + p1[i]) - a0[i] - p0[i]),
+             so.cfm, -kInf, kInf, -1);
+    }
+    // the axes stay aligned (two rows).
+    const Eigen::Vector3d ax0 = R0 * f.axis0, ax1 = R1 * f.axis1;
+    Eigen::Vector3d p, q;
+    PlaneSpace(ax0, &p, &q);
+    const Eigen::Vector3d u = ax0.cross(ax1);
+    AddRow(f.b0, f.b1, z, p, z, -p, k * u.dot(p), so.cfm, -kInf, kInf, -1);
+    AddRow(f.b0, f.b1, z, q, z, -q, k * u.dot(q), so.cfm, -kInf, kInf, -1);
+    // the motor, and the stop when the joint is past it (ODE's limit-motor row).
+    const double lo_stop = dJointGetHingeParam(finger_joints[j], dParamLoStop);
+    const double hi_stop = dJointGetHingeParam(finger_joints[j], dParamHiStop);
+    const double vel = dJointGetHingeParam(finger_joints[j], dParamVel);
+    const double fmax = dJointGetHingeParam(finger_joints[j], dParamFMax);
+    const double theta = dJointGetHingeAngle(finger_joints[j]);
+    int limit = 0;
+    double err = 0.0;
+    if (theta <= lo_stop) {
+      limit = 1;
+      err = theta - lo_stop;
+    } else if (theta >= hi_stop) {
+      limit = 2;
+      err = theta - hi_stop;
+    }
+    const bool powered = fmax > 0.0;
+    if (!powered && limit == 0) return;
+    if (limit == 0) {
+      AddRow(f.b0, f.b1, z, ax0, z, -ax0, vel, so.cfm, -fmax, fmax, -1);
+      return;
+    }
+    if (powered) {
+      // a motor at its stop pushes with its full force as an external torque.
+      double fm = fmax;
+      if (vel > 0.0 || (vel == 0.0 && limit == 2)) fm = -fm;
+      const int i0 = SolverIndex(f.b0), i1 = SolverIndex(f.b1);
+      if (i1 >= 0) solver_bodies[i1].torque += fm * ax0;
+      if (i0 >= 0) solver_bodies[i0].torque -= fm * ax0;
+    }
+    AddRow(f.b0, f.b1, z, ax0, z, -ax0, -(so.erp / h) * err, so.cfm, limit == 1 ? 0.0 : -kInf,
+           limit == 1 ? kInf : 0.0, -1);
+  }
+
+  void AddContactRows(const PendingContact& pc) {
+    const SimulationOptions& so = model->options();
+    const Eigen::Vector3d pos = V3(pc.geom.pos);
+    const Eigen::Vector3d n = pc.normal_sign * V3(pc.geom.normal);
+    const Eigen::Vector3d r0 = pos - V3(dBodyGetPosition(pc.b0));
+    const Eigen::Vector3d r1 =
+        pc.b1 ? Eigen::Vector3d(pos - V3(dBodyGetPosition(pc.b1))) : Eigen::Vector3d::Zero();
+    const double depth = std::max(pc.geom.depth - so.surface_layer, 0.0);
+    const double c = std::min(pc.erp / h * depth, so.max_correcting_vel);
+    const int normal = static_cast<int>(rows.size());
+    AddRow(pc.b0, pc.b1, n, r0.cross(n), -n, n.cross(r1), c, pc.cfm, 0.0, kInf, -1);
+    if (pc.mu <= 0.0) return;
+    Eigen::Vector3d t1, t2;
+    PlaneSpace(n, &t1, &t2);
+    for (const Eigen::Vector3d& t : {t1, t2}) {
+      AddRow(pc.b0, pc.b1, t, r0.cross(t), -t, t.cross(r1), 0.0, so.cfm, -pc.mu, pc.mu, normal);
+    }
+  }
+
+  void StepStructured() {
+    const SimulationOptions& so = model->options();
+    // the moving bodies: mass, world inverse inertia, velocity, gravity and the (implicit)
+    // gyroscopic torque as ODE computes them.
+    solver_bodies.resize(kHandJoints + 1);
+    for (int i = 0; i <= kHandJoints; ++i) {
+      const dBodyID b = i < kHandJoints ? fingers[i].body : object.body;
+      dMass m;
+      dBodyGetMass(b, &m);
+      const Eigen::Matrix3d I_B = R3(m.I);
+      const Eigen::Matrix3d R = R3(dBodyGetRotation(b));
+      SolverBody& sb = solver_bodies[i];
+      sb.inv_mass = 1.0 / m.mass;
+      sb.inv_inertia_W = R * I_B.inverse() * R.transpose();
+      sb.v = V3(dBodyGetLinearVel(b));
+      sb.w = V3(dBodyGetAngularVel(b));
+      sb.force = V3(dBodyGetForce(b)) + Eigen::Vector3d(0.0, 0.0, -so.gravity * m.mass);
+      sb.torque = V3(dBodyGetTorque(b));
+      const Eigen::Matrix3d I_W = R * I_B * R.transpose();
+      const Eigen::Vector3d L = I_W * sb.w;
+      Eigen::Matrix3d Lx;
+      Lx << 0.0, -L.z(), L.y(), L.z(), 0.0, -L.x(), -L.y(), L.x(), 0.0;
+      const Eigen::Matrix3d It = I_W - h * Lx;
+      if (It.determinant() != 0.0) {
+        sb.torque += (I_W * It.inverse() - Eigen::Matrix3d::Identity()) * (L / h);
+      }
+    }
+    rows.clear();
+    for (int j = 0; j < kHandJoints; ++j) AddHingeRows(j);
+    for (const PendingContact& pc : pending) AddContactRows(pc);
+    SolveConstraints(h, rows, &solver_bodies, &solver);
+
+    // the object's contact forces with the hand (ODE's feedback f1: the force on body 0);
+    // the contacts' rows are the last ones, one or three per contact.
+    size_t row = rows.size();
+    for (auto it = pending.rbegin(); it != pending.rend(); ++it) {
+      const int nrows = it->mu > 0.0 ? 3 : 1;
+      row -= static_cast<size_t>(nrows);
+      if (it->hand_object < 0) continue;
+      Eigen::Vector3d f = Eigen::Vector3d::Zero();
+      for (int k = 0; k < nrows; ++k) f += rows[row + k].lin[0] * solver.lambda[row + k];
+      hand_object[static_cast<size_t>(it->hand_object)].f_W = f;
+    }
+
+    // velocities of the moving bodies, then every body moves (kinematic ones by their own
+    // velocities, as in dWorldStep).
+    for (int i = 0; i <= kHandJoints; ++i) {
+      const dBodyID b = i < kHandJoints ? fingers[i].body : object.body;
+      const SolverBody& sb = solver_bodies[i];
+      dBodySetLinearVel(b, sb.v.x(), sb.v.y(), sb.v.z());
+      dBodySetAngularVel(b, sb.w.x(), sb.w.y(), sb.w.z());
+      dBodySetForce(b, 0.0, 0.0, 0.0);
+      dBodySetTorque(b, 0.0, 0.0, 0.0);
+    }
+    for (const BodyPart& a : arm) Integrate(a.body);
+    for (dBodyID m : mounts) {
+      if (m) Integrate(m);
+    }
+    for (const BodyPart& f : fingers) Integrate(f.body);
+    Integrate(object.body);
+  }
+
+  // ODE's dxStepBody with finite rotation off: p += h v, q += h/2 (0, w) q, normalised.
+  void Integrate(dBodyID b) const {
+    const dReal* p = dBodyGetPosition(b);
+    const dReal* v = dBodyGetLinearVel(b);
+    dBodySetPosition(b, p[0] + h * v[0], p[1] + h * v[1], p[2] + h * v[2]);
+    const dReal* q = dBodyGetQuaternion(b);
+    const dReal* w = dBodyGetAngularVel(b);
+    dQuaternion dq;
+    dq[0] = 0.5 * (-w[0] * q[1] - w[1] * q[2] - w[2] * q[3]);
+    dq[1] = 0.5 * (w[0] * q[0] + w[1] * q[3] - w[2] * q[2]);
+    dq[2] = 0.5 * (-w[0] * q[3] + w[1] * q[0] + w[2] * q[1]);
+    dq[3] = 0.5 * (w[0] * q[2] - w[1] * q[1] + w[2] * q[0]);
+    dQuaternion qn = {q[0] + h * dq[0], q[1] + h * dq[1], q[2] + h * dq[2], q[3] + h * dq[3]};
+    dBodySetQuaternion(b, qn);  // normalises
   }
 
   void Step() {
@@ -843,7 +1121,11 @@ struct SimulationData::Impl {
     }
     current_world_broken = &broken;
     SyncMounts();
-    dWorldStep(world, h);
+    if (options.structured_solver && arm_kinematic()) {
+      StepStructured();
+    } else {
+      dWorldStep(world, h);
+    }
     current_world_broken = nullptr;
     for (size_t k = 0; k < feedback_contact.size(); ++k) {
       const dReal* f = feedback[k].f1;

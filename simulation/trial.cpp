@@ -70,6 +70,7 @@ SimulationData MakeTrialWorld(const SimulationModel& model, const JointTrajector
   world_options.proximity_margin = options.proximity_margin;
   world_options.physics = options.physics;
   world_options.finger_mounts = options.finger_mounts;
+  world_options.structured_solver = options.structured_solver;
   return SimulationData(model, world_options, trajectory.samples.front().arm,
                         trajectory.samples.front().hand);
 }

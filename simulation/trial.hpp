@@ -56,6 +56,8 @@ struct TrialOptions : TrialJudgeOptions {
   PhysicsVariation physics;
   /// kFast: each finger on a kinematic mount of its own (WorldOptions::finger_mounts).
   bool finger_mounts = true;
+  /// kFast: the structured solve (WorldOptions::structured_solver).
+  bool structured_solver = true;
 
   /// True when every value is finite and in range; otherwise false with the reason.
   bool IsValid(std::string* why) const;

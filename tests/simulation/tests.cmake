@@ -1,3 +1,4 @@
+graspsynth_test(simulation/constraint_solver_test.cpp LIBS graspsynth::simulation)
 graspsynth_test(simulation/simulation_model_test.cpp LIBS graspsynth::simulation)
 graspsynth_test(simulation/simulation_data_test.cpp LIBS graspsynth::simulation)
 graspsynth_test(simulation/trial_test.cpp LIBS graspsynth::simulation)

@@ -1,0 +1,490 @@
+#include "simulation/constraint_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace graspsynth {
+namespace {
+
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+int Find(std::vector<int>& parent, int i) {
+  while (parent[i] != i) i = parent[i] = parent[parent[i]];
+  return i;
+}
+
+void Union(std::vector<int>& parent, int a, int b) {
+  if (a < 0 || b < 0) return;
+  a = Find(parent, a);
+  b = Find(parent, b);
+  if (a != b) parent[std::max(a, b)] = std::min(a, b);
+}
+
+bool IsEquality(const ConstraintRow& r) { return r.findex < 0 && r.lo == -kInf && r.hi == kInf; }
+
+// A_rs = J_r M^-1 J_s^T over the bodies the two rows share (im: M^-1 J_s^T on s's bodies).
+double Coupling(const ConstraintRow& r, const ConstraintRow& s, const Vector6d& s_im0,
+                const Vector6d& s_im1) {
+  double a = 0.0;
+  for (int k = 0; k < 2; ++k) {
+    const int body = r.body[k];
+    if (body < 0) continue;
+    if (s.body[0] == body) {
+      a += r.lin[k].dot(s_im0.head<3>()) + r.ang[k].dot(s_im0.tail<3>());
+    }
+    if (s.body[1] == body) {
+      a += r.lin[k].dot(s_im1.head<3>()) + r.ang[k].dot(s_im1.tail<3>());
+    }
+  }
+  return a;
+}
+
+// In-place Cholesky factor (lower triangle) of the n x n matrix a, row-major with leading
+// dimension ld. A pivot that is not positive (a matrix that is not positive definite, which
+// the cfm of every row rules out) is kept tiny rather than failing.
+void Cholesky(double* a, int n, int ld) {
+  for (int j = 0; j < n; ++j) {
+    double* aj = a + j * ld;
+    for (int k = 0; k < j; ++k) {
+      const double* ak = a + k * ld;
+      double s = aj[k];
+      for (int l = 0; l < k; ++l) s -= aj[l] * ak[l];
+      aj[k] = s / ak[k];
+    }
+    double d = aj[j];
+    for (int l = 0; l < j; ++l) d -= aj[l] * aj[l];
+    aj[j] = std::sqrt(std::max(d, 1e-300));
+  }
+}
+
+// x <- L^-1 x and x <- L^-T x for the lower factor L (n x n, leading dimension ld).
+void SolveLower(const double* L, int n, int ld, double* x) {
+  for (int i = 0; i < n; ++i) {
+    const double* li = L + i * ld;
+    double s = x[i];
+    for (int k = 0; k < i; ++k) s -= li[k] * x[k];
+    x[i] = s / li[i];
+  }
+}
+
+void SolveLowerTransposed(const double* L, int n, int ld, double* x) {
+  for (int i = n - 1; i >= 0; --i) {
+    x[i] /= L[i * ld + i];
+    const double xi = x[i];
+    const double* li = L + i * ld;
+    for (int k = 0; k < i; ++k) x[k] -= li[k] * xi;
+  }
+}
+
+// The pivoting (Dantzig) solve of the bounded rows: S x = b + w with the box conditions, the
+// rows taken in order, each driven until it satisfies its condition while the rows before
+// it keep theirs. The friction rows come last; when the first is reached, every friction
+// row's bounds are fixed from its normal row's force at that point, as in ODE. The Cholesky
+// factor of S over the free set C (rows strictly inside their bounds) grows row by row and
+// is rebuilt when a row leaves C. S is symmetric positive definite (the rows' cfm), so the
+// answer is unique: the one ODE's solver finds, to roundoff.
+class BoxSolve {
+ public:
+  BoxSolve(int n, ConstraintSolverData* d) : n_(n), d_(*d) {}
+
+  void Run() {
+    std::vector<double>& x = d_.x;
+    std::vector<double>& lo = d_.lo;
+    std::vector<double>& hi = d_.hi;
+    x.assign(n_, 0.0);
+    d_.w.assign(n_, 0.0);
+    d_.dx.assign(n_, 0.0);
+    d_.dw.assign(n_, 0.0);
+    d_.L.resize(static_cast<size_t>(n_) * n_);
+    d_.y.resize(n_);
+    d_.C.clear();
+    d_.state.assign(n_, kUnset);
+    const long limit = 20L * n_ + 20;
+    long pivots = 0;
+    bool friction_bounds_set = false;
+    for (int i = 0; i < n_; ++i) {
+      if (d_.findex[i] >= 0 && !friction_bounds_set) {
+        friction_bounds_set = true;
+        for (int k = i; k < n_; ++k) {
+          if (d_.findex[k] < 0) continue;
+          const double bound = std::fabs(hi[k] * x[d_.findex[k]]);
+          lo[k] = -bound;
+          hi[k] = bound;
+        }
+      }
+      // w_i = (S x)_i - b_i over the rows before it (the later ones are zero).
+      const double* si = &d_.S[static_cast<size_t>(i) * n_];
+      double wi = -d_.b[i];
+      for (int j = 0; j < i; ++j) wi += si[j] * x[j];
+      d_.w[i] = wi;
+      if (lo[i] == 0.0 && wi >= 0.0) {
+        d_.state[i] = kLow;
+        continue;
+      }
+      if (hi[i] == 0.0 && wi <= 0.0) {
+        d_.state[i] = kHigh;
+        continue;
+      }
+      if (wi == 0.0) {
+        AddToC(i);
+        continue;
+      }
+      while (++pivots <= limit) {  // the limit is never reached on a definite matrix
+        const double dir = d_.w[i] < 0.0 ? 1.0 : -1.0;
+        Direction(i, dir);
+        // the longest step before a row's condition changes.
+        double s = -d_.w[i] / d_.dw[i];
+        int which = i, kind = kFree;
+        const double to_bound = dir > 0 ? hi[i] - x[i] : x[i] - lo[i];
+        if (to_bound < s) {
+          s = to_bound;
+          kind = dir > 0 ? kHigh : kLow;
+        }
+        for (int j : d_.C) {
+          const double dxj = d_.dx[j];
+          if (dxj < 0.0 && lo[j] > -kInf) {
+            const double t = (lo[j] - x[j]) / dxj;
+            if (t < s) s = t, which = j, kind = kLow;
+          } else if (dxj > 0.0 && hi[j] < kInf) {
+            const double t = (hi[j] - x[j]) / dxj;
+            if (t < s) s = t, which = j, kind = kHigh;
+          }
+        }
+        for (int j = 0; j < i; ++j) {
+          const int st = d_.state[j];
+          if (st == kFree || (lo[j] == 0.0 && hi[j] == 0.0)) continue;
+          const double dwj = d_.dw[j];
+          if ((st == kLow && dwj < 0.0) || (st == kHigh && dwj > 0.0)) {
+            const double t = -d_.w[j] / dwj;
+            if (t < s) s = t, which = j, kind = kFree;
+          }
+        }
+        s = std::max(s, 0.0);
+        x[i] += s * dir;
+        for (int j : d_.C) x[j] += s * d_.dx[j];
+        for (int j = 0; j <= i; ++j) {
+          if (d_.state[j] != kFree) d_.w[j] += s * d_.dw[j];
+        }
+        if (which == i) {
+          if (kind == kFree) {
+            AddToC(i);
+          } else {
+            x[i] = kind == kHigh ? hi[i] : lo[i];
+            d_.state[i] = kind;
+          }
+          break;
+        }
+        if (kind == kFree) {
+          AddToC(which);
+        } else {
+          x[which] = kind == kHigh ? hi[which] : lo[which];
+          RemoveFromC(which, kind);
+        }
+      }
+    }
+    d_.pivots += pivots;
+  }
+
+ private:
+  enum { kUnset = 0, kLow = 1, kHigh = 2, kFree = 3 };
+
+  // dx over C for x_i moving by dir, and dw over the rows up to i that are not in C.
+  void Direction(int i, double dir) {
+    const int m = static_cast<int>(d_.C.size());
+    double* y = d_.y.data();
+    for (int k = 0; k < m; ++k) y[k] = -d_.S[static_cast<size_t>(d_.C[k]) * n_ + i] * dir;
+    SolveLower(d_.L.data(), m, n_, y);
+    SolveLowerTransposed(d_.L.data(), m, n_, y);
+    for (int k = 0; k < m; ++k) d_.dx[d_.C[k]] = y[k];
+    d_.dx[i] = dir;
+    for (int j = 0; j <= i; ++j) {
+      if (d_.state[j] == kFree) continue;
+      const double* sj = &d_.S[static_cast<size_t>(j) * n_];
+      double dw = sj[i] * dir;
+      for (int k = 0; k < m; ++k) dw += sj[d_.C[k]] * y[k];
+      d_.dw[j] = dw;
+    }
+  }
+
+  void AddToC(int j) {
+    const int m = static_cast<int>(d_.C.size());
+    double* row = &d_.L[static_cast<size_t>(m) * n_];
+    const double* sj = &d_.S[static_cast<size_t>(j) * n_];
+    for (int k = 0; k < m; ++k) row[k] = sj[d_.C[k]];
+    SolveLower(d_.L.data(), m, n_, row);
+    double d = sj[j];
+    for (int k = 0; k < m; ++k) d -= row[k] * row[k];
+    row[m] = std::sqrt(std::max(d, 1e-300));
+    d_.C.push_back(j);
+    d_.state[j] = kFree;
+    d_.w[j] = 0.0;
+  }
+
+  // drops j from C and its row and column from the factor: the rows below it move up, and
+  // Givens rotations of neighbouring columns make the factor lower triangular again.
+  void RemoveFromC(int j, int kind) {
+    std::vector<int>& C = d_.C;
+    const int m = static_cast<int>(C.size());
+    const int p = static_cast<int>(std::find(C.begin(), C.end(), j) - C.begin());
+    C.erase(C.begin() + p);
+    d_.state[j] = kind;
+    double* L = d_.L.data();
+    for (int r = p; r + 1 < m; ++r) {
+      std::copy_n(L + static_cast<size_t>(r + 1) * n_, r + 2, L + static_cast<size_t>(r) * n_);
+    }
+    for (int c = p; c + 1 < m; ++c) {
+      double* lc = L + static_cast<size_t>(c) * n_;
+      const double a = lc[c], b = lc[c + 1];
+      const double norm = std::hypot(a, b);
+      const double cs = a / norm, sn = b / norm;
+      lc[c] = norm;
+      lc[c + 1] = 0.0;
+      for (int r = c + 1; r + 1 < m; ++r) {
+        double* lr = L + static_cast<size_t>(r) * n_;
+        const double x = lr[c], y = lr[c + 1];
+        lr[c] = cs * x + sn * y;
+        lr[c + 1] = -sn * x + cs * y;
+      }
+    }
+  }
+
+  const int n_;
+  ConstraintSolverData& d_;
+};
+
+}  // namespace
+
+void SolveConstraints(double h, const std::vector<ConstraintRow>& rows,
+                      std::vector<SolverBody>* bodies, ConstraintSolverData* d) {
+  const int nb = static_cast<int>(bodies->size());
+  const int nr = static_cast<int>(rows.size());
+  std::vector<SolverBody>& B = *bodies;
+  const double inv_h = 1.0 / h;
+  d->lambda.assign(nr, 0.0);
+
+  // M^-1 J^T of each row on each of its bodies.
+  d->im0.resize(nr);
+  d->im1.resize(nr);
+  for (int r = 0; r < nr; ++r) {
+    const ConstraintRow& row = rows[r];
+    for (int k = 0; k < 2; ++k) {
+      Vector6d& im = k == 0 ? d->im0[r] : d->im1[r];
+      im.setZero();
+      if (row.body[k] < 0) continue;
+      const SolverBody& body = B[row.body[k]];
+      im.head<3>() = body.inv_mass * row.lin[k];
+      im.tail<3>() = body.inv_inertia_W * row.ang[k];
+    }
+  }
+
+  // islands: bodies joined by any row; blocks: bodies joined by equality rows.
+  d->island.resize(nb);
+  d->block.resize(nb);
+  for (int i = 0; i < nb; ++i) d->island[i] = d->block[i] = i;
+  for (const ConstraintRow& r : rows) {
+    Union(d->island, r.body[0], r.body[1]);
+    if (IsEquality(r)) Union(d->block, r.body[0], r.body[1]);
+  }
+  auto root_of = [](const ConstraintRow& r, std::vector<int>& set) {
+    return r.body[0] < 0 && r.body[1] < 0 ? -1 : Find(set, r.body[r.body[0] >= 0 ? 0 : 1]);
+  };
+
+  // v / h + M^-1 f per body, for the right-hand sides.
+  d->tmp.resize(nb);
+  for (int i = 0; i < nb; ++i) {
+    d->tmp[i].head<3>() = B[i].v * inv_h + B[i].inv_mass * B[i].force;
+    d->tmp[i].tail<3>() = B[i].w * inv_h + B[i].inv_inertia_W * B[i].torque;
+  }
+  auto rhs = [&](int r) {
+    const ConstraintRow& row = rows[r];
+    double jt = 0.0;
+    for (int k = 0; k < 2; ++k) {
+      const int body = row.body[k];
+      if (body < 0) continue;
+      jt += row.lin[k].dot(d->tmp[body].head<3>()) + row.ang[k].dot(d->tmp[body].tail<3>());
+    }
+    return row.c * inv_h - jt;
+  };
+
+  // the rows grouped by island, each island's in their given order.
+  d->row_root.resize(nr);
+  d->order.clear();
+  for (int r = 0; r < nr; ++r) {
+    d->row_root[r] = root_of(rows[r], d->island);
+    if (d->row_root[r] >= 0) d->order.push_back(r);
+  }
+  std::stable_sort(d->order.begin(), d->order.end(),
+                   [&](int a, int b) { return d->row_root[a] < d->row_root[b]; });
+
+  d->local.assign(nr, -1);
+  for (size_t begin = 0; begin < d->order.size();) {
+    size_t end = begin;
+    while (end < d->order.size() && d->row_root[d->order[end]] == d->row_root[d->order[begin]]) {
+      ++end;
+    }
+    // the bounded rows (friction rows last, ODE's order) and the equality rows by block.
+    d->u_rows.clear();
+    d->e_rows.clear();
+    for (size_t k = begin; k < end; ++k) {
+      const int r = d->order[k];
+      if (IsEquality(rows[r])) {
+        d->e_rows.push_back(r);
+      } else if (rows[r].findex < 0) {
+        d->u_rows.push_back(r);
+      }
+    }
+    for (size_t k = begin; k < end; ++k) {
+      if (rows[d->order[k]].findex >= 0) d->u_rows.push_back(d->order[k]);
+    }
+    begin = end;
+    std::stable_sort(d->e_rows.begin(), d->e_rows.end(), [&](int a, int b) {
+      return root_of(rows[a], d->block) < root_of(rows[b], d->block);
+    });
+    const int nu = static_cast<int>(d->u_rows.size());
+    for (int a = 0; a < nu; ++a) d->local[d->u_rows[a]] = a;
+    d->max_bounded_rows = std::max(d->max_bounded_rows, nu);
+
+    // S = A_uu, b_u.
+    d->S.assign(static_cast<size_t>(nu) * nu, 0.0);
+    d->b.resize(nu);
+    for (int a = 0; a < nu; ++a) {
+      const int r = d->u_rows[a];
+      d->b[a] = rhs(r);
+      double* sa = &d->S[static_cast<size_t>(a) * nu];
+      for (int c = 0; c <= a; ++c) {
+        const int s = d->u_rows[c];
+        sa[c] = Coupling(rows[r], rows[s], d->im0[s], d->im1[s]);
+      }
+      sa[a] += rows[r].cfm * inv_h;
+    }
+
+    // eliminate each equality block E: S -= A_ue A_ee^-1 A_eu, b_u -= A_ue A_ee^-1 b_e.
+    d->e_start.clear();
+    d->cols.clear();
+    d->cols_start.clear();
+    d->G.clear();
+    d->ye.clear();
+    const int ne_all = static_cast<int>(d->e_rows.size());
+    for (int e0 = 0; e0 < ne_all;) {
+      const int root = root_of(rows[d->e_rows[e0]], d->block);
+      int e1 = e0;
+      while (e1 < ne_all && root_of(rows[d->e_rows[e1]], d->block) == root) ++e1;
+      const int ne = e1 - e0;
+      const int* er = &d->e_rows[e0];
+      d->e_start.push_back(e0);
+      d->cols_start.push_back(static_cast<int>(d->cols.size()));
+      for (int a = 0; a < nu; ++a) {
+        const ConstraintRow& r = rows[d->u_rows[a]];
+        if ((r.body[0] >= 0 && Find(d->block, r.body[0]) == root) ||
+            (r.body[1] >= 0 && Find(d->block, r.body[1]) == root)) {
+          d->cols.push_back(a);
+        }
+      }
+      const int* cols = &d->cols[d->cols_start.back()];
+      const int nc = static_cast<int>(d->cols.size()) - d->cols_start.back();
+      // A_ee (lower), b_e; then its factor.
+      d->Aee.assign(static_cast<size_t>(ne) * ne, 0.0);
+      const size_t y0 = d->ye.size();
+      d->ye.resize(y0 + ne);
+      double* ye = &d->ye[y0];
+      for (int a = 0; a < ne; ++a) {
+        ye[a] = rhs(er[a]);
+        double* aa = &d->Aee[static_cast<size_t>(a) * ne];
+        for (int c = 0; c <= a; ++c) {
+          aa[c] = Coupling(rows[er[a]], rows[er[c]], d->im0[er[c]], d->im1[er[c]]);
+        }
+        aa[a] += rows[er[a]].cfm * inv_h;
+      }
+      Cholesky(d->Aee.data(), ne, ne);
+      // G = A_ee^-1 A_eu, stored column by column (nc columns of ne), and A_eu kept in
+      // scratch for the update.
+      const size_t g0 = d->G.size();
+      d->G.resize(g0 + static_cast<size_t>(nc) * ne);
+      d->scratch.resize(static_cast<size_t>(nc) * ne);
+      for (int c = 0; c < nc; ++c) {
+        const int s = d->u_rows[cols[c]];
+        double* g = &d->G[g0 + static_cast<size_t>(c) * ne];
+        double* aeu = &d->scratch[static_cast<size_t>(c) * ne];
+        for (int a = 0; a < ne; ++a) {
+          aeu[a] = g[a] = Coupling(rows[er[a]], rows[s], d->im0[s], d->im1[s]);
+        }
+        SolveLower(d->Aee.data(), ne, ne, g);
+        SolveLowerTransposed(d->Aee.data(), ne, ne, g);
+      }
+      SolveLower(d->Aee.data(), ne, ne, ye);
+      SolveLowerTransposed(d->Aee.data(), ne, ne, ye);
+      for (int a = 0; a < nc; ++a) {
+        const double* aeu = &d->scratch[static_cast<size_t>(a) * ne];
+        double bu = 0.0;
+        for (int k = 0; k < ne; ++k) bu += aeu[k] * ye[k];
+        d->b[cols[a]] -= bu;
+        double* sa = &d->S[static_cast<size_t>(cols[a]) * nu];
+        for (int c = 0; c <= a; ++c) {
+          // cols ascend, so (cols[a], cols[c]) lies in the lower triangle.
+          const double* g = &d->G[g0 + static_cast<size_t>(c) * ne];
+          double u = 0.0;
+          for (int k = 0; k < ne; ++k) u += aeu[k] * g[k];
+          sa[cols[c]] -= u;
+        }
+      }
+      e0 = e1;
+    }
+    for (int a = 0; a < nu; ++a) {
+      for (int c = 0; c < a; ++c) d->S[static_cast<size_t>(c) * nu + a] = d->S[a * nu + c];
+    }
+
+    // the bounded rows' forces.
+    d->lo.resize(nu);
+    d->hi.resize(nu);
+    d->findex.assign(nu, -1);
+    for (int a = 0; a < nu; ++a) {
+      const ConstraintRow& r = rows[d->u_rows[a]];
+      d->lo[a] = r.lo;
+      d->hi[a] = r.hi;
+      if (r.findex >= 0) d->findex[a] = d->local[r.findex];
+    }
+    BoxSolve(nu, d).Run();
+    for (int a = 0; a < nu; ++a) d->lambda[d->u_rows[a]] = d->x[a];
+
+    // the equality rows' forces: A_ee^-1 (b_e - A_eu x_u) = y_e - G x_u.
+    size_t g = 0;
+    for (size_t k = 0; k < d->e_start.size(); ++k) {
+      const int e0 = d->e_start[k];
+      const int e1 = k + 1 < d->e_start.size() ? d->e_start[k + 1] : ne_all;
+      const int ne = e1 - e0;
+      const int c0 = d->cols_start[k];
+      const int c1 =
+          k + 1 < d->cols_start.size() ? d->cols_start[k + 1] : static_cast<int>(d->cols.size());
+      for (int a = 0; a < ne; ++a) {
+        double le = d->ye[e0 + a];
+        for (int c = c0; c < c1; ++c) {
+          le -= d->G[g + static_cast<size_t>(c - c0) * ne + a] * d->x[d->cols[c]];
+        }
+        d->lambda[d->e_rows[e0 + a]] = le;
+      }
+      g += static_cast<size_t>(c1 - c0) * ne;
+    }
+  }
+
+  // v += h M^-1 (f + J^T lambda).
+  d->f.resize(nb);
+  for (int i = 0; i < nb; ++i) {
+    d->f[i].head<3>() = B[i].force;
+    d->f[i].tail<3>() = B[i].torque;
+  }
+  for (int r = 0; r < nr; ++r) {
+    const ConstraintRow& row = rows[r];
+    for (int k = 0; k < 2; ++k) {
+      if (row.body[k] < 0) continue;
+      d->f[row.body[k]].head<3>() += row.lin[k] * d->lambda[r];
+      d->f[row.body[k]].tail<3>() += row.ang[k] * d->lambda[r];
+    }
+  }
+  for (int i = 0; i < nb; ++i) {
+    B[i].v += h * B[i].inv_mass * d->f[i].head<3>();
+    B[i].w += h * (B[i].inv_inertia_W * d->f[i].tail<3>());
+  }
+}
+
+}  // namespace graspsynth

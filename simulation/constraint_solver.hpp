@@ -1,0 +1,71 @@
+#pragma once
+
+/// @file
+/// A velocity-level constraint solve for rigid bodies, in the formulation of ODE's direct
+/// stepper (`dWorldStep`), that uses the structure of a hand grasping an object.
+///
+/// The problem, for the rows r of the Jacobian J (each row acts on at most two bodies):
+///   A = J M^-1 J^T + diag(cfm_r) / h,   b = c / h - J (v / h + M^-1 f),
+///   find lambda with A lambda = b + w, lo <= lambda <= hi and, per row, lambda = lo and
+///   w >= 0, or lambda = hi and w <= 0, or lo < lambda < hi and w = 0;
+/// a row with findex >= 0 is a friction row whose bounds become +-|hi * lambda[findex]| when it
+/// is reached, as in ODE's Dantzig solver (the normal force at that point of the solve).
+/// Then v += h M^-1 (f + J^T lambda), so that J v = c - cfm lambda after the step.
+///
+/// ODE factors the whole matrix of an island, whose rows are mostly the hinges' equality rows
+/// (five per hinge, unbounded). Here the equality rows of each chain of bodies that they join
+/// (a finger's four links) are eliminated first, block by block (a Schur complement), and the
+/// pivoting solve runs on the bounded rows only (motors, stops, contacts): the same problem
+/// and, in exact arithmetic, the same pivots and the same forces.
+
+#include <array>
+#include <limits>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace graspsynth {
+
+/// One body's state in the solve. A body with inv_mass == 0 is not moved by the solve
+/// (kinematic or static) and is best left out: rows refer to moving bodies only.
+struct SolverBody {
+  double inv_mass = 0.0;                                    ///< 1/kg
+  Eigen::Matrix3d inv_inertia_W = Eigen::Matrix3d::Zero();  ///< world frame, 1/(kg m^2)
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();              ///< linear velocity, m/s
+  Eigen::Vector3d w = Eigen::Vector3d::Zero();              ///< angular velocity, rad/s
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();          ///< external force, N
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero();         ///< external torque, N m
+};
+
+/// One constraint row: J_r = [lin[0] ang[0]] on body[0] and [lin[1] ang[1]] on body[1].
+struct ConstraintRow {
+  std::array<int, 2> body{-1, -1};  ///< SolverBody index, -1: none (a kinematic or static body)
+  std::array<Eigen::Vector3d, 2> lin{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  std::array<Eigen::Vector3d, 2> ang{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  double c = 0.0;    ///< desired J v after the step (velocity units)
+  double cfm = 0.0;  ///< constraint force mixing
+  double lo = -std::numeric_limits<double>::infinity();
+  double hi = std::numeric_limits<double>::infinity();
+  int findex = -1;  ///< friction row: index of its normal row, else -1
+};
+
+/// Work memory of SolveConstraints, reused between calls (one per thread).
+struct ConstraintSolverData {
+  std::vector<double> lambda;  ///< the rows' forces after the last solve (N or N m)
+  int max_bounded_rows = 0;    ///< most bounded rows in one island so far (statistics)
+  long pivots = 0;             ///< pivots of the bounded solves so far (statistics)
+
+  // buffers (the solver's own)
+  std::vector<int> island, block, row_root, order, local, e_start, cols, cols_start, C, state;
+  std::vector<Eigen::Matrix<double, 6, 1>> im0, im1, tmp, f;
+  std::vector<double> S, b, x, w, dx, dw, L, y, lo, hi, Aee, be, G, ye, scratch;
+  std::vector<int> findex, u_rows, e_rows;
+};
+
+/// Solves the rows' forces for one step of h seconds and adds their impulse and the external
+/// forces' to the bodies' velocities. Rows of different islands (bodies that no row joins)
+/// are solved apart. data->lambda holds the forces afterwards, in the rows' order.
+void SolveConstraints(double h, const std::vector<ConstraintRow>& rows,
+                      std::vector<SolverBody>* bodies, ConstraintSolverData* data);
+
+}  // namespace graspsynth
