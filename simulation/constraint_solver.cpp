@@ -86,7 +86,95 @@ void SolveLowerTransposed(const double* L, int n, int ld, double* x) {
 // answer is unique: the one ODE's solver finds, to roundoff.
 class BoxSolve {
  public:
-  BoxSolve(int n, ConstraintSolverData* d) : n_(n), d_(*d) {}
+  BoxSolve(int n, ConstraintSolverData* d) : n_(n), d_(*d) { d_.mu = d_.hi; }
+
+  // The answer from a guess of each row's state: the free rows' forces solved with the
+  // others at their bounds, over the first `count` rows (the rest at zero); true when every
+  // row then meets its condition. A wrong guess costs one factorisation.
+  bool TryGuess(int count, const std::vector<std::uint8_t>& guess) {
+    std::vector<double>& x = d_.x;
+    std::vector<int>& F = d_.C;
+    F.clear();
+    for (int i = 0; i < count; ++i) {
+      const int g = guess[i];
+      if (d_.lo[i] == d_.hi[i]) {
+        x[i] = d_.lo[i];  // a row held at zero (friction on a normal that carries nothing)
+      } else if (g == kLowGuess && d_.lo[i] > -kInf) {
+        x[i] = d_.lo[i];
+      } else if (g == kHighGuess && d_.hi[i] < kInf) {
+        x[i] = d_.hi[i];
+      } else {
+        x[i] = 0.0;
+        F.push_back(i);
+      }
+    }
+    for (int i = count; i < n_; ++i) x[i] = 0.0;
+    const int m = static_cast<int>(F.size());
+    double* L = d_.L.data();
+    double* y = d_.y.data();
+    for (int a = 0; a < m; ++a) {
+      const double* sa = &d_.S[static_cast<size_t>(F[a]) * n_];
+      double* la = L + static_cast<size_t>(a) * n_;
+      for (int c = 0; c <= a; ++c) la[c] = sa[F[c]];
+      double r = d_.b[F[a]];
+      for (int j = 0; j < count; ++j) r -= sa[j] * x[j];  // the rows at their bounds
+      y[a] = r;
+    }
+    Cholesky(L, m, n_);
+    SolveLower(L, m, n_, y);
+    SolveLowerTransposed(L, m, n_, y);
+    for (int a = 0; a < m; ++a) {
+      const int i = F[a];
+      if (!(y[a] >= d_.lo[i] && y[a] <= d_.hi[i])) return false;
+      x[i] = y[a];
+    }
+    for (int i = 0, a = 0; i < count; ++i) {
+      if (a < m && F[a] == i) {
+        ++a;
+        d_.state[i] = kFree;
+        continue;
+      }
+      const double* si = &d_.S[static_cast<size_t>(i) * n_];
+      double w = -d_.b[i];
+      for (int j = 0; j < count; ++j) w += si[j] * x[j];
+      const bool low = x[i] == d_.lo[i];
+      if (d_.lo[i] != d_.hi[i] && (low ? w < 0.0 : w > 0.0)) return false;
+      d_.state[i] = low ? kLow : kHigh;
+    }
+    return true;
+  }
+
+  // Solves with the guesses of the rows' states (d.guess0 without the friction rows, d.guess1
+  // with them) and falls back on the pivoting solve; d.guess0/1 hold the states found.
+  void Solve() {
+    d_.x.assign(n_, 0.0);
+    d_.L.resize(static_cast<size_t>(n_) * n_);
+    d_.y.resize(n_);
+    d_.state.assign(n_, kUnset);
+    int nf = n_;  // the rows before the friction rows
+    while (nf > 0 && d_.findex[nf - 1] >= 0) --nf;
+    if (TryGuess(nf, d_.guess0)) {
+      for (int i = 0; i < nf; ++i) d_.guess0[i] = ToGuess(d_.state[i]);
+      FixFrictionBounds(nf);
+      if (nf == n_ || TryGuess(n_, d_.guess1)) {
+        for (int i = 0; i < n_; ++i) d_.guess1[i] = ToGuess(d_.state[i]);
+        ++d_.guessed;
+        return;
+      }
+    }
+    ++d_.pivoted;
+    Run();
+  }
+
+  // the friction rows from `from` on get +-mu |normal force| as their bounds.
+  void FixFrictionBounds(int from) {
+    for (int k = from; k < n_; ++k) {
+      if (d_.findex[k] < 0) continue;
+      const double bound = std::fabs(d_.mu[k] * d_.x[d_.findex[k]]);
+      d_.lo[k] = -bound;
+      d_.hi[k] = bound;
+    }
+  }
 
   void Run() {
     std::vector<double>& x = d_.x;
@@ -106,12 +194,8 @@ class BoxSolve {
     for (int i = 0; i < n_; ++i) {
       if (d_.findex[i] >= 0 && !friction_bounds_set) {
         friction_bounds_set = true;
-        for (int k = i; k < n_; ++k) {
-          if (d_.findex[k] < 0) continue;
-          const double bound = std::fabs(hi[k] * x[d_.findex[k]]);
-          lo[k] = -bound;
-          hi[k] = bound;
-        }
+        for (int k = 0; k < i; ++k) d_.guess0[k] = ToGuess(d_.state[k]);
+        FixFrictionBounds(i);
       }
       // w_i = (S x)_i - b_i over the rows before it (the later ones are zero).
       const double* si = &d_.S[static_cast<size_t>(i) * n_];
@@ -184,10 +268,18 @@ class BoxSolve {
       }
     }
     d_.pivots += pivots;
+    if (!friction_bounds_set) {
+      for (int k = 0; k < n_; ++k) d_.guess0[k] = ToGuess(d_.state[k]);
+    }
+    for (int k = 0; k < n_; ++k) d_.guess1[k] = ToGuess(d_.state[k]);
   }
 
  private:
   enum { kUnset = 0, kLow = 1, kHigh = 2, kFree = 3 };
+  enum : std::uint8_t { kFreeGuess = 0, kLowGuess = 1, kHighGuess = 2 };
+  static std::uint8_t ToGuess(int state) {
+    return state == kLow ? kLowGuess : state == kHigh ? kHighGuess : kFreeGuess;
+  }
 
   // dx over C for x_i moving by dir, and dw over the rows up to i that are not in C.
   void Direction(int i, double dir) {
@@ -262,6 +354,8 @@ void SolveConstraints(double h, const std::vector<ConstraintRow>& rows,
   std::vector<SolverBody>& B = *bodies;
   const double inv_h = 1.0 / h;
   d->lambda.assign(nr, 0.0);
+  d->next_frictionless.clear();
+  d->next_final.clear();
 
   // M^-1 J^T of each row on each of its bodies.
   d->im0.resize(nr);
@@ -444,7 +538,25 @@ void SolveConstraints(double h, const std::vector<ConstraintRow>& rows,
       d->hi[a] = r.hi;
       if (r.findex >= 0) d->findex[a] = d->local[r.findex];
     }
-    BoxSolve(nu, d).Run();
+    d->guess0.assign(nu, 0);
+    d->guess1.assign(nu, 0);
+    for (int a = 0; a < nu; ++a) {
+      const std::uint64_t key = rows[d->u_rows[a]].key;
+      if (key == 0) continue;
+      if (auto it = d->last_frictionless.find(key); it != d->last_frictionless.end()) {
+        d->guess0[a] = it->second;
+      }
+      if (auto it = d->last_final.find(key); it != d->last_final.end()) {
+        d->guess1[a] = it->second;
+      }
+    }
+    BoxSolve(nu, d).Solve();
+    for (int a = 0; a < nu; ++a) {
+      const std::uint64_t key = rows[d->u_rows[a]].key;
+      if (key == 0) continue;
+      d->next_frictionless[key] = d->guess0[a];
+      d->next_final[key] = d->guess1[a];
+    }
     for (int a = 0; a < nu; ++a) d->lambda[d->u_rows[a]] = d->x[a];
 
     // the equality rows' forces: A_ee^-1 (b_e - A_eu x_u) = y_e - G x_u.
@@ -466,6 +578,9 @@ void SolveConstraints(double h, const std::vector<ConstraintRow>& rows,
       g += static_cast<size_t>(c1 - c0) * ne;
     }
   }
+
+  std::swap(d->last_frictionless, d->next_frictionless);
+  std::swap(d->last_final, d->next_final);
 
   // v += h M^-1 (f + J^T lambda).
   d->f.resize(nb);

@@ -19,7 +19,9 @@
 /// and, in exact arithmetic, the same pivots and the same forces.
 
 #include <array>
+#include <cstdint>
 #include <limits>
+#include <unordered_map>
 #include <vector>
 
 #include <Eigen/Core>
@@ -47,6 +49,9 @@ struct ConstraintRow {
   double lo = -std::numeric_limits<double>::infinity();
   double hi = std::numeric_limits<double>::infinity();
   int findex = -1;  ///< friction row: index of its normal row, else -1
+  /// Names the row from step to step (0: none): the solver first tries the bounds that the
+  /// rows of the same keys ended at in the last solve (the answer does not depend on it).
+  std::uint64_t key = 0;
 };
 
 /// Work memory of SolveConstraints, reused between calls (one per thread).
@@ -54,12 +59,21 @@ struct ConstraintSolverData {
   std::vector<double> lambda;  ///< the rows' forces after the last solve (N or N m)
   int max_bounded_rows = 0;    ///< most bounded rows in one island so far (statistics)
   long pivots = 0;             ///< pivots of the bounded solves so far (statistics)
+  long guessed = 0;            ///< islands solved at the first guess (statistics)
+  long pivoted = 0;            ///< islands that needed the pivoting solve (statistics)
+
+  /// Where each keyed row ended in the last solve, without the friction rows and with them
+  /// (0 free, 1 at its lower bound, 2 at its upper bound).
+  std::unordered_map<std::uint64_t, std::uint8_t> last_frictionless, last_final;
+  std::unordered_map<std::uint64_t, std::uint8_t> next_frictionless, next_final;
 
   // buffers (the solver's own)
   std::vector<int> island, block, row_root, order, local, e_start, cols, cols_start, C, state;
   std::vector<Eigen::Matrix<double, 6, 1>> im0, im1, tmp, f;
-  std::vector<double> S, b, x, w, dx, dw, L, y, lo, hi, Aee, be, G, ye, scratch;
+  std::vector<double> S, b, x, w, dx, dw, L, y, lo, hi, mu, Aee, be, G, ye, scratch;
   std::vector<int> findex, u_rows, e_rows;
+  std::vector<std::uint8_t> guess0, guess1;
+  std::vector<std::uint64_t> keys;
 };
 
 /// Solves the rows' forces for one step of h seconds and adds their impulse and the external

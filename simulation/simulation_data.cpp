@@ -55,6 +55,7 @@ struct GeomInfo {
   std::string link;       // name of the link the geometry belongs to
   int hand_index = -1;    // HandJointVector index of a finger link, 20 for the palm and mount
   double friction = 0.0;  // an object part's Coulomb coefficient with the fingers
+  int id = 0;             // creation order (names a geom's contacts from step to step)
 };
 
 // A rigid body made of one or more links, with its frame at the centre of mass and axes of
@@ -342,6 +343,7 @@ struct SimulationData::Impl {
         break;
     }
     geom_info.push_back({role, link});
+    geom_info.back().id = static_cast<int>(geom_info.size());
     dGeomSetData(g, &geom_info.back());
     unsigned long cat = 0, collide = 0;
     switch (role) {
@@ -791,6 +793,7 @@ struct SimulationData::Impl {
         pc.erp = erp;
         pc.cfm = cfm;
         pc.hand_object = hand_pair ? static_cast<int>(hand_object.size()) - n + i : -1;
+        pc.index = i;
         pending.push_back(pc);
         ++report.total;
       }
@@ -856,6 +859,7 @@ struct SimulationData::Impl {
     double normal_sign = 1.0;            // -1: geom.normal turned, the bodies swapped
     double mu = 0.0, erp = 0.0, cfm = 0.0;
     int hand_object = -1;  // index into hand_object of an object-hand contact
+    int index = 0;         // its place among its geom pair's contacts
   };
   std::vector<PendingContact> pending;
   std::vector<SolverBody> solver_bodies;
@@ -885,6 +889,15 @@ struct SimulationData::Impl {
     }
   }
 
+  // a contact row's key for SolveConstraints (its first guess): the two geoms' ids and the
+  // contact's place among theirs, the low two bits left for the row's kind (normal, first and
+  // second friction direction); the top bit keeps it apart from the hinges' keys.
+  static std::uint64_t ContactKey(dGeomID ga, dGeomID gb, int index) {
+    const std::uint64_t a = static_cast<const GeomInfo*>(dGeomGetData(ga))->id;
+    const std::uint64_t b = static_cast<const GeomInfo*>(dGeomGetData(gb))->id;
+    return (1ull << 63) | (a << 40) | (b << 18) | (static_cast<std::uint64_t>(index) << 2);
+  }
+
   // the solver index of a moving body (the finger links, then the object), -1 for others.
   int SolverIndex(dBodyID b) const {
     if (!b) return -1;
@@ -899,8 +912,9 @@ struct SimulationData::Impl {
   // kinematic b1 goes into c, as ODE's right-hand side has it.
   void AddRow(dBodyID b0, dBodyID b1, const Eigen::Vector3d& lin0, const Eigen::Vector3d& ang0,
               const Eigen::Vector3d& lin1, const Eigen::Vector3d& ang1, double c, double cfm,
-              double lo, double hi, int findex) {
+              double lo, double hi, int findex, std::uint64_t key) {
     ConstraintRow r;
+    r.key = key;
     r.body = {SolverIndex(b0), SolverIndex(b1)};
     r.lin = {lin0, lin1};
     r.ang = {ang0, ang1};
@@ -932,15 +946,15 @@ struct SimulationData::Impl {
     for (int i = 0; i < 3; ++i) {
       const Eigen::Vector3d e = Eigen::Vector3d::Unit(i);
       AddRow(f.b0, f.b1, e, a0.cross(e), -e, -a1.cross(e), k * ((a1[i] + p1[i]) - a0[i] - p0[i]),
-             so.cfm, -kInf, kInf, -1);
+             so.cfm, -kInf, kInf, -1, 0);
     }
     // the axes stay aligned (two rows).
     const Eigen::Vector3d ax0 = R0 * f.axis0, ax1 = R1 * f.axis1;
     Eigen::Vector3d p, q;
     PlaneSpace(ax0, &p, &q);
     const Eigen::Vector3d u = ax0.cross(ax1);
-    AddRow(f.b0, f.b1, z, p, z, -p, k * u.dot(p), so.cfm, -kInf, kInf, -1);
-    AddRow(f.b0, f.b1, z, q, z, -q, k * u.dot(q), so.cfm, -kInf, kInf, -1);
+    AddRow(f.b0, f.b1, z, p, z, -p, k * u.dot(p), so.cfm, -kInf, kInf, -1, 0);
+    AddRow(f.b0, f.b1, z, q, z, -q, k * u.dot(q), so.cfm, -kInf, kInf, -1, 0);
     // the motor, and the stop when the joint is past it (ODE's limit-motor row).
     const double lo_stop = dJointGetHingeParam(finger_joints[j], dParamLoStop);
     const double hi_stop = dJointGetHingeParam(finger_joints[j], dParamHiStop);
@@ -959,7 +973,7 @@ struct SimulationData::Impl {
     const bool powered = fmax > 0.0;
     if (!powered && limit == 0) return;
     if (limit == 0) {
-      AddRow(f.b0, f.b1, z, ax0, z, -ax0, vel, so.cfm, -fmax, fmax, -1);
+      AddRow(f.b0, f.b1, z, ax0, z, -ax0, vel, so.cfm, -fmax, fmax, -1, (j + 1) * 4);
       return;
     }
     if (powered) {
@@ -971,7 +985,7 @@ struct SimulationData::Impl {
       if (i0 >= 0) solver_bodies[i0].torque -= fm * ax0;
     }
     AddRow(f.b0, f.b1, z, ax0, z, -ax0, -(so.erp / h) * err, so.cfm, limit == 1 ? 0.0 : -kInf,
-           limit == 1 ? kInf : 0.0, -1);
+           limit == 1 ? kInf : 0.0, -1, (j + 1) * 4 + limit);
   }
 
   void AddContactRows(const PendingContact& pc) {
@@ -984,13 +998,16 @@ struct SimulationData::Impl {
     const double depth = std::max(pc.geom.depth - so.surface_layer, 0.0);
     const double c = std::min(pc.erp / h * depth, so.max_correcting_vel);
     const int normal = static_cast<int>(rows.size());
-    AddRow(pc.b0, pc.b1, n, r0.cross(n), -n, n.cross(r1), c, pc.cfm, 0.0, kInf, -1);
+    // the contact's name from step to step: its geoms and its place among their contacts.
+    const std::uint64_t key = ContactKey(pc.geom.g1, pc.geom.g2, pc.index);
+    AddRow(pc.b0, pc.b1, n, r0.cross(n), -n, n.cross(r1), c, pc.cfm, 0.0, kInf, -1, key);
     if (pc.mu <= 0.0) return;
     Eigen::Vector3d t1, t2;
     PlaneSpace(n, &t1, &t2);
-    for (const Eigen::Vector3d& t : {t1, t2}) {
-      AddRow(pc.b0, pc.b1, t, r0.cross(t), -t, t.cross(r1), 0.0, so.cfm, -pc.mu, pc.mu, normal);
-    }
+    AddRow(pc.b0, pc.b1, t1, r0.cross(t1), -t1, t1.cross(r1), 0.0, so.cfm, -pc.mu, pc.mu, normal,
+           key + 1);
+    AddRow(pc.b0, pc.b1, t2, r0.cross(t2), -t2, t2.cross(r1), 0.0, so.cfm, -pc.mu, pc.mu, normal,
+           key + 2);
   }
 
   void StepStructured() {

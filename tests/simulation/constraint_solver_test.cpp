@@ -202,6 +202,34 @@ TEST(SolveConstraints, EveryRowMeetsItsConditionOnRandomGraspLikeProblems) {
   EXPECT_GT(friction_at_bound, 10);
 }
 
+// With keys, the solver first tries the states the same rows ended at in the last solve: the
+// same problem solved again is answered at that guess, with the same forces as without one.
+TEST(SolveConstraints, AKeyedRowsGuessGivesTheSameAnswer) {
+  std::mt19937 rng(11);
+  int guessed = 0;
+  for (int trial = 0; trial < 50; ++trial) {
+    Problem p = RandomProblem(rng, 1 + trial % 5, 4, trial % 9);
+    for (size_t i = 0; i < p.rows.size(); ++i) p.rows[i].key = 100 + i;
+    const std::vector<SolverBody> before = p.bodies;
+    ConstraintSolverData cold, warm;
+    std::vector<SolverBody> a = before, b = before;
+    SolveConstraints(kH, p.rows, &a, &cold);
+    SolveConstraints(kH, p.rows, &b, &warm);  // learns the states
+    const long before_guessed = warm.guessed;
+    b = before;
+    SolveConstraints(kH, p.rows, &b, &warm);  // starts from them
+    guessed += warm.guessed > before_guessed;
+    for (size_t i = 0; i < p.rows.size(); ++i) {
+      EXPECT_NEAR(warm.lambda[i], cold.lambda[i], 1e-6 * (1.0 + std::fabs(cold.lambda[i])))
+          << "trial " << trial << " row " << i;
+    }
+    for (size_t k = 0; k < a.size(); ++k) {
+      EXPECT_LT((a[k].v - b[k].v).norm(), 1e-9 * (1.0 + a[k].v.norm()));
+    }
+  }
+  EXPECT_EQ(guessed, 50);
+}
+
 // A body resting on the ground through one contact: the normal force carries its weight and
 // the body does not move (the contact's correction aside).
 TEST(SolveConstraints, AContactCarriesTheWeightOfABodyAtRest) {
