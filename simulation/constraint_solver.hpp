@@ -14,9 +14,12 @@
 ///
 /// ODE factors the whole matrix of an island, whose rows are mostly the hinges' equality rows
 /// (five per hinge, unbounded). Here the equality rows of each chain of bodies that they join
-/// (a finger's four links) are eliminated first, block by block (a Schur complement), and the
-/// pivoting solve runs on the bounded rows only (motors, stops, contacts): the same problem
-/// and, in exact arithmetic, the same pivots and the same forces.
+/// (a finger's four links) are eliminated first, block by block (a Schur complement), and only
+/// the bounded rows (motors, stops, contacts) are left to the box solve. That solve first tries
+/// the states its rows ended at in the last call (ConstraintRow::key names a row from call to
+/// call): the free rows' forces with the others at their bounds, kept when every row meets its
+/// condition; otherwise it pivots as ODE's Dantzig solver does. Every row's cfm > 0 makes the
+/// matrix positive definite, so the answer is unique and ODE's, to roundoff, however found.
 
 #include <array>
 #include <cstdint>
