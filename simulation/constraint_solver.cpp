@@ -268,6 +268,7 @@ class BoxSolve {
       }
     }
     d_.pivots += pivots;
+    if (pivots > limit) ++d_.unsolved;
     if (!friction_bounds_set) {
       for (int k = 0; k < n_; ++k) d_.guess0[k] = ToGuess(d_.state[k]);
     }
@@ -475,7 +476,7 @@ void SolveConstraints(double h, const std::vector<ConstraintRow>& rows,
           d->cols.push_back(a);
         }
       }
-      const int* cols = &d->cols[d->cols_start.back()];
+      const int* cols = d->cols.data() + d->cols_start.back();
       const int nc = static_cast<int>(d->cols.size()) - d->cols_start.back();
       // A_ee (lower), b_e; then its factor.
       d->Aee.assign(static_cast<size_t>(ne) * ne, 0.0);

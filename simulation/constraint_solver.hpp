@@ -48,10 +48,11 @@ struct ConstraintRow {
   std::array<Eigen::Vector3d, 2> lin{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   std::array<Eigen::Vector3d, 2> ang{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   double c = 0.0;    ///< desired J v after the step (velocity units)
-  double cfm = 0.0;  ///< constraint force mixing
+  double cfm = 0.0;  ///< constraint force mixing, > 0 (the matrix must be positive definite)
+  /// Bounds on the row's force, lo <= 0 <= hi (a friction row's are -mu and mu).
   double lo = -std::numeric_limits<double>::infinity();
   double hi = std::numeric_limits<double>::infinity();
-  int findex = -1;  ///< friction row: index of its normal row, else -1
+  int findex = -1;  ///< friction row: index of its normal row (a bounded row), else -1
   /// Names the row from step to step (0: none): the solver first tries the bounds that the
   /// rows of the same keys ended at in the last solve (the answer does not depend on it).
   std::uint64_t key = 0;
@@ -64,6 +65,7 @@ struct ConstraintSolverData {
   long pivots = 0;             ///< pivots of the bounded solves so far (statistics)
   long guessed = 0;            ///< islands solved at the first guess (statistics)
   long pivoted = 0;            ///< islands that needed the pivoting solve (statistics)
+  long unsolved = 0;  ///< pivoting solves stopped at their pivot limit (never seen; statistics)
 
   /// Where each keyed row ended in the last solve, without the friction rows and with them
   /// (0 free, 1 at its lower bound, 2 at its upper bound).

@@ -1046,7 +1046,7 @@ struct SimulationData::Impl {
     // the contacts' rows are the last ones, one or three per contact.
     size_t row = rows.size();
     for (auto it = pending.rbegin(); it != pending.rend(); ++it) {
-      const int nrows = it->mu > 0.0 ? 3 : 1;
+      const int nrows = it->mu <= 0.0 ? 1 : 3;  // AddContactRows' rule
       row -= static_cast<size_t>(nrows);
       if (it->hand_object < 0) continue;
       Eigen::Vector3d f = Eigen::Vector3d::Zero();

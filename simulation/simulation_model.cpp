@@ -43,7 +43,7 @@ bool PhysicsVariation::IsNominal() const {
 
 bool SimulationOptions::IsValid(std::string* why) const {
   return Check(Positive(erp) && erp <= 1.0, "erp", erp, why) &&
-         Check(NonNegative(cfm) && cfm < 1.0, "cfm", cfm, why) &&
+         Check(Positive(cfm) && cfm < 1.0, "cfm", cfm, why) &&
          Check(Positive(contact_kp), "contact_kp", contact_kp, why) &&
          Check(NonNegative(contact_kd), "contact_kd", contact_kd, why) &&
          Check(NonNegative(surface_layer) && surface_layer < 0.01, "surface_layer", surface_layer,

@@ -20,7 +20,7 @@ namespace graspsynth {
 /// Physics parameters of the world. Defaults are the measured recipe of reference/ode.md.
 struct SimulationOptions {
   double erp = 0.2;                  ///< world error reduction parameter (joints), 1
-  double cfm = 1e-9;                 ///< world constraint force mixing (joints)
+  double cfm = 1e-9;                 ///< world constraint force mixing (joints), > 0
   double contact_kp = 2e5;           ///< contact stiffness, N/m (soft ERP/CFM from kp, kd, h)
   double contact_kd = 500.0;         ///< contact damping, N s/m
   double surface_layer = 0.0005;     ///< allowed contact penetration, m

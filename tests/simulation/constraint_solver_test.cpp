@@ -203,10 +203,12 @@ TEST(SolveConstraints, EveryRowMeetsItsConditionOnRandomGraspLikeProblems) {
 }
 
 // With keys, the solver first tries the states the same rows ended at in the last solve: the
-// same problem solved again is answered at that guess, with the same forces as without one.
+// same problem solved again is answered at that guess, with the same forces as without one;
+// a wrong guess (the keys of another problem's rows) is rejected, with the same forces too.
 TEST(SolveConstraints, AKeyedRowsGuessGivesTheSameAnswer) {
   std::mt19937 rng(11);
   int guessed = 0;
+  ConstraintSolverData stale;  // keeps the keys of every earlier problem
   for (int trial = 0; trial < 50; ++trial) {
     Problem p = RandomProblem(rng, 1 + trial % 5, 4, trial % 9);
     for (size_t i = 0; i < p.rows.size(); ++i) p.rows[i].key = 100 + i;
@@ -219,6 +221,12 @@ TEST(SolveConstraints, AKeyedRowsGuessGivesTheSameAnswer) {
     b = before;
     SolveConstraints(kH, p.rows, &b, &warm);  // starts from them
     guessed += warm.guessed > before_guessed;
+    std::vector<SolverBody> c = before;
+    SolveConstraints(kH, p.rows, &c, &stale);
+    for (size_t i = 0; i < p.rows.size(); ++i) {
+      EXPECT_NEAR(stale.lambda[i], cold.lambda[i], 1e-6 * (1.0 + std::fabs(cold.lambda[i])))
+          << "trial " << trial << " row " << i << " (stale guess)";
+    }
     for (size_t i = 0; i < p.rows.size(); ++i) {
       EXPECT_NEAR(warm.lambda[i], cold.lambda[i], 1e-6 * (1.0 + std::fabs(cold.lambda[i])))
           << "trial " << trial << " row " << i;
@@ -228,6 +236,7 @@ TEST(SolveConstraints, AKeyedRowsGuessGivesTheSameAnswer) {
     }
   }
   EXPECT_EQ(guessed, 50);
+  EXPECT_GT(stale.pivoted, 0);  // stale guesses were rejected
 }
 
 // A body resting on the ground through one contact: the normal force carries its weight and
