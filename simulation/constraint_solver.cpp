@@ -82,8 +82,8 @@ void SolveLowerTransposed(const double* L, int n, int ld, double* x) {
 // it keep theirs. The friction rows come last; when the first is reached, every friction
 // row's bounds are fixed from its normal row's force at that point, as in ODE. The Cholesky
 // factor of S over the free set C (rows strictly inside their bounds) grows row by row and
-// is rebuilt when a row leaves C. S is symmetric positive definite (the rows' cfm), so the
-// answer is unique: the one ODE's solver finds, to roundoff.
+// loses a row by Givens rotations when a row leaves C. S is symmetric positive definite (the rows'
+// cfm), so the answer is unique: the one ODE's solver finds, to roundoff.
 class BoxSolve {
  public:
   BoxSolve(int n, ConstraintSolverData* d) : n_(n), d_(*d) { d_.mu = d_.hi; }
@@ -346,19 +346,29 @@ class BoxSolve {
   ConstraintSolverData& d_;
 };
 
-}  // namespace
+// c / h - J (v / h + M^-1 f) for one row, with tmp = v / h + M^-1 f per body.
+double RightHandSide(const ConstraintRow& row, double inv_h, const std::vector<Vector6d>& tmp) {
+  double jt = 0.0;
+  for (int k = 0; k < 2; ++k) {
+    const int body = row.body[k];
+    if (body < 0) continue;
+    jt += row.lin[k].dot(tmp[body].head<3>()) + row.ang[k].dot(tmp[body].tail<3>());
+  }
+  return row.c * inv_h - jt;
+}
 
-void SolveConstraints(double h, const std::vector<ConstraintRow>& rows,
-                      std::vector<SolverBody>* bodies, ConstraintSolverData* d) {
-  const int nb = static_cast<int>(bodies->size());
+// the set root of a row's first moving body, -1 for a row on no moving body.
+int RootOf(const ConstraintRow& r, std::vector<int>& set) {
+  return r.body[0] < 0 && r.body[1] < 0 ? -1 : Find(set, r.body[r.body[0] >= 0 ? 0 : 1]);
+}
+
+// M^-1 J^T of each row on each of its bodies; the islands (bodies joined by any row) and the
+// blocks (bodies joined by equality rows); v / h + M^-1 f per body; the rows grouped by
+// island, each island's in their given order.
+void PrepareRows(const std::vector<ConstraintRow>& rows, const std::vector<SolverBody>& B,
+                 double inv_h, ConstraintSolverData* d) {
+  const int nb = static_cast<int>(B.size());
   const int nr = static_cast<int>(rows.size());
-  std::vector<SolverBody>& B = *bodies;
-  const double inv_h = 1.0 / h;
-  d->lambda.assign(nr, 0.0);
-  d->next_frictionless.clear();
-  d->next_final.clear();
-
-  // M^-1 J^T of each row on each of its bodies.
   d->im0.resize(nr);
   d->im1.resize(nr);
   for (int r = 0; r < nr; ++r) {
@@ -372,8 +382,6 @@ void SolveConstraints(double h, const std::vector<ConstraintRow>& rows,
       im.tail<3>() = body.inv_inertia_W * row.ang[k];
     }
   }
-
-  // islands: bodies joined by any row; blocks: bodies joined by equality rows.
   d->island.resize(nb);
   d->block.resize(nb);
   for (int i = 0; i < nb; ++i) d->island[i] = d->block[i] = i;
@@ -381,205 +389,215 @@ void SolveConstraints(double h, const std::vector<ConstraintRow>& rows,
     Union(d->island, r.body[0], r.body[1]);
     if (IsEquality(r)) Union(d->block, r.body[0], r.body[1]);
   }
-  auto root_of = [](const ConstraintRow& r, std::vector<int>& set) {
-    return r.body[0] < 0 && r.body[1] < 0 ? -1 : Find(set, r.body[r.body[0] >= 0 ? 0 : 1]);
-  };
-
-  // v / h + M^-1 f per body, for the right-hand sides.
   d->tmp.resize(nb);
   for (int i = 0; i < nb; ++i) {
     d->tmp[i].head<3>() = B[i].v * inv_h + B[i].inv_mass * B[i].force;
     d->tmp[i].tail<3>() = B[i].w * inv_h + B[i].inv_inertia_W * B[i].torque;
   }
-  auto rhs = [&](int r) {
-    const ConstraintRow& row = rows[r];
-    double jt = 0.0;
-    for (int k = 0; k < 2; ++k) {
-      const int body = row.body[k];
-      if (body < 0) continue;
-      jt += row.lin[k].dot(d->tmp[body].head<3>()) + row.ang[k].dot(d->tmp[body].tail<3>());
-    }
-    return row.c * inv_h - jt;
-  };
-
-  // the rows grouped by island, each island's in their given order.
   d->row_root.resize(nr);
   d->order.clear();
   for (int r = 0; r < nr; ++r) {
-    d->row_root[r] = root_of(rows[r], d->island);
+    d->row_root[r] = RootOf(rows[r], d->island);
     if (d->row_root[r] >= 0) d->order.push_back(r);
   }
   std::stable_sort(d->order.begin(), d->order.end(),
                    [&](int a, int b) { return d->row_root[a] < d->row_root[b]; });
+}
 
+// An island's rows [begin, end) of d->order: its bounded rows (friction rows last, ODE's
+// order) and its equality rows by block; S = A_uu and b_u of the bounded rows.
+void FormBounded(const std::vector<ConstraintRow>& rows, size_t begin, size_t end, double inv_h,
+                 ConstraintSolverData* d) {
+  d->u_rows.clear();
+  d->e_rows.clear();
+  for (size_t k = begin; k < end; ++k) {
+    const int r = d->order[k];
+    if (IsEquality(rows[r])) {
+      d->e_rows.push_back(r);
+    } else if (rows[r].findex < 0) {
+      d->u_rows.push_back(r);
+    }
+  }
+  for (size_t k = begin; k < end; ++k) {
+    if (rows[d->order[k]].findex >= 0) d->u_rows.push_back(d->order[k]);
+  }
+  std::stable_sort(d->e_rows.begin(), d->e_rows.end(), [&](int a, int b) {
+    return RootOf(rows[a], d->block) < RootOf(rows[b], d->block);
+  });
+  const int nu = static_cast<int>(d->u_rows.size());
+  for (int a = 0; a < nu; ++a) d->local[d->u_rows[a]] = a;
+  d->max_bounded_rows = std::max(d->max_bounded_rows, nu);
+  d->S.assign(static_cast<size_t>(nu) * nu, 0.0);
+  d->b.resize(nu);
+  for (int a = 0; a < nu; ++a) {
+    const int r = d->u_rows[a];
+    d->b[a] = RightHandSide(rows[r], inv_h, d->tmp);
+    double* sa = &d->S[static_cast<size_t>(a) * nu];
+    for (int c = 0; c <= a; ++c) {
+      const int s = d->u_rows[c];
+      sa[c] = Coupling(rows[r], rows[s], d->im0[s], d->im1[s]);
+    }
+    sa[a] += rows[r].cfm * inv_h;
+  }
+}
+
+// Eliminates the equality block of d->e_rows[e0, e0 + ne) (block root `root`) from the bounded
+// rows: S -= A_ue A_ee^-1 A_eu, b_u -= A_ue A_ee^-1 b_e (lower triangle of S). Keeps
+// y_e = A_ee^-1 b_e in d->ye[e0...] and G = A_ee^-1 A_eu in d->G for RecoverEquality.
+void EliminateBlock(const std::vector<ConstraintRow>& rows, int e0, int ne, int root, double inv_h,
+                    ConstraintSolverData* d) {
+  const int nu = static_cast<int>(d->u_rows.size());
+  const int* er = &d->e_rows[e0];
+  ConstraintSolverData::Block blk;
+  blk.e0 = e0;
+  blk.ne = ne;
+  blk.c0 = static_cast<int>(d->cols.size());
+  blk.g0 = d->G.size();
+  for (int a = 0; a < nu; ++a) {
+    const ConstraintRow& r = rows[d->u_rows[a]];
+    if ((r.body[0] >= 0 && Find(d->block, r.body[0]) == root) ||
+        (r.body[1] >= 0 && Find(d->block, r.body[1]) == root)) {
+      d->cols.push_back(a);
+    }
+  }
+  const int* cols = d->cols.data() + blk.c0;
+  const int nc = blk.nc = static_cast<int>(d->cols.size()) - blk.c0;
+  d->blocks.push_back(blk);
+  // A_ee (lower), b_e; then its factor.
+  d->Aee.assign(static_cast<size_t>(ne) * ne, 0.0);
+  d->ye.resize(static_cast<size_t>(e0 + ne));
+  double* ye = &d->ye[e0];
+  for (int a = 0; a < ne; ++a) {
+    ye[a] = RightHandSide(rows[er[a]], inv_h, d->tmp);
+    double* aa = &d->Aee[static_cast<size_t>(a) * ne];
+    for (int c = 0; c <= a; ++c) {
+      aa[c] = Coupling(rows[er[a]], rows[er[c]], d->im0[er[c]], d->im1[er[c]]);
+    }
+    aa[a] += rows[er[a]].cfm * inv_h;
+  }
+  Cholesky(d->Aee.data(), ne, ne);
+  // G = A_ee^-1 A_eu, stored column by column (nc columns of ne), and A_eu kept in scratch for
+  // the update.
+  d->G.resize(blk.g0 + static_cast<size_t>(nc) * ne);
+  d->scratch.resize(static_cast<size_t>(nc) * ne);
+  for (int c = 0; c < nc; ++c) {
+    const int s = d->u_rows[cols[c]];
+    double* g = &d->G[blk.g0 + static_cast<size_t>(c) * ne];
+    double* aeu = &d->scratch[static_cast<size_t>(c) * ne];
+    for (int a = 0; a < ne; ++a) {
+      aeu[a] = g[a] = Coupling(rows[er[a]], rows[s], d->im0[s], d->im1[s]);
+    }
+    SolveLower(d->Aee.data(), ne, ne, g);
+    SolveLowerTransposed(d->Aee.data(), ne, ne, g);
+  }
+  SolveLower(d->Aee.data(), ne, ne, ye);
+  SolveLowerTransposed(d->Aee.data(), ne, ne, ye);
+  for (int a = 0; a < nc; ++a) {
+    const double* aeu = &d->scratch[static_cast<size_t>(a) * ne];
+    double bu = 0.0;
+    for (int k = 0; k < ne; ++k) bu += aeu[k] * ye[k];
+    d->b[cols[a]] -= bu;
+    double* sa = &d->S[static_cast<size_t>(cols[a]) * nu];
+    for (int c = 0; c <= a; ++c) {
+      // cols ascend, so (cols[a], cols[c]) lies in the lower triangle.
+      const double* g = &d->G[blk.g0 + static_cast<size_t>(c) * ne];
+      double u = 0.0;
+      for (int k = 0; k < ne; ++k) u += aeu[k] * g[k];
+      sa[cols[c]] -= u;
+    }
+  }
+}
+
+// The bounded rows' forces: bounds, the keyed rows' guesses from the last solve, the box
+// solve, and the states kept for the next solve.
+void SolveBounded(const std::vector<ConstraintRow>& rows, ConstraintSolverData* d) {
+  const int nu = static_cast<int>(d->u_rows.size());
+  d->lo.resize(nu);
+  d->hi.resize(nu);
+  d->findex.assign(nu, -1);
+  d->guess0.assign(nu, 0);
+  d->guess1.assign(nu, 0);
+  for (int a = 0; a < nu; ++a) {
+    const ConstraintRow& r = rows[d->u_rows[a]];
+    d->lo[a] = r.lo;
+    d->hi[a] = r.hi;
+    if (r.findex >= 0) d->findex[a] = d->local[r.findex];
+    if (r.key == 0) continue;
+    if (auto it = d->last_frictionless.find(r.key); it != d->last_frictionless.end()) {
+      d->guess0[a] = it->second;
+    }
+    if (auto it = d->last_final.find(r.key); it != d->last_final.end()) {
+      d->guess1[a] = it->second;
+    }
+  }
+  BoxSolve(nu, d).Solve();
+  for (int a = 0; a < nu; ++a) {
+    const ConstraintRow& r = rows[d->u_rows[a]];
+    d->lambda[d->u_rows[a]] = d->x[a];
+    if (r.key == 0) continue;
+    d->next_frictionless[r.key] = d->guess0[a];
+    d->next_final[r.key] = d->guess1[a];
+  }
+}
+
+// The equality rows' forces: A_ee^-1 (b_e - A_eu x_u) = y_e - G x_u, block by block.
+void RecoverEquality(ConstraintSolverData* d) {
+  for (const ConstraintSolverData::Block& blk : d->blocks) {
+    for (int a = 0; a < blk.ne; ++a) {
+      double le = d->ye[blk.e0 + a];
+      for (int c = 0; c < blk.nc; ++c) {
+        le -= d->G[blk.g0 + static_cast<size_t>(c) * blk.ne + a] * d->x[d->cols[blk.c0 + c]];
+      }
+      d->lambda[d->e_rows[blk.e0 + a]] = le;
+    }
+  }
+}
+
+// One island, the rows [begin, end) of d->order.
+void SolveIsland(const std::vector<ConstraintRow>& rows, size_t begin, size_t end, double inv_h,
+                 ConstraintSolverData* d) {
+  FormBounded(rows, begin, end, inv_h, d);
+  d->blocks.clear();
+  d->cols.clear();
+  d->G.clear();
+  d->ye.clear();
+  const int ne_all = static_cast<int>(d->e_rows.size());
+  for (int e0 = 0; e0 < ne_all;) {
+    const int root = RootOf(rows[d->e_rows[e0]], d->block);
+    int e1 = e0;
+    while (e1 < ne_all && RootOf(rows[d->e_rows[e1]], d->block) == root) ++e1;
+    EliminateBlock(rows, e0, e1 - e0, root, inv_h, d);
+    e0 = e1;
+  }
+  const int nu = static_cast<int>(d->u_rows.size());
+  for (int a = 0; a < nu; ++a) {
+    for (int c = 0; c < a; ++c) d->S[static_cast<size_t>(c) * nu + a] = d->S[a * nu + c];
+  }
+  SolveBounded(rows, d);
+  RecoverEquality(d);
+}
+
+}  // namespace
+
+void SolveConstraints(double h, const std::vector<ConstraintRow>& rows,
+                      std::vector<SolverBody>* bodies, ConstraintSolverData* d) {
+  const int nb = static_cast<int>(bodies->size());
+  const int nr = static_cast<int>(rows.size());
+  std::vector<SolverBody>& B = *bodies;
+  const double inv_h = 1.0 / h;
+  d->lambda.assign(nr, 0.0);
+  d->next_frictionless.clear();
+  d->next_final.clear();
+  PrepareRows(rows, B, inv_h, d);
   d->local.assign(nr, -1);
   for (size_t begin = 0; begin < d->order.size();) {
     size_t end = begin;
     while (end < d->order.size() && d->row_root[d->order[end]] == d->row_root[d->order[begin]]) {
       ++end;
     }
-    // the bounded rows (friction rows last, ODE's order) and the equality rows by block.
-    d->u_rows.clear();
-    d->e_rows.clear();
-    for (size_t k = begin; k < end; ++k) {
-      const int r = d->order[k];
-      if (IsEquality(rows[r])) {
-        d->e_rows.push_back(r);
-      } else if (rows[r].findex < 0) {
-        d->u_rows.push_back(r);
-      }
-    }
-    for (size_t k = begin; k < end; ++k) {
-      if (rows[d->order[k]].findex >= 0) d->u_rows.push_back(d->order[k]);
-    }
+    SolveIsland(rows, begin, end, inv_h, d);
     begin = end;
-    std::stable_sort(d->e_rows.begin(), d->e_rows.end(), [&](int a, int b) {
-      return root_of(rows[a], d->block) < root_of(rows[b], d->block);
-    });
-    const int nu = static_cast<int>(d->u_rows.size());
-    for (int a = 0; a < nu; ++a) d->local[d->u_rows[a]] = a;
-    d->max_bounded_rows = std::max(d->max_bounded_rows, nu);
-
-    // S = A_uu, b_u.
-    d->S.assign(static_cast<size_t>(nu) * nu, 0.0);
-    d->b.resize(nu);
-    for (int a = 0; a < nu; ++a) {
-      const int r = d->u_rows[a];
-      d->b[a] = rhs(r);
-      double* sa = &d->S[static_cast<size_t>(a) * nu];
-      for (int c = 0; c <= a; ++c) {
-        const int s = d->u_rows[c];
-        sa[c] = Coupling(rows[r], rows[s], d->im0[s], d->im1[s]);
-      }
-      sa[a] += rows[r].cfm * inv_h;
-    }
-
-    // eliminate each equality block E: S -= A_ue A_ee^-1 A_eu, b_u -= A_ue A_ee^-1 b_e.
-    d->e_start.clear();
-    d->cols.clear();
-    d->cols_start.clear();
-    d->G.clear();
-    d->ye.clear();
-    const int ne_all = static_cast<int>(d->e_rows.size());
-    for (int e0 = 0; e0 < ne_all;) {
-      const int root = root_of(rows[d->e_rows[e0]], d->block);
-      int e1 = e0;
-      while (e1 < ne_all && root_of(rows[d->e_rows[e1]], d->block) == root) ++e1;
-      const int ne = e1 - e0;
-      const int* er = &d->e_rows[e0];
-      d->e_start.push_back(e0);
-      d->cols_start.push_back(static_cast<int>(d->cols.size()));
-      for (int a = 0; a < nu; ++a) {
-        const ConstraintRow& r = rows[d->u_rows[a]];
-        if ((r.body[0] >= 0 && Find(d->block, r.body[0]) == root) ||
-            (r.body[1] >= 0 && Find(d->block, r.body[1]) == root)) {
-          d->cols.push_back(a);
-        }
-      }
-      const int* cols = d->cols.data() + d->cols_start.back();
-      const int nc = static_cast<int>(d->cols.size()) - d->cols_start.back();
-      // A_ee (lower), b_e; then its factor.
-      d->Aee.assign(static_cast<size_t>(ne) * ne, 0.0);
-      const size_t y0 = d->ye.size();
-      d->ye.resize(y0 + ne);
-      double* ye = &d->ye[y0];
-      for (int a = 0; a < ne; ++a) {
-        ye[a] = rhs(er[a]);
-        double* aa = &d->Aee[static_cast<size_t>(a) * ne];
-        for (int c = 0; c <= a; ++c) {
-          aa[c] = Coupling(rows[er[a]], rows[er[c]], d->im0[er[c]], d->im1[er[c]]);
-        }
-        aa[a] += rows[er[a]].cfm * inv_h;
-      }
-      Cholesky(d->Aee.data(), ne, ne);
-      // G = A_ee^-1 A_eu, stored column by column (nc columns of ne), and A_eu kept in
-      // scratch for the update.
-      const size_t g0 = d->G.size();
-      d->G.resize(g0 + static_cast<size_t>(nc) * ne);
-      d->scratch.resize(static_cast<size_t>(nc) * ne);
-      for (int c = 0; c < nc; ++c) {
-        const int s = d->u_rows[cols[c]];
-        double* g = &d->G[g0 + static_cast<size_t>(c) * ne];
-        double* aeu = &d->scratch[static_cast<size_t>(c) * ne];
-        for (int a = 0; a < ne; ++a) {
-          aeu[a] = g[a] = Coupling(rows[er[a]], rows[s], d->im0[s], d->im1[s]);
-        }
-        SolveLower(d->Aee.data(), ne, ne, g);
-        SolveLowerTransposed(d->Aee.data(), ne, ne, g);
-      }
-      SolveLower(d->Aee.data(), ne, ne, ye);
-      SolveLowerTransposed(d->Aee.data(), ne, ne, ye);
-      for (int a = 0; a < nc; ++a) {
-        const double* aeu = &d->scratch[static_cast<size_t>(a) * ne];
-        double bu = 0.0;
-        for (int k = 0; k < ne; ++k) bu += aeu[k] * ye[k];
-        d->b[cols[a]] -= bu;
-        double* sa = &d->S[static_cast<size_t>(cols[a]) * nu];
-        for (int c = 0; c <= a; ++c) {
-          // cols ascend, so (cols[a], cols[c]) lies in the lower triangle.
-          const double* g = &d->G[g0 + static_cast<size_t>(c) * ne];
-          double u = 0.0;
-          for (int k = 0; k < ne; ++k) u += aeu[k] * g[k];
-          sa[cols[c]] -= u;
-        }
-      }
-      e0 = e1;
-    }
-    for (int a = 0; a < nu; ++a) {
-      for (int c = 0; c < a; ++c) d->S[static_cast<size_t>(c) * nu + a] = d->S[a * nu + c];
-    }
-
-    // the bounded rows' forces.
-    d->lo.resize(nu);
-    d->hi.resize(nu);
-    d->findex.assign(nu, -1);
-    for (int a = 0; a < nu; ++a) {
-      const ConstraintRow& r = rows[d->u_rows[a]];
-      d->lo[a] = r.lo;
-      d->hi[a] = r.hi;
-      if (r.findex >= 0) d->findex[a] = d->local[r.findex];
-    }
-    d->guess0.assign(nu, 0);
-    d->guess1.assign(nu, 0);
-    for (int a = 0; a < nu; ++a) {
-      const std::uint64_t key = rows[d->u_rows[a]].key;
-      if (key == 0) continue;
-      if (auto it = d->last_frictionless.find(key); it != d->last_frictionless.end()) {
-        d->guess0[a] = it->second;
-      }
-      if (auto it = d->last_final.find(key); it != d->last_final.end()) {
-        d->guess1[a] = it->second;
-      }
-    }
-    BoxSolve(nu, d).Solve();
-    for (int a = 0; a < nu; ++a) {
-      const std::uint64_t key = rows[d->u_rows[a]].key;
-      if (key == 0) continue;
-      d->next_frictionless[key] = d->guess0[a];
-      d->next_final[key] = d->guess1[a];
-    }
-    for (int a = 0; a < nu; ++a) d->lambda[d->u_rows[a]] = d->x[a];
-
-    // the equality rows' forces: A_ee^-1 (b_e - A_eu x_u) = y_e - G x_u.
-    size_t g = 0;
-    for (size_t k = 0; k < d->e_start.size(); ++k) {
-      const int e0 = d->e_start[k];
-      const int e1 = k + 1 < d->e_start.size() ? d->e_start[k + 1] : ne_all;
-      const int ne = e1 - e0;
-      const int c0 = d->cols_start[k];
-      const int c1 =
-          k + 1 < d->cols_start.size() ? d->cols_start[k + 1] : static_cast<int>(d->cols.size());
-      for (int a = 0; a < ne; ++a) {
-        double le = d->ye[e0 + a];
-        for (int c = c0; c < c1; ++c) {
-          le -= d->G[g + static_cast<size_t>(c - c0) * ne + a] * d->x[d->cols[c]];
-        }
-        d->lambda[d->e_rows[e0 + a]] = le;
-      }
-      g += static_cast<size_t>(c1 - c0) * ne;
-    }
   }
-
   std::swap(d->last_frictionless, d->next_frictionless);
   std::swap(d->last_final, d->next_final);
 

@@ -73,12 +73,17 @@ struct ConstraintSolverData {
   std::unordered_map<std::uint64_t, std::uint8_t> next_frictionless, next_final;
 
   // buffers (the solver's own)
-  std::vector<int> island, block, row_root, order, local, e_start, cols, cols_start, C, state;
+  struct Block {         // an eliminated equality block of the island being solved
+    int e0 = 0, ne = 0;  // its rows: e_rows[e0, e0 + ne)
+    int c0 = 0, nc = 0;  // the bounded rows it touches: cols[c0, c0 + nc)
+    size_t g0 = 0;       // its G = A_ee^-1 A_eu from G[g0], nc columns of ne
+  };
+  std::vector<Block> blocks;
+  std::vector<int> island, block, row_root, order, local, cols, C, state;
   std::vector<Eigen::Matrix<double, 6, 1>> im0, im1, tmp, f;
-  std::vector<double> S, b, x, w, dx, dw, L, y, lo, hi, mu, Aee, be, G, ye, scratch;
+  std::vector<double> S, b, x, w, dx, dw, L, y, lo, hi, mu, Aee, G, ye, scratch;
   std::vector<int> findex, u_rows, e_rows;
   std::vector<std::uint8_t> guess0, guess1;
-  std::vector<std::uint64_t> keys;
 };
 
 /// Solves the rows' forces for one step of h seconds and adds their impulse and the external
