@@ -100,6 +100,27 @@ void ToOde(const Eigen::Matrix3d& R, dMatrix3 out) {
   }
 }
 
+// An ODE vector (3 values) or matrix (3x4, row-major) as Eigen's.
+Eigen::Vector3d FromOde(const dReal* v) { return Eigen::Vector3d(v[0], v[1], v[2]); }
+
+Eigen::Matrix3d FromOdeMatrix(const dReal* R) {
+  Eigen::Matrix3d m;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) m(r, c) = R[4 * r + c];
+  }
+  return m;
+}
+
+// Two unit vectors perpendicular to n and to each other, as ODE chooses them for a hinge's
+// axis rows and a contact's friction directions (dPlaneSpace).
+void PlaneSpace(const Eigen::Vector3d& n, Eigen::Vector3d* p, Eigen::Vector3d* q) {
+  const dVector3 nn = {n.x(), n.y(), n.z(), 0.0};
+  dVector3 pp, qq;
+  dPlaneSpace(nn, pp, qq);
+  *p = FromOde(pp);
+  *q = FromOde(qq);
+}
+
 Eigen::Isometry3d BodyPose(dBodyID body) {
   const dReal* p = dBodyGetPosition(body);
   const dReal* q = dBodyGetQuaternion(body);
@@ -842,13 +863,13 @@ struct SimulationData::Impl {
     dJointGetHingeAnchor2(j, a2);
     dJointGetHingeAxis(j, axis);
     dBodyGetPosRelPoint(b0, a[0], a[1], a[2], out);
-    f.anchor0 = Eigen::Vector3d(out[0], out[1], out[2]);
+    f.anchor0 = FromOde(out);
     dBodyGetPosRelPoint(b1, a2[0], a2[1], a2[2], out);
-    f.anchor1 = Eigen::Vector3d(out[0], out[1], out[2]);
+    f.anchor1 = FromOde(out);
     dBodyVectorFromWorld(b0, axis[0], axis[1], axis[2], out);
-    f.axis0 = Eigen::Vector3d(out[0], out[1], out[2]);
+    f.axis0 = FromOde(out);
     dBodyVectorFromWorld(b1, axis[0], axis[1], axis[2], out);
-    f.axis1 = Eigen::Vector3d(out[0], out[1], out[2]);
+    f.axis1 = FromOde(out);
     return f;
   }
 
@@ -865,29 +886,6 @@ struct SimulationData::Impl {
   std::vector<SolverBody> solver_bodies;
   std::vector<ConstraintRow> rows;
   ConstraintSolverData solver;
-
-  static Eigen::Vector3d V3(const dReal* v) { return Eigen::Vector3d(v[0], v[1], v[2]); }
-  static Eigen::Matrix3d R3(const dReal* R) {
-    Eigen::Matrix3d m;
-    for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c < 3; ++c) m(r, c) = R[4 * r + c];
-    }
-    return m;
-  }
-  // ODE's dPlaneSpace: two unit vectors perpendicular to n and to each other.
-  static void PlaneSpace(const Eigen::Vector3d& n, Eigen::Vector3d* p, Eigen::Vector3d* q) {
-    if (std::fabs(n.z()) > M_SQRT1_2) {
-      const double a = n.y() * n.y() + n.z() * n.z();
-      const double k = 1.0 / std::sqrt(a);
-      *p = Eigen::Vector3d(0.0, -n.z() * k, n.y() * k);
-      *q = Eigen::Vector3d(a * k, -n.x() * p->z(), n.x() * p->y());
-    } else {
-      const double a = n.x() * n.x() + n.y() * n.y();
-      const double k = 1.0 / std::sqrt(a);
-      *p = Eigen::Vector3d(-n.y() * k, n.x() * k, 0.0);
-      *q = Eigen::Vector3d(-n.z() * p->y(), n.z() * p->x(), a * k);
-    }
-  }
 
   // a contact row's key for SolveConstraints (its first guess): the two geoms' ids and the
   // contact's place among theirs, the low two bits left for the row's kind (normal, first and
@@ -922,7 +920,8 @@ struct SimulationData::Impl {
     for (int k = 0; k < 2; ++k) {
       const dBodyID b = k == 0 ? b0 : b1;
       if (b && r.body[k] < 0) {
-        r.c -= r.lin[k].dot(V3(dBodyGetLinearVel(b))) + r.ang[k].dot(V3(dBodyGetAngularVel(b)));
+        r.c -= r.lin[k].dot(FromOde(dBodyGetLinearVel(b))) +
+               r.ang[k].dot(FromOde(dBodyGetAngularVel(b)));
         r.lin[k].setZero();
         r.ang[k].setZero();
       }
@@ -938,8 +937,10 @@ struct SimulationData::Impl {
     const SimulationOptions& so = model->options();
     const HingeFrame& f = hinges[j];
     const double k = so.erp / h;
-    const Eigen::Vector3d p0 = V3(dBodyGetPosition(f.b0)), p1 = V3(dBodyGetPosition(f.b1));
-    const Eigen::Matrix3d R0 = R3(dBodyGetRotation(f.b0)), R1 = R3(dBodyGetRotation(f.b1));
+    const Eigen::Vector3d p0 = FromOde(dBodyGetPosition(f.b0)),
+                          p1 = FromOde(dBodyGetPosition(f.b1));
+    const Eigen::Matrix3d R0 = FromOdeMatrix(dBodyGetRotation(f.b0)),
+                          R1 = FromOdeMatrix(dBodyGetRotation(f.b1));
     const Eigen::Vector3d a0 = R0 * f.anchor0, a1 = R1 * f.anchor1;
     const Eigen::Vector3d z = Eigen::Vector3d::Zero();
     // the anchors coincide (three rows).
@@ -990,11 +991,11 @@ struct SimulationData::Impl {
 
   void AddContactRows(const PendingContact& pc) {
     const SimulationOptions& so = model->options();
-    const Eigen::Vector3d pos = V3(pc.geom.pos);
-    const Eigen::Vector3d n = pc.normal_sign * V3(pc.geom.normal);
-    const Eigen::Vector3d r0 = pos - V3(dBodyGetPosition(pc.b0));
+    const Eigen::Vector3d pos = FromOde(pc.geom.pos);
+    const Eigen::Vector3d n = pc.normal_sign * FromOde(pc.geom.normal);
+    const Eigen::Vector3d r0 = pos - FromOde(dBodyGetPosition(pc.b0));
     const Eigen::Vector3d r1 =
-        pc.b1 ? Eigen::Vector3d(pos - V3(dBodyGetPosition(pc.b1))) : Eigen::Vector3d::Zero();
+        pc.b1 ? Eigen::Vector3d(pos - FromOde(dBodyGetPosition(pc.b1))) : Eigen::Vector3d::Zero();
     const double depth = std::max(pc.geom.depth - so.surface_layer, 0.0);
     const double c = std::min(pc.erp / h * depth, so.max_correcting_vel);
     const int normal = static_cast<int>(rows.size());
@@ -1019,15 +1020,15 @@ struct SimulationData::Impl {
       const dBodyID b = i < kHandJoints ? fingers[i].body : object.body;
       dMass m;
       dBodyGetMass(b, &m);
-      const Eigen::Matrix3d I_B = R3(m.I);
-      const Eigen::Matrix3d R = R3(dBodyGetRotation(b));
+      const Eigen::Matrix3d I_B = FromOdeMatrix(m.I);
+      const Eigen::Matrix3d R = FromOdeMatrix(dBodyGetRotation(b));
       SolverBody& sb = solver_bodies[i];
       sb.inv_mass = 1.0 / m.mass;
       sb.inv_inertia_W = R * I_B.inverse() * R.transpose();
-      sb.v = V3(dBodyGetLinearVel(b));
-      sb.w = V3(dBodyGetAngularVel(b));
-      sb.force = V3(dBodyGetForce(b)) + Eigen::Vector3d(0.0, 0.0, -so.gravity * m.mass);
-      sb.torque = V3(dBodyGetTorque(b));
+      sb.v = FromOde(dBodyGetLinearVel(b));
+      sb.w = FromOde(dBodyGetAngularVel(b));
+      sb.force = FromOde(dBodyGetForce(b)) + Eigen::Vector3d(0.0, 0.0, -so.gravity * m.mass);
+      sb.torque = FromOde(dBodyGetTorque(b));
       const Eigen::Matrix3d I_W = R * I_B * R.transpose();
       const Eigen::Vector3d L = I_W * sb.w;
       Eigen::Matrix3d Lx;
@@ -1326,10 +1327,7 @@ double SimulationData::HandObjectKineticEnergy() const {
     const dReal* w = dBodyGetAngularVel(b);
     const Eigen::Vector3d vw(v[0], v[1], v[2]), ww(w[0], w[1], w[2]);
     const Eigen::Matrix3d R = BodyPose(b).linear();
-    Eigen::Matrix3d I;
-    for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c < 3; ++c) I(r, c) = m.I[4 * r + c];
-    }
+    const Eigen::Matrix3d I = FromOdeMatrix(m.I);
     const Eigen::Vector3d wb = R.transpose() * ww;
     e += 0.5 * m.mass * vw.squaredNorm() + 0.5 * wb.dot(I * wb);
   });
