@@ -40,40 +40,90 @@ double Coupling(const ConstraintRow& r, const ConstraintRow& s, const Vector6d& 
   return a;
 }
 
+// Whether two rows act on a common moving body; A_rs = J_r M^-1 J_s^T is zero when not.
+bool ShareBody(const ConstraintRow& r, const ConstraintRow& s) {
+  for (int k = 0; k < 2; ++k) {
+    if (r.body[k] >= 0 && (r.body[k] == s.body[0] || r.body[k] == s.body[1])) return true;
+  }
+  return false;
+}
+
+// The factors below take the envelope of a symmetric matrix: first[j] is the first column of
+// row j's nonzeros in the lower triangle (nullptr: every row dense). A Cholesky factor keeps
+// its matrix's envelope, and the loops skip only products with the zeros outside it, so they
+// give the dense loops' numbers bit for bit (a finger's hinge rows couple only neighbouring
+// hinges' rows: about a quarter of the dense factor's work).
+int First(const int* first, int j) { return first ? first[j] : 0; }
+
 // In-place Cholesky factor (lower triangle) of the n x n matrix a, row-major with leading
 // dimension ld. A pivot that is not positive (a matrix that is not positive definite, which
 // the cfm of every row rules out) is kept tiny rather than failing.
-void Cholesky(double* a, int n, int ld) {
-  for (int j = 0; j < n; ++j) {
-    double* aj = a + j * ld;
-    for (int k = 0; k < j; ++k) {
-      const double* ak = a + k * ld;
+void Cholesky(double* a, int n, int ld, const int* first) {
+  // column by column: the rows' divisions by one pivot do not wait on each other.
+  for (int k = 0; k < n; ++k) {
+    double* ak = a + k * ld;
+    const int fk = First(first, k);
+    double d = ak[k];
+    for (int l = fk; l < k; ++l) d -= ak[l] * ak[l];
+    ak[k] = std::sqrt(std::max(d, 1e-300));
+    for (int j = k + 1; j < n; ++j) {
+      double* aj = a + j * ld;
+      const int fj = First(first, j);
+      if (fj > k) continue;
       double s = aj[k];
-      for (int l = 0; l < k; ++l) s -= aj[l] * ak[l];
+      for (int l = std::max(fj, fk); l < k; ++l) s -= aj[l] * ak[l];
       aj[k] = s / ak[k];
     }
-    double d = aj[j];
-    for (int l = 0; l < j; ++l) d -= aj[l] * aj[l];
-    aj[j] = std::sqrt(std::max(d, 1e-300));
   }
 }
 
 // x <- L^-1 x and x <- L^-T x for the lower factor L (n x n, leading dimension ld).
-void SolveLower(const double* L, int n, int ld, double* x) {
+void SolveLower(const double* L, int n, int ld, const int* first, double* x) {
   for (int i = 0; i < n; ++i) {
     const double* li = L + i * ld;
     double s = x[i];
-    for (int k = 0; k < i; ++k) s -= li[k] * x[k];
+    for (int k = First(first, i); k < i; ++k) s -= li[k] * x[k];
     x[i] = s / li[i];
   }
 }
 
-void SolveLowerTransposed(const double* L, int n, int ld, double* x) {
+void SolveLowerTransposed(const double* L, int n, int ld, const int* first, double* x) {
   for (int i = n - 1; i >= 0; --i) {
     x[i] /= L[i * ld + i];
     const double xi = x[i];
     const double* li = L + i * ld;
-    for (int k = 0; k < i; ++k) x[k] -= li[k] * xi;
+    for (int k = First(first, i); k < i; ++k) x[k] -= li[k] * xi;
+  }
+}
+
+// The same two solves for the m columns of X (row-major, n x m) side by side, each column's
+// numbers as the one-column solves give them: the columns' divisions overlap.
+void SolveLowerColumns(const double* L, int n, int ld, const int* first, double* X, int m) {
+  for (int i = 0; i < n; ++i) {
+    const double* li = L + i * ld;
+    double* xi = X + static_cast<size_t>(i) * m;
+    for (int k = First(first, i); k < i; ++k) {
+      const double lik = li[k];
+      const double* xk = X + static_cast<size_t>(k) * m;
+      for (int c = 0; c < m; ++c) xi[c] -= lik * xk[c];
+    }
+    const double d = li[i];
+    for (int c = 0; c < m; ++c) xi[c] /= d;
+  }
+}
+
+void SolveLowerTransposedColumns(const double* L, int n, int ld, const int* first, double* X,
+                                 int m) {
+  for (int i = n - 1; i >= 0; --i) {
+    const double* li = L + i * ld;
+    double* xi = X + static_cast<size_t>(i) * m;
+    const double d = li[i];
+    for (int c = 0; c < m; ++c) xi[c] /= d;
+    for (int k = First(first, i); k < i; ++k) {
+      const double lik = li[k];
+      double* xk = X + static_cast<size_t>(k) * m;
+      for (int c = 0; c < m; ++c) xk[c] -= lik * xi[c];
+    }
   }
 }
 
@@ -112,17 +162,23 @@ class BoxSolve {
     const int m = static_cast<int>(F.size());
     double* L = d_.L.data();
     double* y = d_.y.data();
+    d_.first.resize(m);
     for (int a = 0; a < m; ++a) {
       const double* sa = &d_.S[static_cast<size_t>(F[a]) * n_];
       double* la = L + static_cast<size_t>(a) * n_;
-      for (int c = 0; c <= a; ++c) la[c] = sa[F[c]];
+      int fa = a;
+      for (int c = a; c >= 0; --c) {
+        la[c] = sa[F[c]];
+        if (la[c] != 0.0) fa = c;
+      }
+      d_.first[a] = fa;
       double r = d_.b[F[a]];
       for (int j = 0; j < count; ++j) r -= sa[j] * x[j];  // the rows at their bounds
       y[a] = r;
     }
-    Cholesky(L, m, n_);
-    SolveLower(L, m, n_, y);
-    SolveLowerTransposed(L, m, n_, y);
+    Cholesky(L, m, n_, d_.first.data());
+    SolveLower(L, m, n_, d_.first.data(), y);
+    SolveLowerTransposed(L, m, n_, d_.first.data(), y);
     for (int a = 0; a < m; ++a) {
       const int i = F[a];
       if (!(y[a] >= d_.lo[i] && y[a] <= d_.hi[i])) return false;
@@ -287,8 +343,8 @@ class BoxSolve {
     const int m = static_cast<int>(d_.C.size());
     double* y = d_.y.data();
     for (int k = 0; k < m; ++k) y[k] = -d_.S[static_cast<size_t>(d_.C[k]) * n_ + i] * dir;
-    SolveLower(d_.L.data(), m, n_, y);
-    SolveLowerTransposed(d_.L.data(), m, n_, y);
+    SolveLower(d_.L.data(), m, n_, nullptr, y);
+    SolveLowerTransposed(d_.L.data(), m, n_, nullptr, y);
     for (int k = 0; k < m; ++k) d_.dx[d_.C[k]] = y[k];
     d_.dx[i] = dir;
     for (int j = 0; j <= i; ++j) {
@@ -305,7 +361,7 @@ class BoxSolve {
     double* row = &d_.L[static_cast<size_t>(m) * n_];
     const double* sj = &d_.S[static_cast<size_t>(j) * n_];
     for (int k = 0; k < m; ++k) row[k] = sj[d_.C[k]];
-    SolveLower(d_.L.data(), m, n_, row);
+    SolveLower(d_.L.data(), m, n_, nullptr, row);
     double d = sj[j];
     for (int k = 0; k < m; ++k) d -= row[k] * row[k];
     row[m] = std::sqrt(std::max(d, 1e-300));
@@ -443,7 +499,7 @@ void FormBounded(const std::vector<ConstraintRow>& rows, size_t begin, size_t en
 
 // Eliminates the equality block of d->e_rows[e0, e0 + ne) (block root `root`) from the bounded
 // rows: S -= A_ue A_ee^-1 A_eu, b_u -= A_ue A_ee^-1 b_e (lower triangle of S). Keeps
-// y_e = A_ee^-1 b_e in d->ye[e0...] and G = A_ee^-1 A_eu in d->G for RecoverEquality.
+// [G y_e] = A_ee^-1 [A_eu b_e] in d->G for RecoverEquality.
 void EliminateBlock(const std::vector<ConstraintRow>& rows, int e0, int ne, int root, double inv_h,
                     ConstraintSolverData* d) {
   const int nu = static_cast<int>(d->u_rows.size());
@@ -462,49 +518,58 @@ void EliminateBlock(const std::vector<ConstraintRow>& rows, int e0, int ne, int 
   }
   const int* cols = d->cols.data() + blk.c0;
   const int nc = blk.nc = static_cast<int>(d->cols.size()) - blk.c0;
+  const int m = nc + 1;  // [G y_e]'s columns
   d->blocks.push_back(blk);
-  // A_ee (lower), b_e; then its factor.
+  // A_ee (lower, within its envelope) and its factor; [A_eu b_e] in X (row-major, ne x m) and
+  // A_eu by columns in scratch with the span of each column's nonzeros (the equality rows
+  // that share a body with its row).
   d->Aee.assign(static_cast<size_t>(ne) * ne, 0.0);
-  d->ye.resize(static_cast<size_t>(e0 + ne));
-  double* ye = &d->ye[e0];
+  d->first.resize(ne);
+  d->G.resize(blk.g0 + static_cast<size_t>(ne) * m);
+  double* X = &d->G[blk.g0];
+  std::fill_n(X, static_cast<size_t>(ne) * m, 0.0);
+  d->scratch.assign(static_cast<size_t>(nc) * ne, 0.0);
+  d->span.assign(nc, {ne, 0});
   for (int a = 0; a < ne; ++a) {
-    ye[a] = RightHandSide(rows[er[a]], inv_h, d->tmp);
+    const ConstraintRow& r = rows[er[a]];
     double* aa = &d->Aee[static_cast<size_t>(a) * ne];
-    for (int c = 0; c <= a; ++c) {
-      aa[c] = Coupling(rows[er[a]], rows[er[c]], d->im0[er[c]], d->im1[er[c]]);
+    d->first[a] = a;
+    for (int c = a; c >= 0; --c) {
+      if (!ShareBody(r, rows[er[c]])) continue;
+      aa[c] = Coupling(r, rows[er[c]], d->im0[er[c]], d->im1[er[c]]);
+      d->first[a] = c;
     }
-    aa[a] += rows[er[a]].cfm * inv_h;
-  }
-  Cholesky(d->Aee.data(), ne, ne);
-  // G = A_ee^-1 A_eu, stored column by column (nc columns of ne), and A_eu kept in scratch for
-  // the update.
-  d->G.resize(blk.g0 + static_cast<size_t>(nc) * ne);
-  d->scratch.resize(static_cast<size_t>(nc) * ne);
-  for (int c = 0; c < nc; ++c) {
-    const int s = d->u_rows[cols[c]];
-    double* g = &d->G[blk.g0 + static_cast<size_t>(c) * ne];
-    double* aeu = &d->scratch[static_cast<size_t>(c) * ne];
-    for (int a = 0; a < ne; ++a) {
-      aeu[a] = g[a] = Coupling(rows[er[a]], rows[s], d->im0[s], d->im1[s]);
+    aa[a] += r.cfm * inv_h;
+    double* xa = X + static_cast<size_t>(a) * m;
+    for (int c = 0; c < nc; ++c) {
+      const int s = d->u_rows[cols[c]];
+      if (!ShareBody(r, rows[s])) continue;
+      xa[c] = d->scratch[static_cast<size_t>(c) * ne + a] =
+          Coupling(r, rows[s], d->im0[s], d->im1[s]);
+      d->span[c] = {std::min(d->span[c][0], a), a + 1};
     }
-    SolveLower(d->Aee.data(), ne, ne, g);
-    SolveLowerTransposed(d->Aee.data(), ne, ne, g);
+    xa[nc] = RightHandSide(r, inv_h, d->tmp);
   }
-  SolveLower(d->Aee.data(), ne, ne, ye);
-  SolveLowerTransposed(d->Aee.data(), ne, ne, ye);
+  const int* first = d->first.data();
+  Cholesky(d->Aee.data(), ne, ne, first);
+  SolveLowerColumns(d->Aee.data(), ne, ne, first, X, m);
+  SolveLowerTransposedColumns(d->Aee.data(), ne, ne, first, X, m);
+  // the update: A_ue [G y_e] over each row's span, its columns side by side.
+  d->update.resize(m);
+  double* u = d->update.data();
   for (int a = 0; a < nc; ++a) {
     const double* aeu = &d->scratch[static_cast<size_t>(a) * ne];
-    double bu = 0.0;
-    for (int k = 0; k < ne; ++k) bu += aeu[k] * ye[k];
-    d->b[cols[a]] -= bu;
-    double* sa = &d->S[static_cast<size_t>(cols[a]) * nu];
-    for (int c = 0; c <= a; ++c) {
-      // cols ascend, so (cols[a], cols[c]) lies in the lower triangle.
-      const double* g = &d->G[blk.g0 + static_cast<size_t>(c) * ne];
-      double u = 0.0;
-      for (int k = 0; k < ne; ++k) u += aeu[k] * g[k];
-      sa[cols[c]] -= u;
+    std::fill_n(u, m, 0.0);
+    for (int k = d->span[a][0]; k < d->span[a][1]; ++k) {
+      const double e = aeu[k];
+      const double* xk = X + static_cast<size_t>(k) * m;
+      for (int c = 0; c <= a; ++c) u[c] += e * xk[c];
+      u[nc] += e * xk[nc];
     }
+    d->b[cols[a]] -= u[nc];
+    double* sa = &d->S[static_cast<size_t>(cols[a]) * nu];
+    // cols ascend, so (cols[a], cols[c]) lies in the lower triangle.
+    for (int c = 0; c <= a; ++c) sa[cols[c]] -= u[c];
   }
 }
 
@@ -543,11 +608,11 @@ void SolveBounded(const std::vector<ConstraintRow>& rows, ConstraintSolverData* 
 // The equality rows' forces: A_ee^-1 (b_e - A_eu x_u) = y_e - G x_u, block by block.
 void RecoverEquality(ConstraintSolverData* d) {
   for (const ConstraintSolverData::Block& blk : d->blocks) {
+    const int m = blk.nc + 1;
     for (int a = 0; a < blk.ne; ++a) {
-      double le = d->ye[blk.e0 + a];
-      for (int c = 0; c < blk.nc; ++c) {
-        le -= d->G[blk.g0 + static_cast<size_t>(c) * blk.ne + a] * d->x[d->cols[blk.c0 + c]];
-      }
+      const double* ga = &d->G[blk.g0 + static_cast<size_t>(a) * m];
+      double le = ga[blk.nc];
+      for (int c = 0; c < blk.nc; ++c) le -= ga[c] * d->x[d->cols[blk.c0 + c]];
       d->lambda[d->e_rows[blk.e0 + a]] = le;
     }
   }
@@ -560,7 +625,6 @@ void SolveIsland(const std::vector<ConstraintRow>& rows, size_t begin, size_t en
   d->blocks.clear();
   d->cols.clear();
   d->G.clear();
-  d->ye.clear();
   const int ne_all = static_cast<int>(d->e_rows.size());
   for (int e0 = 0; e0 < ne_all;) {
     const int root = RootOf(rows[d->e_rows[e0]], d->block);

@@ -76,13 +76,14 @@ struct ConstraintSolverData {
   struct Block {         // an eliminated equality block of the island being solved
     int e0 = 0, ne = 0;  // its rows: e_rows[e0, e0 + ne)
     int c0 = 0, nc = 0;  // the bounded rows it touches: cols[c0, c0 + nc)
-    size_t g0 = 0;       // its G = A_ee^-1 A_eu from G[g0], nc columns of ne
+    size_t g0 = 0;       // its [G y_e] = A_ee^-1 [A_eu b_e] from G[g0], ne rows of nc + 1
   };
   std::vector<Block> blocks;
   std::vector<int> island, block, row_root, order, local, cols, C, state;
   std::vector<Eigen::Matrix<double, 6, 1>> im0, im1, tmp, f;
-  std::vector<double> S, b, x, w, dx, dw, L, y, lo, hi, mu, Aee, G, ye, scratch;
-  std::vector<int> findex, u_rows, e_rows;
+  std::vector<double> S, b, x, w, dx, dw, L, y, lo, hi, mu, Aee, G, scratch, update;
+  std::vector<int> findex, u_rows, e_rows, first;
+  std::vector<std::array<int, 2>> span;
   std::vector<std::uint8_t> guess0, guess1;
 };
 
