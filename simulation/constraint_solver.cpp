@@ -402,6 +402,17 @@ class BoxSolve {
   ConstraintSolverData& d_;
 };
 
+// Sorts `items` stably by group(item), a number in [0, groups) (a counting sort).
+template <typename Group>
+void GroupBy(std::vector<int>* items, const Group& group, int groups, ConstraintSolverData* d) {
+  d->count.assign(static_cast<size_t>(groups) + 1, 0);
+  for (int i : *items) ++d->count[group(i) + 1];
+  for (int g = 0; g < groups; ++g) d->count[g + 1] += d->count[g];
+  d->grouped.resize(items->size());
+  for (int i : *items) d->grouped[d->count[group(i)]++] = i;
+  items->swap(d->grouped);
+}
+
 // c / h - J (v / h + M^-1 f) for one row, with tmp = v / h + M^-1 f per body.
 double RightHandSide(const ConstraintRow& row, double inv_h, const std::vector<Vector6d>& tmp) {
   double jt = 0.0;
@@ -456,8 +467,8 @@ void PrepareRows(const std::vector<ConstraintRow>& rows, const std::vector<Solve
     d->row_root[r] = RootOf(rows[r], d->island);
     if (d->row_root[r] >= 0) d->order.push_back(r);
   }
-  std::stable_sort(d->order.begin(), d->order.end(),
-                   [&](int a, int b) { return d->row_root[a] < d->row_root[b]; });
+  GroupBy(
+      &d->order, [&](int r) { return d->row_root[r]; }, nb, d);
 }
 
 // An island's rows [begin, end) of d->order: its bounded rows (friction rows last, ODE's
@@ -477,9 +488,9 @@ void FormBounded(const std::vector<ConstraintRow>& rows, size_t begin, size_t en
   for (size_t k = begin; k < end; ++k) {
     if (rows[d->order[k]].findex >= 0) d->u_rows.push_back(d->order[k]);
   }
-  std::stable_sort(d->e_rows.begin(), d->e_rows.end(), [&](int a, int b) {
-    return RootOf(rows[a], d->block) < RootOf(rows[b], d->block);
-  });
+  GroupBy(
+      &d->e_rows, [&](int r) { return RootOf(rows[r], d->block); },
+      static_cast<int>(d->block.size()), d);
   const int nu = static_cast<int>(d->u_rows.size());
   for (int a = 0; a < nu; ++a) d->local[d->u_rows[a]] = a;
   d->max_bounded_rows = std::max(d->max_bounded_rows, nu);
@@ -491,7 +502,7 @@ void FormBounded(const std::vector<ConstraintRow>& rows, size_t begin, size_t en
     double* sa = &d->S[static_cast<size_t>(a) * nu];
     for (int c = 0; c <= a; ++c) {
       const int s = d->u_rows[c];
-      sa[c] = Coupling(rows[r], rows[s], d->im0[s], d->im1[s]);
+      if (ShareBody(rows[r], rows[s])) sa[c] = Coupling(rows[r], rows[s], d->im0[s], d->im1[s]);
     }
     sa[a] += rows[r].cfm * inv_h;
   }
@@ -588,11 +599,9 @@ void SolveBounded(const std::vector<ConstraintRow>& rows, ConstraintSolverData* 
     d->hi[a] = r.hi;
     if (r.findex >= 0) d->findex[a] = d->local[r.findex];
     if (r.key == 0) continue;
-    if (auto it = d->last_frictionless.find(r.key); it != d->last_frictionless.end()) {
-      d->guess0[a] = it->second;
-    }
-    if (auto it = d->last_final.find(r.key); it != d->last_final.end()) {
-      d->guess1[a] = it->second;
+    if (const ConstraintSolverData::RowStates::Slot* last = d->last_states.Find(r.key)) {
+      d->guess0[a] = last->frictionless;
+      d->guess1[a] = last->final;
     }
   }
   BoxSolve(nu, d).Solve();
@@ -600,8 +609,7 @@ void SolveBounded(const std::vector<ConstraintRow>& rows, ConstraintSolverData* 
     const ConstraintRow& r = rows[d->u_rows[a]];
     d->lambda[d->u_rows[a]] = d->x[a];
     if (r.key == 0) continue;
-    d->next_frictionless[r.key] = d->guess0[a];
-    d->next_final[r.key] = d->guess1[a];
+    d->next_states.Set({r.key, d->guess0[a], d->guess1[a]});
   }
 }
 
@@ -643,6 +651,43 @@ void SolveIsland(const std::vector<ConstraintRow>& rows, size_t begin, size_t en
 
 }  // namespace
 
+void ConstraintSolverData::RowStates::Clear() {
+  std::fill(slots_.begin(), slots_.end(), Slot{});
+  size_ = 0;
+}
+
+size_t ConstraintSolverData::RowStates::Home(std::uint64_t key) const {
+  // Fibonacci hashing: the high bits of key times 2^64 / golden ratio.
+  return static_cast<size_t>((key * 0x9E3779B97F4A7C15ull) >> 32) & (slots_.size() - 1);
+}
+
+void ConstraintSolverData::RowStates::Set(const Slot& slot) {
+  if (2 * (size_ + 1) > slots_.size()) {  // at most half full
+    std::vector<Slot> old(std::max<size_t>(64, 2 * slots_.size()));
+    old.swap(slots_);
+    size_ = 0;
+    for (const Slot& s : old) {
+      if (s.key != 0) Set(s);
+    }
+  }
+  for (size_t i = Home(slot.key);; i = (i + 1) & (slots_.size() - 1)) {
+    if (slots_[i].key == 0) ++size_;
+    if (slots_[i].key == 0 || slots_[i].key == slot.key) {
+      slots_[i] = slot;
+      return;
+    }
+  }
+}
+
+const ConstraintSolverData::RowStates::Slot* ConstraintSolverData::RowStates::Find(
+    std::uint64_t key) const {
+  if (slots_.empty() || key == 0) return nullptr;
+  for (size_t i = Home(key);; i = (i + 1) & (slots_.size() - 1)) {
+    if (slots_[i].key == key) return &slots_[i];
+    if (slots_[i].key == 0) return nullptr;
+  }
+}
+
 void SolveConstraints(double h, const std::vector<ConstraintRow>& rows,
                       std::vector<SolverBody>* bodies, ConstraintSolverData* d) {
   const int nb = static_cast<int>(bodies->size());
@@ -650,8 +695,7 @@ void SolveConstraints(double h, const std::vector<ConstraintRow>& rows,
   std::vector<SolverBody>& B = *bodies;
   const double inv_h = 1.0 / h;
   d->lambda.assign(nr, 0.0);
-  d->next_frictionless.clear();
-  d->next_final.clear();
+  d->next_states.Clear();
   PrepareRows(rows, B, inv_h, d);
   d->local.assign(nr, -1);
   for (size_t begin = 0; begin < d->order.size();) {
@@ -662,8 +706,7 @@ void SolveConstraints(double h, const std::vector<ConstraintRow>& rows,
     SolveIsland(rows, begin, end, inv_h, d);
     begin = end;
   }
-  std::swap(d->last_frictionless, d->next_frictionless);
-  std::swap(d->last_final, d->next_final);
+  std::swap(d->last_states, d->next_states);
 
   // v += h M^-1 (f + J^T lambda).
   d->f.resize(nb);

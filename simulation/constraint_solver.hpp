@@ -24,7 +24,6 @@
 #include <array>
 #include <cstdint>
 #include <limits>
-#include <unordered_map>
 #include <vector>
 
 #include <Eigen/Core>
@@ -67,10 +66,25 @@ struct ConstraintSolverData {
   long pivoted = 0;            ///< islands that needed the pivoting solve (statistics)
   long unsolved = 0;  ///< pivoting solves stopped at their pivot limit (never seen; statistics)
 
-  /// Where each keyed row ended in the last solve, without the friction rows and with them
-  /// (0 free, 1 at its lower bound, 2 at its upper bound).
-  std::unordered_map<std::uint64_t, std::uint8_t> last_frictionless, last_final;
-  std::unordered_map<std::uint64_t, std::uint8_t> next_frictionless, next_final;
+  /// Where each keyed row ended in a solve, without the friction rows and with them (0 free,
+  /// 1 at its lower bound, 2 at its upper bound): an open-addressing table of its keys (key 0
+  /// marks an empty slot), kept from call to call so that a step allocates nothing.
+  class RowStates {
+   public:
+    struct Slot {
+      std::uint64_t key = 0;
+      std::uint8_t frictionless = 0, final = 0;
+    };
+    void Clear();
+    void Set(const Slot& slot);                 ///< replaces the slot of the same key
+    const Slot* Find(std::uint64_t key) const;  ///< nullptr when absent
+
+   private:
+    size_t Home(std::uint64_t key) const;
+    std::vector<Slot> slots_;
+    size_t size_ = 0;
+  };
+  RowStates last_states, next_states;  ///< the last solve's, the one being solved
 
   // buffers (the solver's own)
   struct Block {         // an eliminated equality block of the island being solved
@@ -79,7 +93,7 @@ struct ConstraintSolverData {
     size_t g0 = 0;       // its [G y_e] = A_ee^-1 [A_eu b_e] from G[g0], ne rows of nc + 1
   };
   std::vector<Block> blocks;
-  std::vector<int> island, block, row_root, order, local, cols, C, state;
+  std::vector<int> island, block, row_root, order, local, cols, C, state, count, grouped;
   std::vector<Eigen::Matrix<double, 6, 1>> im0, im1, tmp, f;
   std::vector<double> S, b, x, w, dx, dw, L, y, lo, hi, mu, Aee, G, scratch, update;
   std::vector<int> findex, u_rows, e_rows, first;
