@@ -23,56 +23,54 @@ void Union(std::vector<int>& parent, int a, int b) {
 
 bool IsEquality(const ConstraintRow& r) { return r.findex < 0 && r.lo == -kInf && r.hi == kInf; }
 
-// A_rs = J_r M^-1 J_s^T over the bodies the two rows share (im: M^-1 J_s^T on s's bodies).
-double Coupling(const ConstraintRow& r, const ConstraintRow& s, const Vector6d& s_im0,
-                const Vector6d& s_im1) {
-  double a = 0.0;
+// *a = A_rs = J_r M^-1 J_s^T over the bodies the two rows share (im: M^-1 J_s^T on s's
+// bodies); false, *a untouched, when they share none (A_rs = 0).
+inline bool Coupling(const ConstraintRow& r, const ConstraintRow& s, const Vector6d& s_im0,
+                     const Vector6d& s_im1, double* a) {
+  bool shared = false;
+  double v = 0.0;
   for (int k = 0; k < 2; ++k) {
     const int body = r.body[k];
     if (body < 0) continue;
     if (s.body[0] == body) {
-      a += r.lin[k].dot(s_im0.head<3>()) + r.ang[k].dot(s_im0.tail<3>());
+      v += r.lin[k].dot(s_im0.head<3>()) + r.ang[k].dot(s_im0.tail<3>());
+      shared = true;
     }
     if (s.body[1] == body) {
-      a += r.lin[k].dot(s_im1.head<3>()) + r.ang[k].dot(s_im1.tail<3>());
+      v += r.lin[k].dot(s_im1.head<3>()) + r.ang[k].dot(s_im1.tail<3>());
+      shared = true;
     }
   }
-  return a;
-}
-
-// Whether two rows act on a common moving body; A_rs = J_r M^-1 J_s^T is zero when not.
-bool ShareBody(const ConstraintRow& r, const ConstraintRow& s) {
-  for (int k = 0; k < 2; ++k) {
-    if (r.body[k] >= 0 && (r.body[k] == s.body[0] || r.body[k] == s.body[1])) return true;
-  }
-  return false;
+  if (shared) *a = v;
+  return shared;
 }
 
 // The factors below take the envelope of a symmetric matrix: first[j] is the first column of
 // row j's nonzeros in the lower triangle (nullptr: every row dense). A Cholesky factor keeps
-// its matrix's envelope, and the loops skip only products with the zeros outside it, so they
-// give the dense loops' numbers bit for bit (a finger's hinge rows couple only neighbouring
-// hinges' rows: about a quarter of the dense factor's work).
+// its matrix's envelope, and the loops skip the zeros outside it (a finger's hinge rows
+// couple only neighbouring hinges' rows: about a quarter of the dense factor's work). Each
+// divides by a pivot through its reciprocal, which is off the chain of dependent operations.
 int First(const int* first, int j) { return first ? first[j] : 0; }
 
 // In-place Cholesky factor (lower triangle) of the n x n matrix a, row-major with leading
 // dimension ld. A pivot that is not positive (a matrix that is not positive definite, which
 // the cfm of every row rules out) is kept tiny rather than failing.
 void Cholesky(double* a, int n, int ld, const int* first) {
-  // column by column: the rows' divisions by one pivot do not wait on each other.
+  // column by column: the rows below a pivot do not wait on each other.
   for (int k = 0; k < n; ++k) {
     double* ak = a + k * ld;
     const int fk = First(first, k);
     double d = ak[k];
     for (int l = fk; l < k; ++l) d -= ak[l] * ak[l];
     ak[k] = std::sqrt(std::max(d, 1e-300));
+    const double inv = 1.0 / ak[k];
     for (int j = k + 1; j < n; ++j) {
       double* aj = a + j * ld;
       const int fj = First(first, j);
       if (fj > k) continue;
       double s = aj[k];
       for (int l = std::max(fj, fk); l < k; ++l) s -= aj[l] * ak[l];
-      aj[k] = s / ak[k];
+      aj[k] = s * inv;
     }
   }
 }
@@ -81,23 +79,23 @@ void Cholesky(double* a, int n, int ld, const int* first) {
 void SolveLower(const double* L, int n, int ld, const int* first, double* x) {
   for (int i = 0; i < n; ++i) {
     const double* li = L + i * ld;
+    const double inv = 1.0 / li[i];
     double s = x[i];
     for (int k = First(first, i); k < i; ++k) s -= li[k] * x[k];
-    x[i] = s / li[i];
+    x[i] = s * inv;
   }
 }
 
 void SolveLowerTransposed(const double* L, int n, int ld, const int* first, double* x) {
   for (int i = n - 1; i >= 0; --i) {
-    x[i] /= L[i * ld + i];
-    const double xi = x[i];
     const double* li = L + i * ld;
+    const double xi = x[i] *= 1.0 / li[i];
     for (int k = First(first, i); k < i; ++k) x[k] -= li[k] * xi;
   }
 }
 
-// The same two solves for the m columns of X (row-major, n x m) side by side, each column's
-// numbers as the one-column solves give them: the columns' divisions overlap.
+// X <- L^-1 X for the m columns of X (row-major, n x m) side by side. A column's leading zeros
+// stay zeros.
 void SolveLowerColumns(const double* L, int n, int ld, const int* first, double* X, int m) {
   for (int i = 0; i < n; ++i) {
     const double* li = L + i * ld;
@@ -107,23 +105,8 @@ void SolveLowerColumns(const double* L, int n, int ld, const int* first, double*
       const double* xk = X + static_cast<size_t>(k) * m;
       for (int c = 0; c < m; ++c) xi[c] -= lik * xk[c];
     }
-    const double d = li[i];
-    for (int c = 0; c < m; ++c) xi[c] /= d;
-  }
-}
-
-void SolveLowerTransposedColumns(const double* L, int n, int ld, const int* first, double* X,
-                                 int m) {
-  for (int i = n - 1; i >= 0; --i) {
-    const double* li = L + i * ld;
-    double* xi = X + static_cast<size_t>(i) * m;
-    const double d = li[i];
-    for (int c = 0; c < m; ++c) xi[c] /= d;
-    for (int k = First(first, i); k < i; ++k) {
-      const double lik = li[k];
-      double* xk = X + static_cast<size_t>(k) * m;
-      for (int c = 0; c < m; ++c) xk[c] -= lik * xi[c];
-    }
+    const double inv = 1.0 / li[i];
+    for (int c = 0; c < m; ++c) xi[c] *= inv;
   }
 }
 
@@ -141,7 +124,7 @@ class BoxSolve {
   // The answer from a guess of each row's state: the free rows' forces solved with the
   // others at their bounds, over the first `count` rows (the rest at zero); true when every
   // row then meets its condition. A wrong guess costs one factorisation.
-  bool TryGuess(int count, const std::vector<std::uint8_t>& guess) {
+  bool TryGuess(int count, std::vector<std::uint8_t>& guess) {
     std::vector<double>& x = d_.x;
     std::vector<int>& F = d_.C;
     F.clear();
@@ -179,10 +162,19 @@ class BoxSolve {
     Cholesky(L, m, n_, d_.first.data());
     SolveLower(L, m, n_, d_.first.data(), y);
     SolveLowerTransposed(L, m, n_, d_.first.data(), y);
+    // every row's condition; a row that fails it changes its guess (a free row past a bound
+    // goes to that bound, a row at a bound pushed the wrong way becomes free).
+    bool met = true;
     for (int a = 0; a < m; ++a) {
       const int i = F[a];
-      if (!(y[a] >= d_.lo[i] && y[a] <= d_.hi[i])) return false;
       x[i] = y[a];
+      if (y[a] < d_.lo[i]) {
+        guess[i] = kLowGuess, met = false;
+      } else if (y[a] > d_.hi[i]) {
+        guess[i] = kHighGuess, met = false;
+      } else if (!(y[a] >= d_.lo[i] && y[a] <= d_.hi[i])) {
+        return false;  // not a number
+      }
     }
     for (int i = 0, a = 0; i < count; ++i) {
       if (a < m && F[a] == i) {
@@ -194,10 +186,10 @@ class BoxSolve {
       double w = -d_.b[i];
       for (int j = 0; j < count; ++j) w += si[j] * x[j];
       const bool low = x[i] == d_.lo[i];
-      if (d_.lo[i] != d_.hi[i] && (low ? w < 0.0 : w > 0.0)) return false;
+      if (d_.lo[i] != d_.hi[i] && (low ? w < 0.0 : w > 0.0)) guess[i] = kFreeGuess, met = false;
       d_.state[i] = low ? kLow : kHigh;
     }
-    return true;
+    return met;
   }
 
   // Solves with the guesses of the rows' states (d.guess0 without the friction rows, d.guess1
@@ -209,10 +201,10 @@ class BoxSolve {
     d_.state.assign(n_, kUnset);
     int nf = n_;  // the rows before the friction rows
     while (nf > 0 && d_.findex[nf - 1] >= 0) --nf;
-    if (TryGuess(nf, d_.guess0)) {
+    if (Guess(nf, d_.guess0)) {
       for (int i = 0; i < nf; ++i) d_.guess0[i] = ToGuess(d_.state[i]);
       FixFrictionBounds(nf);
-      if (nf == n_ || TryGuess(n_, d_.guess1)) {
+      if (nf == n_ || Guess(n_, d_.guess1)) {
         for (int i = 0; i < n_; ++i) d_.guess1[i] = ToGuess(d_.state[i]);
         ++d_.guessed;
         return;
@@ -220,6 +212,15 @@ class BoxSolve {
     }
     ++d_.pivoted;
     Run();
+  }
+
+  // TryGuess from the guess, then from the guesses it amends, kGuesses times at most (the
+  // amendments can cycle; the pivoting solve ends those).
+  bool Guess(int count, std::vector<std::uint8_t>& guess) {
+    for (int attempt = 0; attempt < kGuesses; ++attempt) {
+      if (TryGuess(count, guess)) return true;
+    }
+    return false;
   }
 
   // the friction rows from `from` on get +-mu |normal force| as their bounds.
@@ -333,6 +334,7 @@ class BoxSolve {
 
  private:
   enum { kUnset = 0, kLow = 1, kHigh = 2, kFree = 3 };
+  static constexpr int kGuesses = 3;
   enum : std::uint8_t { kFreeGuess = 0, kLowGuess = 1, kHighGuess = 2 };
   static std::uint8_t ToGuess(int state) {
     return state == kLow ? kLowGuess : state == kHigh ? kHighGuess : kFreeGuess;
@@ -424,9 +426,10 @@ double RightHandSide(const ConstraintRow& row, double inv_h, const std::vector<V
   return row.c * inv_h - jt;
 }
 
-// the set root of a row's first moving body, -1 for a row on no moving body.
-int RootOf(const ConstraintRow& r, std::vector<int>& set) {
-  return r.body[0] < 0 && r.body[1] < 0 ? -1 : Find(set, r.body[r.body[0] >= 0 ? 0 : 1]);
+// the set root of a row's first moving body, -1 for a row on no moving body (set: each
+// body's root, PrepareRows').
+int RootOf(const ConstraintRow& r, const std::vector<int>& set) {
+  return r.body[0] < 0 && r.body[1] < 0 ? -1 : set[r.body[r.body[0] >= 0 ? 0 : 1]];
 }
 
 // M^-1 J^T of each row on each of its bodies; the islands (bodies joined by any row) and the
@@ -455,6 +458,10 @@ void PrepareRows(const std::vector<ConstraintRow>& rows, const std::vector<Solve
   for (const ConstraintRow& r : rows) {
     Union(d->island, r.body[0], r.body[1]);
     if (IsEquality(r)) Union(d->block, r.body[0], r.body[1]);
+  }
+  for (int i = 0; i < nb; ++i) {  // each body's entry is its set's root from here on
+    d->island[i] = Find(d->island, i);
+    d->block[i] = Find(d->block, i);
   }
   d->tmp.resize(nb);
   for (int i = 0; i < nb; ++i) {
@@ -502,15 +509,15 @@ void FormBounded(const std::vector<ConstraintRow>& rows, size_t begin, size_t en
     double* sa = &d->S[static_cast<size_t>(a) * nu];
     for (int c = 0; c <= a; ++c) {
       const int s = d->u_rows[c];
-      if (ShareBody(rows[r], rows[s])) sa[c] = Coupling(rows[r], rows[s], d->im0[s], d->im1[s]);
+      Coupling(rows[r], rows[s], d->im0[s], d->im1[s], &sa[c]);
     }
     sa[a] += rows[r].cfm * inv_h;
   }
 }
 
 // Eliminates the equality block of d->e_rows[e0, e0 + ne) (block root `root`) from the bounded
-// rows: S -= A_ue A_ee^-1 A_eu, b_u -= A_ue A_ee^-1 b_e (lower triangle of S). Keeps
-// [G y_e] = A_ee^-1 [A_eu b_e] in d->G for RecoverEquality.
+// rows. With A_ee = L L^T and [W z] = L^-1 [A_eu b_e]: S -= W^T W, b_u -= W^T z (the lower
+// triangle of S). Keeps L and [W z] for RecoverEquality.
 void EliminateBlock(const std::vector<ConstraintRow>& rows, int e0, int ne, int root, double inv_h,
                     ConstraintSolverData* d) {
   const int nu = static_cast<int>(d->u_rows.size());
@@ -520,62 +527,59 @@ void EliminateBlock(const std::vector<ConstraintRow>& rows, int e0, int ne, int 
   blk.ne = ne;
   blk.c0 = static_cast<int>(d->cols.size());
   blk.g0 = d->G.size();
+  blk.l0 = d->Aee.size();
   for (int a = 0; a < nu; ++a) {
     const ConstraintRow& r = rows[d->u_rows[a]];
-    if ((r.body[0] >= 0 && Find(d->block, r.body[0]) == root) ||
-        (r.body[1] >= 0 && Find(d->block, r.body[1]) == root)) {
+    if ((r.body[0] >= 0 && d->block[r.body[0]] == root) ||
+        (r.body[1] >= 0 && d->block[r.body[1]] == root)) {
       d->cols.push_back(a);
     }
   }
   const int* cols = d->cols.data() + blk.c0;
   const int nc = blk.nc = static_cast<int>(d->cols.size()) - blk.c0;
-  const int m = nc + 1;  // [G y_e]'s columns
+  const int m = nc + 1;  // [W z]'s columns
   d->blocks.push_back(blk);
-  // A_ee (lower, within its envelope) and its factor; [A_eu b_e] in X (row-major, ne x m) and
-  // A_eu by columns in scratch with the span of each column's nonzeros (the equality rows
-  // that share a body with its row).
-  d->Aee.assign(static_cast<size_t>(ne) * ne, 0.0);
-  d->first.resize(ne);
+  // A_ee (lower, within its envelope, kept after the earlier blocks') and its factor;
+  // [A_eu b_e] in X (row-major, ne x m) and the first row of each column's nonzeros (the
+  // equality rows that share a body with its row).
+  d->Aee.resize(blk.l0 + static_cast<size_t>(ne) * ne);
+  double* L = &d->Aee[blk.l0];
+  std::fill_n(L, static_cast<size_t>(ne) * ne, 0.0);
+  d->envelope.resize(static_cast<size_t>(e0 + ne));
+  int* first = &d->envelope[e0];
   d->G.resize(blk.g0 + static_cast<size_t>(ne) * m);
   double* X = &d->G[blk.g0];
   std::fill_n(X, static_cast<size_t>(ne) * m, 0.0);
-  d->scratch.assign(static_cast<size_t>(nc) * ne, 0.0);
-  d->span.assign(nc, {ne, 0});
+  d->span.assign(nc, ne);
   for (int a = 0; a < ne; ++a) {
     const ConstraintRow& r = rows[er[a]];
-    double* aa = &d->Aee[static_cast<size_t>(a) * ne];
-    d->first[a] = a;
+    double* la = L + static_cast<size_t>(a) * ne;
+    first[a] = a;
     for (int c = a; c >= 0; --c) {
-      if (!ShareBody(r, rows[er[c]])) continue;
-      aa[c] = Coupling(r, rows[er[c]], d->im0[er[c]], d->im1[er[c]]);
-      d->first[a] = c;
+      if (Coupling(r, rows[er[c]], d->im0[er[c]], d->im1[er[c]], &la[c])) first[a] = c;
     }
-    aa[a] += r.cfm * inv_h;
+    la[a] += r.cfm * inv_h;
     double* xa = X + static_cast<size_t>(a) * m;
     for (int c = 0; c < nc; ++c) {
       const int s = d->u_rows[cols[c]];
-      if (!ShareBody(r, rows[s])) continue;
-      xa[c] = d->scratch[static_cast<size_t>(c) * ne + a] =
-          Coupling(r, rows[s], d->im0[s], d->im1[s]);
-      d->span[c] = {std::min(d->span[c][0], a), a + 1};
+      if (Coupling(r, rows[s], d->im0[s], d->im1[s], &xa[c])) {
+        d->span[c] = std::min(d->span[c], a);
+      }
     }
     xa[nc] = RightHandSide(r, inv_h, d->tmp);
   }
-  const int* first = d->first.data();
-  Cholesky(d->Aee.data(), ne, ne, first);
-  SolveLowerColumns(d->Aee.data(), ne, ne, first, X, m);
-  SolveLowerTransposedColumns(d->Aee.data(), ne, ne, first, X, m);
-  // the update: A_ue [G y_e] over each row's span, its columns side by side.
+  Cholesky(L, ne, ne, first);
+  SolveLowerColumns(L, ne, ne, first, X, m);
+  // the update, W's columns side by side (column a is zero above its span).
   d->update.resize(m);
   double* u = d->update.data();
   for (int a = 0; a < nc; ++a) {
-    const double* aeu = &d->scratch[static_cast<size_t>(a) * ne];
     std::fill_n(u, m, 0.0);
-    for (int k = d->span[a][0]; k < d->span[a][1]; ++k) {
-      const double e = aeu[k];
+    for (int k = d->span[a]; k < ne; ++k) {
       const double* xk = X + static_cast<size_t>(k) * m;
-      for (int c = 0; c <= a; ++c) u[c] += e * xk[c];
-      u[nc] += e * xk[nc];
+      const double w = xk[a];
+      for (int c = 0; c <= a; ++c) u[c] += w * xk[c];
+      u[nc] += w * xk[nc];
     }
     d->b[cols[a]] -= u[nc];
     double* sa = &d->S[static_cast<size_t>(cols[a]) * nu];
@@ -613,16 +617,19 @@ void SolveBounded(const std::vector<ConstraintRow>& rows, ConstraintSolverData* 
   }
 }
 
-// The equality rows' forces: A_ee^-1 (b_e - A_eu x_u) = y_e - G x_u, block by block.
+// The equality rows' forces: A_ee^-1 (b_e - A_eu x_u) = L^-T (z - W x_u), block by block.
 void RecoverEquality(ConstraintSolverData* d) {
   for (const ConstraintSolverData::Block& blk : d->blocks) {
     const int m = blk.nc + 1;
+    d->update.resize(blk.ne);
+    double* le = d->update.data();
     for (int a = 0; a < blk.ne; ++a) {
-      const double* ga = &d->G[blk.g0 + static_cast<size_t>(a) * m];
-      double le = ga[blk.nc];
-      for (int c = 0; c < blk.nc; ++c) le -= ga[c] * d->x[d->cols[blk.c0 + c]];
-      d->lambda[d->e_rows[blk.e0 + a]] = le;
+      const double* xa = &d->G[blk.g0 + static_cast<size_t>(a) * m];
+      le[a] = xa[blk.nc];
+      for (int c = 0; c < blk.nc; ++c) le[a] -= xa[c] * d->x[d->cols[blk.c0 + c]];
     }
+    SolveLowerTransposed(&d->Aee[blk.l0], blk.ne, blk.ne, &d->envelope[blk.e0], le);
+    for (int a = 0; a < blk.ne; ++a) d->lambda[d->e_rows[blk.e0 + a]] = le[a];
   }
 }
 
@@ -633,6 +640,7 @@ void SolveIsland(const std::vector<ConstraintRow>& rows, size_t begin, size_t en
   d->blocks.clear();
   d->cols.clear();
   d->G.clear();
+  d->Aee.clear();
   const int ne_all = static_cast<int>(d->e_rows.size());
   for (int e0 = 0; e0 < ne_all;) {
     const int root = RootOf(rows[d->e_rows[e0]], d->block);

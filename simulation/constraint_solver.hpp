@@ -90,14 +90,15 @@ struct ConstraintSolverData {
   struct Block {         // an eliminated equality block of the island being solved
     int e0 = 0, ne = 0;  // its rows: e_rows[e0, e0 + ne)
     int c0 = 0, nc = 0;  // the bounded rows it touches: cols[c0, c0 + nc)
-    size_t g0 = 0;       // its [G y_e] = A_ee^-1 [A_eu b_e] from G[g0], ne rows of nc + 1
+    size_t g0 = 0;       // its [W z] = L^-1 [A_eu b_e] from G[g0], ne rows of nc + 1
+    size_t l0 = 0;       // its A_ee = L L^T from Aee[l0], ne x ne (envelope[e0...])
   };
   std::vector<Block> blocks;
   std::vector<int> island, block, row_root, order, local, cols, C, state, count, grouped;
   std::vector<Eigen::Matrix<double, 6, 1>> im0, im1, tmp, f;
-  std::vector<double> S, b, x, w, dx, dw, L, y, lo, hi, mu, Aee, G, scratch, update;
-  std::vector<int> findex, u_rows, e_rows, first;
-  std::vector<std::array<int, 2>> span;
+  std::vector<double> S, b, x, w, dx, dw, L, y, lo, hi, mu, Aee, G, update;
+  std::vector<int> findex, u_rows, e_rows, first, envelope;
+  std::vector<int> span;
   std::vector<std::uint8_t> guess0, guess1;
 };
 

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdarg>
+#include <cstdint>
 #include <cstdio>
 #include <deque>
 #include <functional>
@@ -742,12 +743,82 @@ struct SimulationData::Impl {
     hand_object.clear();
     feedback_contact.clear();
     pending.clear();
-    dSpaceCollide(space, this, &Impl::NearCallback);
+    BroadPhase();
   }
 
-  static void NearCallback(void* data, dGeomID a, dGeomID b) {
-    static_cast<Impl*>(data)->CollidePair(a, b);
+  // ---- the broad phase ----
+  // dSpaceCollide on a simple space tests every pair of its geoms; only the pairs whose
+  // categories may touch (the robot's geoms with the object's and the table, the object's with
+  // the table) can give contacts. These are tested here in the order ODE's simple space tests
+  // them (its list: the geoms moved last come first), with its rules (enabled geoms, not on one
+  // body, categories, overlapping bounding boxes), so that the contacts come in the same order.
+  struct BroadGeom {
+    dGeomID geom = nullptr;
+    bool enabled = false;
+    dReal box[6] = {};  // its bounding box this step
+  };
+  std::vector<BroadGeom> broad;                // this step, in the space's list order
+  std::vector<int> broad_slot;                 // by GeomInfo::id: the geom's row in broad_may_touch
+  std::vector<std::uint64_t> broad_may_touch;  // by slot: a bit per slot it may touch
+  int broad_words = 0;
+  int broad_count = -1;  // the space's geoms when the table was built
+
+  static int GeomId(dGeomID g) { return static_cast<const GeomInfo*>(dGeomGetData(g))->id; }
+
+  bool MayTouch(int slot_a, int slot_b) const {
+    return (broad_may_touch[static_cast<size_t>(slot_a) * broad_words + (slot_b >> 6)] >>
+            (slot_b & 63)) &
+           1u;
   }
+
+  void BuildBroadPhase(int n) {
+    broad.resize(n);
+    broad_slot.assign(geom_info.size() + 1, -1);
+    broad_words = (n + 63) / 64;
+    broad_may_touch.assign(static_cast<size_t>(n) * broad_words, 0);
+    for (int i = 0; i < n; ++i) broad_slot[GeomId(dSpaceGetGeom(space, i))] = i;
+    for (int i = 0; i < n; ++i) {
+      const dGeomID a = dSpaceGetGeom(space, i);
+      for (int j = 0; j < n; ++j) {
+        const dGeomID b = dSpaceGetGeom(space, j);
+        const dBodyID body = dGeomGetBody(a);
+        if (i == j || (body && body == dGeomGetBody(b))) continue;
+        if ((dGeomGetCategoryBits(a) & dGeomGetCollideBits(b)) ||
+            (dGeomGetCategoryBits(b) & dGeomGetCollideBits(a))) {
+          broad_may_touch[static_cast<size_t>(i) * broad_words + (j >> 6)] |= 1ull << (j & 63);
+        }
+      }
+    }
+    broad_count = n;
+  }
+
+  void BroadPhase() {
+    dSpaceClean(space);  // every geom's bounding box is up to date
+    const int n = dSpaceGetNumGeoms(space);
+    if (n != broad_count) BuildBroadPhase(n);
+    broad_order_slot.resize(n);
+    for (int i = 0; i < n; ++i) {
+      BroadGeom& g = broad[i];
+      g.geom = dSpaceGetGeom(space, i);
+      g.enabled = dGeomIsEnabled(g.geom) != 0;
+      dGeomGetAABB(g.geom, g.box);
+      broad_order_slot[i] = broad_slot[GeomId(g.geom)];
+    }
+    for (int i = 0; i < n; ++i) {
+      const BroadGeom& a = broad[i];
+      if (!a.enabled) continue;
+      for (int j = i + 1; j < n; ++j) {
+        const BroadGeom& b = broad[j];
+        if (!b.enabled || !MayTouch(broad_order_slot[i], broad_order_slot[j])) continue;
+        if (a.box[0] > b.box[1] || a.box[1] < b.box[0] || a.box[2] > b.box[3] ||
+            a.box[3] < b.box[2] || a.box[4] > b.box[5] || a.box[5] < b.box[4]) {
+          continue;
+        }
+        CollidePair(a.geom, b.geom);
+      }
+    }
+  }
+  std::vector<int> broad_order_slot;  // by place in the list this step: the geom's slot
 
   void CollidePair(dGeomID a, dGeomID b) {
     const GeomInfo* ia = static_cast<const GeomInfo*>(dGeomGetData(a));
@@ -884,6 +955,11 @@ struct SimulationData::Impl {
   };
   std::vector<PendingContact> pending;
   std::vector<SolverBody> solver_bodies;
+  // each moving body's inertia in its own frame and its inverse, kept from step to step.
+  struct BodyInertia {
+    Eigen::Matrix3d I_B = Eigen::Matrix3d::Zero(), inv_I_B = Eigen::Matrix3d::Zero();
+  };
+  std::array<BodyInertia, kHandJoints + 1> inertias;
   std::vector<ConstraintRow> rows;
   ConstraintSolverData solver;
 
@@ -896,14 +972,10 @@ struct SimulationData::Impl {
     return (1ull << 63) | (a << 40) | (b << 18) | (static_cast<std::uint64_t>(index) << 2);
   }
 
-  // the solver index of a moving body (the finger links, then the object), -1 for others.
-  int SolverIndex(dBodyID b) const {
-    if (!b) return -1;
-    if (b == object.body) return kHandJoints;
-    for (int j = 0; j < kHandJoints; ++j) {
-      if (fingers[j].body == b) return j;
-    }
-    return -1;
+  // the solver index of a moving body (the finger links, then the object), -1 for others:
+  // StepStructured keeps it, plus one, in the moving bodies' user data (no other body has any).
+  static int SolverIndex(dBodyID b) {
+    return b ? static_cast<int>(reinterpret_cast<std::intptr_t>(dBodyGetData(b))) - 1 : -1;
   }
 
   // Adds a row on b0 (moving) and b1 (moving, kinematic or null); the velocity of a
@@ -1018,13 +1090,16 @@ struct SimulationData::Impl {
     solver_bodies.resize(kHandJoints + 1);
     for (int i = 0; i <= kHandJoints; ++i) {
       const dBodyID b = i < kHandJoints ? fingers[i].body : object.body;
+      dBodySetData(b, reinterpret_cast<void*>(static_cast<std::intptr_t>(i) + 1));
       dMass m;
       dBodyGetMass(b, &m);
       const Eigen::Matrix3d I_B = FromOdeMatrix(m.I);
       const Eigen::Matrix3d R = FromOdeMatrix(dBodyGetRotation(b));
+      BodyInertia& inertia = inertias[i];
+      if (inertia.I_B != I_B) inertia = {I_B, I_B.inverse()};  // constant but for a new mass
       SolverBody& sb = solver_bodies[i];
       sb.inv_mass = 1.0 / m.mass;
-      sb.inv_inertia_W = R * I_B.inverse() * R.transpose();
+      sb.inv_inertia_W = R * inertia.inv_I_B * R.transpose();
       sb.v = FromOde(dBodyGetLinearVel(b));
       sb.w = FromOde(dBodyGetAngularVel(b));
       sb.force = FromOde(dBodyGetForce(b)) + Eigen::Vector3d(0.0, 0.0, -so.gravity * m.mass);
@@ -1216,7 +1291,8 @@ struct SimulationData::Impl {
     return near_object;
   }
 
-  void ForEachDynamic(const std::function<void(dBodyID)>& fn) const {
+  template <typename Fn>
+  void ForEachDynamic(const Fn& fn) const {
     for (const BodyPart& f : fingers) fn(f.body);
     fn(object.body);
   }
@@ -1326,7 +1402,9 @@ double SimulationData::HandObjectKineticEnergy() const {
     const dReal* v = dBodyGetLinearVel(b);
     const dReal* w = dBodyGetAngularVel(b);
     const Eigen::Vector3d vw(v[0], v[1], v[2]), ww(w[0], w[1], w[2]);
-    const Eigen::Matrix3d R = BodyPose(b).linear();
+    const dReal* q = dBodyGetQuaternion(b);  // BodyPose(b).linear()
+    const Eigen::Matrix3d R =
+        Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
     const Eigen::Matrix3d I = FromOdeMatrix(m.I);
     const Eigen::Vector3d wb = R.transpose() * ww;
     e += 0.5 * m.mass * vw.squaredNorm() + 0.5 * wb.dot(I * wb);
