@@ -123,7 +123,8 @@ class BoxSolve {
 
   // The answer from a guess of each row's state: the free rows' forces solved with the
   // others at their bounds, over the first `count` rows (the rest at zero); true when every
-  // row then meets its condition. A wrong guess costs one factorisation.
+  // row then meets its condition, else the guess is amended from the rows that fail (false,
+  // the guess unchanged, for a solve that is not a number). A try costs one factorisation.
   bool TryGuess(int count, std::vector<std::uint8_t>& guess) {
     std::vector<double>& x = d_.x;
     std::vector<int>& F = d_.C;
@@ -207,6 +208,7 @@ class BoxSolve {
       if (nf == n_ || Guess(n_, d_.guess1)) {
         for (int i = 0; i < n_; ++i) d_.guess1[i] = ToGuess(d_.state[i]);
         ++d_.guessed;
+        if (amended_) ++d_.amended;
         return;
       }
     }
@@ -218,7 +220,10 @@ class BoxSolve {
   // amendments can cycle; the pivoting solve ends those).
   bool Guess(int count, std::vector<std::uint8_t>& guess) {
     for (int attempt = 0; attempt < kGuesses; ++attempt) {
-      if (TryGuess(count, guess)) return true;
+      if (TryGuess(count, guess)) {
+        amended_ = amended_ || attempt > 0;
+        return true;
+      }
     }
     return false;
   }
@@ -402,6 +407,7 @@ class BoxSolve {
 
   const int n_;
   ConstraintSolverData& d_;
+  bool amended_ = false;  // a guess was amended before it held
 };
 
 // Sorts `items` stably by group(item), a number in [0, groups) (a counting sort).

@@ -18,8 +18,9 @@
 /// the bounded rows (motors, stops, contacts) are left to the box solve. That solve first tries
 /// the states its rows ended at in the last call (ConstraintRow::key names a row from call to
 /// call): the free rows' forces with the others at their bounds, kept when every row meets its
-/// condition; otherwise it pivots as ODE's Dantzig solver does. Every row's cfm > 0 makes the
-/// matrix positive definite, so the answer is unique and ODE's, to roundoff, however found.
+/// condition; a row that fails its condition changes its state and the solve tries again (three
+/// tries at most), and then it pivots as ODE's Dantzig solver does. Every row's cfm > 0 makes
+/// the matrix positive definite, so the answer is unique and ODE's, to roundoff, however found.
 
 #include <array>
 #include <cstdint>
@@ -63,6 +64,7 @@ struct ConstraintSolverData {
   int max_bounded_rows = 0;    ///< most bounded rows in one island so far (statistics)
   long pivots = 0;             ///< pivots of the bounded solves so far (statistics)
   long guessed = 0;            ///< islands solved at the first guess (statistics)
+  long amended = 0;            ///< of those, solved only after the guess was amended (statistics)
   long pivoted = 0;            ///< islands that needed the pivoting solve (statistics)
   long unsolved = 0;  ///< pivoting solves stopped at their pivot limit (never seen; statistics)
 
@@ -97,8 +99,7 @@ struct ConstraintSolverData {
   std::vector<int> island, block, row_root, order, local, cols, C, state, count, grouped;
   std::vector<Eigen::Matrix<double, 6, 1>> im0, im1, tmp, f;
   std::vector<double> S, b, x, w, dx, dw, L, y, lo, hi, mu, Aee, G, update;
-  std::vector<int> findex, u_rows, e_rows, first, envelope;
-  std::vector<int> span;
+  std::vector<int> findex, u_rows, e_rows, first, envelope, span;
   std::vector<std::uint8_t> guess0, guess1;
 };
 

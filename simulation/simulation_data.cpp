@@ -289,6 +289,9 @@ struct SimulationData::Impl {
   Vector7d arm_lower, arm_upper, arm_vmax, arm_fmax;
   // per hand joint (HandJointVector order)
   HandJointVector hand_vmax, hand_fmax;
+  // the fingers' hinge stops as ODE keeps them, and their motors' velocities this step (the
+  // hinges' parameters, for the structured step).
+  HandJointVector hand_stop_lo, hand_stop_hi, hand_vel;
 
   ~Impl() {
     if (world) {
@@ -594,6 +597,8 @@ struct SimulationData::Impl {
       // holding a joint right at its stop fights the stop's correction.
       dJointSetHingeParam(finger_joints[j], dParamLoStop, hj.joint.lower - kStopMargin);
       dJointSetHingeParam(finger_joints[j], dParamHiStop, hj.joint.upper + kStopMargin);
+      hand_stop_lo[j] = dJointGetHingeParam(finger_joints[j], dParamLoStop);
+      hand_stop_hi[j] = dJointGetHingeParam(finger_joints[j], dParamHiStop);
       hand_vmax[j] = hj.joint.max_velocity;
       hand_fmax[j] = hj.joint.max_effort * so.hand_effort_scale * options.physics.hand_effort;
     }
@@ -743,7 +748,15 @@ struct SimulationData::Impl {
     hand_object.clear();
     feedback_contact.clear();
     pending.clear();
-    BroadPhase();
+    if (options.ode_broad_phase) {
+      dSpaceCollide(space, this, &Impl::NearCallback);
+    } else {
+      BroadPhase();
+    }
+  }
+
+  static void NearCallback(void* data, dGeomID a, dGeomID b) {
+    static_cast<Impl*>(data)->CollidePair(a, b);
   }
 
   // ---- the broad phase ----
@@ -1029,10 +1042,8 @@ struct SimulationData::Impl {
     AddRow(f.b0, f.b1, z, p, z, -p, k * u.dot(p), so.cfm, -kInf, kInf, -1, 0);
     AddRow(f.b0, f.b1, z, q, z, -q, k * u.dot(q), so.cfm, -kInf, kInf, -1, 0);
     // the motor, and the stop when the joint is past it (ODE's limit-motor row).
-    const double lo_stop = dJointGetHingeParam(finger_joints[j], dParamLoStop);
-    const double hi_stop = dJointGetHingeParam(finger_joints[j], dParamHiStop);
-    const double vel = dJointGetHingeParam(finger_joints[j], dParamVel);
-    const double fmax = dJointGetHingeParam(finger_joints[j], dParamFMax);
+    const double lo_stop = hand_stop_lo[j], hi_stop = hand_stop_hi[j];
+    const double vel = hand_vel[j], fmax = hand_fmax[j];  // as Step() set them
     const double theta = dJointGetHingeAngle(finger_joints[j]);
     int limit = 0;
     double err = 0.0;
@@ -1203,6 +1214,7 @@ struct SimulationData::Impl {
     for (int j = 0; j < kHandJoints; ++j) {
       dJointSetHingeParam(finger_joints[j], dParamVel, vh[j]);
       dJointSetHingeParam(finger_joints[j], dParamFMax, hand_fmax[j]);
+      hand_vel[j] = vh[j];
     }
     const auto t1 = Clock::now();
     Collide(false);

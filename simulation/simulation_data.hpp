@@ -97,6 +97,10 @@ struct WorldOptions {
   /// rows, right-hand sides and integration, each finger's joint rows eliminated before the
   /// pivoting solve of the motors, stops and contacts. Ignored in the other arm modes.
   bool structured_solver = true;
+  /// Find the contacts with ODE's dSpaceCollide (every pair of geoms) instead of the broad
+  /// phase's list of the pairs whose categories may touch: the same pairs in the same order,
+  /// so the same trial bit for bit (the option is there to show it).
+  bool ode_broad_phase = false;
 
   /// True when the values are finite and in range; otherwise false with the reason.
   bool IsValid(std::string* why) const;

@@ -71,6 +71,7 @@ SimulationData MakeTrialWorld(const SimulationModel& model, const JointTrajector
   world_options.physics = options.physics;
   world_options.finger_mounts = options.finger_mounts;
   world_options.structured_solver = options.structured_solver;
+  world_options.ode_broad_phase = options.ode_broad_phase;
   return SimulationData(model, world_options, trajectory.samples.front().arm,
                         trajectory.samples.front().hand);
 }

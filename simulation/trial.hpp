@@ -58,6 +58,8 @@ struct TrialOptions : TrialJudgeOptions {
   bool finger_mounts = true;
   /// kFast: the structured solve (WorldOptions::structured_solver).
   bool structured_solver = true;
+  /// ODE's dSpaceCollide instead of the broad phase (WorldOptions::ode_broad_phase).
+  bool ode_broad_phase = false;
 
   /// True when every value is finite and in range; otherwise false with the reason.
   bool IsValid(std::string* why) const;

@@ -138,6 +138,30 @@ TEST(RunTrial, TheStructuredSolverStepsAsOdeDoes) {
   EXPECT_EQ(a.outcome, TrialOutcome::kCollision) << a.BriefReport();
 }
 
+// The broad phase (the pairs of geoms whose categories may touch, in the order of ODE's simple
+// space) finds the contacts dSpaceCollide finds, in its order: the same trial, bit for bit, in
+// a grasp and in a hand driven through the table.
+TEST(RunTrial, TheBroadPhaseFindsOdesPairsInOdesOrder) {
+  TrialOptions ode;
+  ode.ode_broad_phase = true;
+  ode.record_interval = 0.004;
+  TrialOptions ours = ode;
+  ours.ode_broad_phase = false;
+  for (const JointTrajectory& t : {ExampleTrajectory(), testing::HandThroughTable()}) {
+    const TrialResult a = RunTrial(ShippedSimulationModel(), t, ode);
+    const TrialResult b = RunTrial(ShippedSimulationModel(), t, ours);
+    EXPECT_EQ(b.outcome, a.outcome);
+    EXPECT_EQ(b.reason, a.reason);
+    EXPECT_EQ(b.statistics.dynamic_steps, a.statistics.dynamic_steps);
+    EXPECT_EQ(b.statistics.max_contacts, a.statistics.max_contacts);
+    ASSERT_EQ(b.states.size(), a.states.size());
+    for (size_t i = 0; i < a.states.size(); ++i) {
+      ASSERT_EQ(b.states[i].X_WO.matrix(), a.states[i].X_WO.matrix()) << "at " << a.states[i].t;
+      ASSERT_EQ(b.states[i].hand, a.states[i].hand) << "at " << a.states[i].t;
+    }
+  }
+}
+
 TEST(RunTrial, TheHandKeptOpenDoesNotLift) {
   for (Fidelity fidelity : {Fidelity::kFast, Fidelity::kFull}) {
     TrialOptions o;
