@@ -20,7 +20,7 @@
 /// - with every arm body kinematic, a step is ODE's problem (the same rows, right-hand sides
 ///   and integration as dWorldStep) solved by SolveConstraints, which eliminates each
 ///   finger's hinge rows before the pivoting solve of the motors, stops and contacts
-///   (WorldOptions::structured_solver; the same states to roundoff, trials 1.4-3.8x faster); the
+///   (WorldOptions::structured_solver; the same states to roundoff, trials 2.2-5.6x faster); the
 ///   other arm modes step with dWorldStep;
 /// - the 20 finger links are dynamic bodies on hinge joints, driven by implicit motors
 ///   (dParamVel, capped by dParamFMax = the joint's effort); each DIP's target is its PIP's
