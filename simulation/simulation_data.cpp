@@ -764,13 +764,15 @@ struct SimulationData::Impl {
   // categories may touch (the robot's geoms with the object's and the table, the object's with
   // the table) can give contacts. These are tested here in the order ODE's simple space tests
   // them (its list: the geoms moved last come first), with its rules (enabled geoms, not on one
-  // body, categories, overlapping bounding boxes), so that the contacts come in the same order.
+  // body, categories, sizes, overlapping bounding boxes; ODE's AABBTest hooks accept every pair
+  // for these shapes), so that the contacts come in the same order.
   struct BroadGeom {
     dGeomID geom = nullptr;
     bool enabled = false;
     dReal box[6] = {};  // its bounding box this step
   };
   std::vector<BroadGeom> broad;                // this step, in the space's list order
+  std::vector<int> broad_order_slot;           // this step, by place in the list: the slot
   std::vector<int> broad_slot;                 // by GeomInfo::id: the geom's row in broad_may_touch
   std::vector<std::uint64_t> broad_may_touch;  // by slot: a bit per slot it may touch
   int broad_words = 0;
@@ -784,6 +786,27 @@ struct SimulationData::Impl {
            1u;
   }
 
+  // ODE's simple space skips a geom of zero size (its GEOM_ZERO_SIZED flag).
+  static bool ZeroSized(dGeomID g) {
+    dVector3 box;
+    dReal radius = 0.0, length = 0.0;
+    switch (dGeomGetClass(g)) {
+      case dBoxClass:
+        dGeomBoxGetLengths(g, box);
+        return box[0] == 0.0 || box[1] == 0.0 || box[2] == 0.0;
+      case dSphereClass:
+        return dGeomSphereGetRadius(g) == 0.0;
+      case dCapsuleClass:
+        dGeomCapsuleGetParams(g, &radius, &length);
+        return radius == 0.0;
+      case dCylinderClass:
+        dGeomCylinderGetParams(g, &radius, &length);
+        return radius == 0.0 || length == 0.0;
+      default:
+        return false;
+    }
+  }
+
   void BuildBroadPhase(int n) {
     broad.resize(n);
     broad_slot.assign(geom_info.size() + 1, -1);
@@ -795,7 +818,7 @@ struct SimulationData::Impl {
       for (int j = 0; j < n; ++j) {
         const dGeomID b = dSpaceGetGeom(space, j);
         const dBodyID body = dGeomGetBody(a);
-        if (i == j || (body && body == dGeomGetBody(b))) continue;
+        if (i == j || (body && body == dGeomGetBody(b)) || ZeroSized(a) || ZeroSized(b)) continue;
         if ((dGeomGetCategoryBits(a) & dGeomGetCollideBits(b)) ||
             (dGeomGetCategoryBits(b) & dGeomGetCollideBits(a))) {
           broad_may_touch[static_cast<size_t>(i) * broad_words + (j >> 6)] |= 1ull << (j & 63);
@@ -831,7 +854,6 @@ struct SimulationData::Impl {
       }
     }
   }
-  std::vector<int> broad_order_slot;  // by place in the list this step: the geom's slot
 
   void CollidePair(dGeomID a, dGeomID b) {
     const GeomInfo* ia = static_cast<const GeomInfo*>(dGeomGetData(a));
