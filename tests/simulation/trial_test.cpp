@@ -122,10 +122,10 @@ TEST(RunTrial, TheFingerMountsChangeTheSolveNotTheTrial) {
 
 // The structured solve (WorldOptions::structured_solver) solves ODE's problem of each step
 // with the fingers' joint rows eliminated first: the same trial as dWorldStep, step for step.
-// The example's grasp (3e-13 m and 2e-11 rad measured, 2026-12-06; leaving out the gyroscopic
-// torque alone moves it by 8e-7 m), and a hand driven through the table, whose fingers press
-// on their stops with their motors and whose palm (a kinematic body) pushes the object (3e-10
-// m and 3.5e-8 rad measured).
+// The example's grasp (3e-12 m and 8e-11 rad measured on the final code of 2026-12-06;
+// leaving out the gyroscopic torque alone moves it by 8e-7 m), and a hand driven through the
+// table, whose fingers press on their stops with their motors and whose palm (a kinematic
+// body) pushes the object (1.2e-10 m and 1.1e-8 rad measured).
 TEST(RunTrial, TheStructuredSolverStepsAsOdeDoes) {
   TrialOptions ode;
   ode.structured_solver = false;
