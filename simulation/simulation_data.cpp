@@ -838,7 +838,13 @@ struct SimulationData::Impl {
       g.geom = dSpaceGetGeom(space, i);
       g.enabled = dGeomIsEnabled(g.geom) != 0;
       dGeomGetAABB(g.geom, g.box);
-      broad_order_slot[i] = broad_slot[GeomId(g.geom)];
+      const int id = GeomId(g.geom);
+      if (id >= static_cast<int>(broad_slot.size()) || broad_slot[id] < 0) {
+        BuildBroadPhase(n);  // a geom added since the table was built (never in a trial)
+        i = -1;
+        continue;
+      }
+      broad_order_slot[i] = broad_slot[id];
     }
     for (int i = 0; i < n; ++i) {
       const BroadGeom& a = broad[i];
