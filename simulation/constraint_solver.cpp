@@ -123,9 +123,11 @@ class BoxSolve {
 
   // The answer from a guess of each row's state: the free rows' forces solved with the
   // others at their bounds, over the first `count` rows (the rest at zero); true when every
-  // row then meets its condition, else the guess is amended from the rows that fail (false,
-  // the guess unchanged, for a solve that is not a number). A try costs one factorisation.
-  bool TryGuess(int count, std::vector<std::uint8_t>& guess) {
+  // row then meets its condition (kMet), else the guess is amended from the rows that fail
+  // (kAmended), or left as it is for a solve that is not a number (kFailed). A try costs one
+  // factorisation.
+  enum class Try { kMet, kAmended, kFailed };
+  Try TryGuess(int count, std::vector<std::uint8_t>& guess) {
     std::vector<double>& x = d_.x;
     std::vector<int>& F = d_.C;
     F.clear();
@@ -174,7 +176,7 @@ class BoxSolve {
       } else if (y[a] > d_.hi[i]) {
         guess[i] = kHighGuess, met = false;
       } else if (!(y[a] >= d_.lo[i] && y[a] <= d_.hi[i])) {
-        return false;  // not a number
+        return Try::kFailed;  // not a number
       }
     }
     for (int i = 0, a = 0; i < count; ++i) {
@@ -190,7 +192,7 @@ class BoxSolve {
       if (d_.lo[i] != d_.hi[i] && (low ? w < 0.0 : w > 0.0)) guess[i] = kFreeGuess, met = false;
       d_.state[i] = low ? kLow : kHigh;
     }
-    return met;
+    return met ? Try::kMet : Try::kAmended;
   }
 
   // Solves with the guesses of the rows' states (d.guess0 without the friction rows, d.guess1
@@ -220,10 +222,12 @@ class BoxSolve {
   // amendments can cycle; the pivoting solve ends those).
   bool Guess(int count, std::vector<std::uint8_t>& guess) {
     for (int attempt = 0; attempt < kGuesses; ++attempt) {
-      if (TryGuess(count, guess)) {
+      const Try t = TryGuess(count, guess);
+      if (t == Try::kMet) {
         amended_ = amended_ || attempt > 0;
         return true;
       }
+      if (t == Try::kFailed) break;
     }
     return false;
   }

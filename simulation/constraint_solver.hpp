@@ -98,6 +98,7 @@ struct ConstraintSolverData {
   std::vector<Block> blocks;
   std::vector<int> island, block, row_root, order, local, cols, C, state, count, grouped;
   std::vector<Eigen::Matrix<double, 6, 1>> im0, im1, tmp, f;
+  // update: a block's row of W^T [W z] while it is eliminated, its equality forces after
   std::vector<double> S, b, x, w, dx, dw, L, y, lo, hi, mu, Aee, G, update;
   std::vector<int> findex, u_rows, e_rows, first, envelope, span;
   std::vector<std::uint8_t> guess0, guess1;

@@ -122,12 +122,14 @@ void PlaneSpace(const Eigen::Vector3d& n, Eigen::Vector3d* p, Eigen::Vector3d* q
   *q = FromOde(qq);
 }
 
-Eigen::Isometry3d BodyPose(dBodyID body) {
-  const dReal* p = dBodyGetPosition(body);
+// A body's orientation, its quaternion normalized.
+Eigen::Quaterniond BodyOrientation(dBodyID body) {
   const dReal* q = dBodyGetQuaternion(body);
-  Eigen::Isometry3d X = PoseFrom(Eigen::Vector3d(p[0], p[1], p[2]),
-                                 Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized());
-  return X;
+  return Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized();
+}
+
+Eigen::Isometry3d BodyPose(dBodyID body) {
+  return PoseFrom(FromOde(dBodyGetPosition(body)), BodyOrientation(body));
 }
 
 // Places a body (frame at the centre of mass) for link pose X_WL.
@@ -432,6 +434,11 @@ struct SimulationData::Impl {
     AddObject();
     AddArmJoints();
     AddFingerJoints();
+    // the moving bodies' solver indices, plus one, in their user data (SolverIndex).
+    for (int i = 0; i <= kHandJoints; ++i) {
+      const dBodyID b = i < kHandJoints ? fingers[i].body : object.body;
+      dBodySetData(b, reinterpret_cast<void*>(static_cast<std::intptr_t>(i) + 1));
+    }
 
     // the initial configuration, at rest, with commands that hold it.
     const RobotModel& r = robot();
@@ -1014,7 +1021,7 @@ struct SimulationData::Impl {
   }
 
   // the solver index of a moving body (the finger links, then the object), -1 for others:
-  // StepStructured keeps it, plus one, in the moving bodies' user data (no other body has any).
+  // Build keeps it, plus one, in the moving bodies' user data (no other body has any).
   static int SolverIndex(dBodyID b) {
     return b ? static_cast<int>(reinterpret_cast<std::intptr_t>(dBodyGetData(b))) - 1 : -1;
   }
@@ -1129,7 +1136,6 @@ struct SimulationData::Impl {
     solver_bodies.resize(kHandJoints + 1);
     for (int i = 0; i <= kHandJoints; ++i) {
       const dBodyID b = i < kHandJoints ? fingers[i].body : object.body;
-      dBodySetData(b, reinterpret_cast<void*>(static_cast<std::intptr_t>(i) + 1));
       dMass m;
       dBodyGetMass(b, &m);
       const Eigen::Matrix3d I_B = FromOdeMatrix(m.I);
@@ -1442,9 +1448,7 @@ double SimulationData::HandObjectKineticEnergy() const {
     const dReal* v = dBodyGetLinearVel(b);
     const dReal* w = dBodyGetAngularVel(b);
     const Eigen::Vector3d vw(v[0], v[1], v[2]), ww(w[0], w[1], w[2]);
-    const dReal* q = dBodyGetQuaternion(b);  // BodyPose(b).linear()
-    const Eigen::Matrix3d R =
-        Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
+    const Eigen::Matrix3d R = BodyOrientation(b).toRotationMatrix();
     const Eigen::Matrix3d I = FromOdeMatrix(m.I);
     const Eigen::Vector3d wb = R.transpose() * ww;
     e += 0.5 * m.mass * vw.squaredNorm() + 0.5 * wb.dot(I * wb);
