@@ -253,7 +253,17 @@ RunCheckpoint::~RunCheckpoint() {
 }
 
 void RunCheckpoint::Done() {
-  if (folder_) folder_->Remove();
+  if (!folder_) return;
+  const ResumeSummary summary = folder_->summary();
+  if (folder_->resumed()) {
+    std::string line = "resumed: " + std::to_string(summary.taken) + " finished jobs taken from " +
+                       folder_->folder().string() + ", " + std::to_string(summary.recomputed) +
+                       " recomputed";
+    for (const std::string& why : summary.reasons) line += "\n  recomputed " + why;
+    if (summary.recomputed > static_cast<int>(summary.reasons.size())) line += "\n  ...";
+    std::fprintf(stderr, "%s\n", line.c_str());
+  }
+  folder_->Remove();
 }
 
 ProgressBar::ProgressBar()

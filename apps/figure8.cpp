@@ -21,6 +21,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
+#include "common/input_file.hpp"
 #include "kinematics/triangle_mesh.hpp"
 
 extern char** environ;
@@ -60,7 +61,13 @@ void WriteText(const fs::path& path, const std::string& text) {
 }
 
 // The file's text, or nothing when there is none (gnuplot wrote no log or no figure).
-std::string ReadText(const fs::path& path) { return ReadWholeFile(path).value_or(""); }
+std::string ReadText(const fs::path& path) {
+  try {
+    return ReadInputFile(path, input_kind::kToolOutput);
+  } catch (const InputError&) {
+    return "";  // gnuplot wrote nothing there
+  }
+}
 
 // Runs `program script` with stdout and stderr sent to `log`; throws with a clear message when
 // the program cannot be started or fails.

@@ -4,14 +4,14 @@
 
 #include "apps/kinematics_commands.hpp"
 
-#include <fstream>
 #include <iostream>
-#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <sstream>
 #include <string>
 
 #include "common/errors.hpp"
+#include "common/input_file.hpp"
 #include "common/text_input.hpp"
 #include "kinematics/arm_ik.hpp"
 #include "kinematics/pose_math.hpp"
@@ -31,21 +31,41 @@ struct KinematicsOptions {
   std::string branch;
 };
 
+// The longest input line taken (a line of 7 or 8 numbers has well under 1 KiB).
+constexpr size_t kMaxLineBytes = 64 * 1024;
+// An input file of lines (a regular file only, at most this size: about a million lines).
+constexpr InputFileKind kLinesFile{"input file", 256 * input_kind::kMiB};
+
+// Reads the next line of `in` into `line`, at most kMaxLineBytes of it. False at the end of the
+// input; throws InputError naming `source` and the line for a longer line (an endless stream
+// such as /dev/zero on standard input ends there, not in memory).
+bool NextLine(std::istream& in, const std::string& source, int number, std::string* line) {
+  line->clear();
+  for (int c = in.get(); c != std::char_traits<char>::eof(); c = in.get()) {
+    if (c == '\n') return true;
+    if (line->size() == kMaxLineBytes) {
+      throw InputError(source + ":" + std::to_string(number) + ": the line is longer than " +
+                       std::to_string(kMaxLineBytes) + " bytes (one configuration or pose a line)");
+    }
+    line->push_back(static_cast<char>(c));
+  }
+  return !line->empty();
+}
+
 // Calls `handle(line_text)` for every non-blank, non-comment line of the input and reports
 // malformed lines; returns the number of malformed lines.
 template <typename Handler>
 int ForEachInputLine(const std::string& input, Handler handle) {
-  std::unique_ptr<std::ifstream> file;
+  std::istringstream file;
   std::istream* in = &std::cin;
   if (input != "-") {
-    file = std::make_unique<std::ifstream>(input);
-    if (!*file) throw InputError("cannot open input file '" + input + "'");
-    in = file.get();
+    file.str(ReadInputFile(input, kLinesFile));
+    in = &file;
   }
   const std::string source = input == "-" ? "<stdin>" : input;
   int bad = 0;
   std::string line;
-  for (int number = 1; std::getline(*in, line); ++number) {
+  for (int number = 1; NextLine(*in, source, number, &line); ++number) {
     const std::string_view text = TrimBlanks(line);
     if (text.empty() || text.front() == '#') continue;
     try {

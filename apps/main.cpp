@@ -46,6 +46,23 @@ struct Mpi {
 };
 #endif
 
+// Refuses an empty value for every option that takes one, in `app` and its subcommands: an
+// empty --object or --at would otherwise mean "not given" without a word (README, "Commands");
+// leaving the option out is how its default is asked for.
+void RefuseEmptyValues(CLI::App* app) {
+  for (CLI::Option* option : app->get_options()) {
+    if (option->get_type_size() == 0) continue;  // a flag takes no value
+    option->check(CLI::Validator(
+        [](const std::string& value) {
+          return value.empty()
+                     ? std::string("an empty value (leave the option out to take its default)")
+                     : std::string();
+        },
+        "", "non-empty"));
+  }
+  for (CLI::App* command : app->get_subcommands({})) RefuseEmptyValues(command);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -78,6 +95,18 @@ int main(int argc, char** argv) {
               << "  " << graspsynth::SolverLibraryInfo() << "\n";
   });
 
+  RefuseEmptyValues(&app);
+  // CLI11 takes "--object=" as the option without its value and then the next argument in its
+  // place ("--object= --out X" would lose --out): refused here, before it parses.
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--") break;
+    if (arg.size() > 3 && arg.rfind("--", 0) == 0 && arg.back() == '=') {
+      std::cerr << arg.substr(0, arg.size() - 1)
+                << ": an empty value (leave the option out to take its default)\n";
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

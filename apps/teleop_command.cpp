@@ -62,14 +62,10 @@ struct ServerOptions {
   bool insecure = false;
 };
 
-// The link's key of --key-file (with a warning when others can read the file); none without.
-std::optional<teleop::PacketKey> LoadLinkKey(const std::string& key_file, const char* command) {
+// The link's key of --key-file; none without.
+std::optional<teleop::PacketKey> LoadLinkKey(const std::string& key_file) {
   if (key_file.empty()) return std::nullopt;
-  teleop::PacketKey key = teleop::PacketKey::Load(key_file);
-  if (const auto warning = teleop::KeyFilePermissionWarning(key_file)) {
-    std::cerr << "graspsynth " << command << ": warning: " << *warning << "\n";
-  }
-  return key;
+  return teleop::PacketKey::Load(key_file);
 }
 
 // 127.0.0.0/8: only this machine can reach the address.
@@ -94,7 +90,7 @@ teleop::TeleopOptions SessionOptions(const ServerOptions& opts) {
   options.calibration =
       teleop::LoadTeleopCalibration(opts.config.empty() ? teleop::DefaultTeleopCalibrationPath()
                                                         : std::filesystem::path(opts.config));
-  options.key = LoadLinkKey(opts.key_file, "teleop");
+  options.key = LoadLinkKey(opts.key_file);
   if (!options.key && !opts.insecure && !IsLoopback(opts.bind)) {
     throw InputError("--bind " + opts.bind +
                      " opens the link beyond this machine, and without a key anyone who reaches "
@@ -276,7 +272,7 @@ int RunClient(const ClientOptions& opts) {
   const teleop::TeleopCalibration calibration =
       teleop::LoadTeleopCalibration(opts.config.empty() ? teleop::DefaultTeleopCalibrationPath()
                                                         : std::filesystem::path(opts.config));
-  const std::optional<teleop::PacketKey> key = LoadLinkKey(opts.key_file, "teleop-client");
+  const std::optional<teleop::PacketKey> key = LoadLinkKey(opts.key_file);
   const teleop::PacketKey* key_ptr = key ? &*key : nullptr;
   const uint64_t server = teleop::ParsePeer(opts.host, opts.port);
   teleop::UdpLinkOptions link_options;

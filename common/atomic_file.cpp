@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <system_error>
 
@@ -36,17 +35,6 @@ fs::path TemporaryBeside(const fs::path& path) {
 }
 
 }  // namespace
-
-std::optional<std::string> ReadWholeFile(const fs::path& path) {
-  std::error_code ec;
-  if (fs::is_directory(path, ec)) return std::nullopt;  // opens, but reads nothing
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError("error while reading '" + path.string() + "'");
-  return std::move(text).str();
-}
 
 void WriteFileAtomically(const fs::path& path, std::string_view contents) {
   const fs::path tmp = TemporaryBeside(path);

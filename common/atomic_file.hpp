@@ -1,20 +1,15 @@
 #pragma once
 
 /// @file
-/// Whole-file input, and atomic file output: write to a temporary file in the same folder, then
-/// rename it over the destination, so that an interrupted run never leaves a half-written file.
+/// Atomic file output: write to a temporary file in the same folder, then rename it over the
+/// destination, so that an interrupted run never leaves a half-written file. (Input files are
+/// read by common/input_file.hpp.)
 
 #include <filesystem>
-#include <optional>
 #include <string>
 #include <string_view>
 
 namespace graspsynth {
-
-/// The bytes of the file at `path`, or std::nullopt when it cannot be opened or is a folder (the
-/// caller names what the file is in its error). Throws InputError naming the path when reading
-/// fails after the file was opened.
-std::optional<std::string> ReadWholeFile(const std::filesystem::path& path);
 
 /// Writes `contents` to `path` atomically (temporary file + rename). Creates missing parent
 /// folders. Throws InputError naming the path when the folder or file cannot be written.

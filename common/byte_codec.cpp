@@ -114,15 +114,23 @@ void ByteReader::Finish() const {
   }
 }
 
-std::string Fingerprint(std::string_view bytes) {
-  uint64_t h = 14695981039346656037ULL;
+void FingerprintState::Add(std::string_view bytes) {
   for (unsigned char c : bytes) {
-    h ^= c;
-    h *= 1099511628211ULL;
+    hash_ ^= c;
+    hash_ *= 1099511628211ULL;
   }
+}
+
+std::string FingerprintState::Hex() const {
   char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hash_));
   return hex;
+}
+
+std::string Fingerprint(std::string_view bytes) {
+  FingerprintState state;
+  state.Add(bytes);
+  return state.Hex();
 }
 
 }  // namespace graspsynth

@@ -90,4 +90,15 @@ auto ReadOptional(ByteReader& r, Read read) -> std::optional<decltype(read())> {
 /// for a resumed run to see that it changed (not a cryptographic hash).
 std::string Fingerprint(std::string_view bytes);
 
+/// Fingerprint of bytes that come in pieces: Add them in order, then Hex() is the Fingerprint
+/// of all of them together.
+class FingerprintState {
+ public:
+  void Add(std::string_view bytes);
+  std::string Hex() const;
+
+ private:
+  uint64_t hash_ = 14695981039346656037ULL;
+};
+
 }  // namespace graspsynth

@@ -1,7 +1,10 @@
 #include "common/job_runner.hpp"
 
+#include <dlfcn.h>
+
 #include <algorithm>
 #include <cctype>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <system_error>
@@ -10,6 +13,7 @@
 #include "common/byte_codec.hpp"
 #include "common/demand.hpp"
 #include "common/errors.hpp"
+#include "common/input_file.hpp"
 #include "common/json_reader.hpp"
 #include "common/parallel.hpp"
 
@@ -18,24 +22,33 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* kResumeFormat = "graspsynth-resume/1";
-constexpr const char* kJobFormat = "graspsynth-job/1";
-
-std::string ReadFileOrThrow(const fs::path& path) {
-  std::optional<std::string> bytes = ReadWholeFile(path);
-  if (!bytes) throw InputError("cannot read '" + path.string() + "'");
-  return std::move(*bytes);
-}
+constexpr const char* kResumeFormat = "graspsynth-resume/2";
+constexpr const char* kJobFormat = "graspsynth-job/2";
+// How many reasons for recomputed jobs a summary keeps.
+constexpr size_t kReasonsKept = 5;
 
 std::string Quoted(const std::string& s) { return "'" + s + "'"; }
 
 // Throws InputError naming the first difference between the earlier run's identity (the
 // folder's run.json) and this run's.
 void CheckSameRun(const fs::path& manifest, const RunIdentity& now) {
-  const JsonReader doc = JsonReader::Load(manifest).AsObject();
-  doc.ExpectString("format", kResumeFormat);
   const std::string refuse =
       "--resume: the unfinished run in '" + manifest.parent_path().string() + "' was started ";
+  const std::string other_build =
+      " (its kept jobs are results of that build; start afresh without --resume, or resume it "
+      "with the program that started it)";
+  const JsonReader doc = JsonReader::Load(manifest).AsObject();
+  const std::string format = doc.String("format");
+  if (format != kResumeFormat) {
+    throw InputError(refuse + "by another version of graspsynth (its run.json is " +
+                     Quoted(format) + ", this version writes " + Quoted(kResumeFormat) + ")" +
+                     other_build);
+  }
+  const std::string build = doc.String("build");
+  if (build != BuildId()) {
+    throw InputError(refuse + "by " + Quoted(build) + ", not by this build, " +
+                     Quoted(std::string(BuildId())) + other_build);
+  }
   const std::string afresh = " (start afresh without --resume, or give the same ones)";
   const std::string command = doc.String("command");
   if (command != now.command) {
@@ -74,6 +87,7 @@ void CheckSameRun(const fs::path& manifest, const RunIdentity& now) {
 std::string IdentityJson(const RunIdentity& identity) {
   nlohmann::ordered_json j;
   j["format"] = kResumeFormat;
+  j["build"] = BuildId();
   j["command"] = identity.command;
   j["fields"] = nlohmann::ordered_json::array();
   for (const auto& [name, value] : identity.fields) {
@@ -82,11 +96,41 @@ std::string IdentityJson(const RunIdentity& identity) {
   return j.dump(2) + "\n";
 }
 
+// The 64-bit FNV-1a fingerprint (as Fingerprint writes it) of the file that holds this code: the
+// executable, or the shared library (Python's module) it was linked into; "" when it cannot be
+// found or read.
+std::string FingerprintOfThisCode() {
+  Dl_info info{};
+  if (::dladdr(reinterpret_cast<const void*>(&FingerprintOfThisCode), &info) == 0 ||
+      info.dli_fname == nullptr) {
+    return "";
+  }
+  std::ifstream in(info.dli_fname, std::ios::binary);
+  if (!in) return "";
+  // read in pieces: a sanitizer build's test binary has hundreds of megabytes.
+  std::string piece(1 << 20, '\0');
+  FingerprintState state;
+  while (in.read(piece.data(), static_cast<std::streamsize>(piece.size())) || in.gcount() > 0) {
+    state.Add(std::string_view(piece.data(), static_cast<size_t>(in.gcount())));
+  }
+  return in.bad() ? "" : state.Hex();
+}
+
 }  // namespace
+
+std::string_view BuildId() {
+  static const std::string id = [] {
+    const std::string code = FingerprintOfThisCode();
+    return std::string("graspsynth ") + GRASPSYNTH_VERSION +
+           (code.empty() ? std::string() : ", build " + code);
+  }();
+  return id;
+}
 
 RunIdentity& RunIdentity::AddFile(std::string name, const fs::path& path) {
   std::error_code ec;
-  if (!fs::is_directory(path, ec)) return Add(std::move(name), Fingerprint(ReadFileOrThrow(path)));
+  if (!fs::is_directory(path, ec))
+    return Add(std::move(name), Fingerprint(ReadInputFile(path, input_kind::kFingerprinted)));
   std::vector<fs::path> files;
   for (fs::recursive_directory_iterator it(path, ec), end; !ec && it != end; it.increment(ec)) {
     if (it->is_regular_file(ec)) files.push_back(it->path());
@@ -95,8 +139,8 @@ RunIdentity& RunIdentity::AddFile(std::string name, const fs::path& path) {
   std::sort(files.begin(), files.end());
   std::string listing;
   for (const fs::path& f : files) {
-    listing +=
-        f.lexically_relative(path).generic_string() + " " + Fingerprint(ReadFileOrThrow(f)) + "\n";
+    listing += f.lexically_relative(path).generic_string() + " " +
+               Fingerprint(ReadInputFile(f, input_kind::kFingerprinted)) + "\n";
   }
   return Add(std::move(name), Fingerprint(listing));
 }
@@ -124,8 +168,11 @@ fs::path ResumeFolder::JobPath(const std::string& stage, int index) const {
 std::string JobFileBytes(const JobFile& job) {
   ByteWriter w;
   w.String(kJobFormat);
+  w.String(job.build);
   w.String(job.stage);
   w.Int(job.index);
+  w.String(job.payload);
+  w.String(Fingerprint(job.result));
   w.String(job.result);
   return w.Take();
 }
@@ -137,28 +184,64 @@ JobFile ParseJobFile(std::string_view bytes, const std::string& source) {
     throw InputError(source + ": not a " + kJobFormat + " file (format '" + format + "')");
   }
   JobFile job;
+  job.build = r.String();
   job.stage = r.String();
   job.index = r.Int();
+  job.payload = r.String();
+  const std::string checksum = r.String();
   job.result = r.String();
   r.Finish();
+  if (Fingerprint(job.result) != checksum) {
+    throw InputError(source + ": the result's checksum is " + Fingerprint(job.result) +
+                     ", the file says " + checksum + " (the result was changed or damaged)");
+  }
   return job;
 }
 
-std::optional<std::string> ResumeFolder::Load(const std::string& stage, int index) const {
-  const fs::path path = JobPath(stage, index);
+std::optional<std::string> ResumeFolder::Load(const JobStage& stage, int index) const {
+  const fs::path path = JobPath(stage.name, index);
   std::error_code ec;
-  if (!fs::exists(path, ec)) return std::nullopt;
+  if (!fs::exists(path, ec) && !fs::is_symlink(path, ec)) return std::nullopt;
+  const std::string name = stage.name + "/" + std::to_string(index) + ".job";
+  std::string rejected;
   try {
-    JobFile job = ParseJobFile(ReadFileOrThrow(path), path.string());
-    if (job.stage != stage || job.index != index) return std::nullopt;
-    return std::move(job.result);
-  } catch (const InputError&) {
-    return std::nullopt;  // a damaged file: the job runs again
+    JobFile job = ParseJobFile(ReadInputFile(path, input_kind::kResumeJob), name);
+    if (job.build != BuildId()) {
+      rejected = name + ": made by " + Quoted(job.build) + ", not by this build";
+    } else if (job.stage != stage.name || job.index != index) {
+      rejected =
+          name + ": holds job " + std::to_string(job.index) + " of stage " + Quoted(job.stage);
+    } else if (job.payload != stage.payload) {
+      rejected =
+          name + ": a result of layout " + Quoted(job.payload) + ", not " + Quoted(stage.payload);
+    } else {
+      try {
+        if (stage.check) stage.check(index, job.result);
+        std::lock_guard<std::mutex> lock(mutex_);
+        ++summary_.taken;
+        return std::move(job.result);
+      } catch (const InputError& e) {
+        rejected = name + ": " + e.what();  // a result the stage cannot decode
+      }
+    }
+  } catch (const InputError& e) {
+    rejected = e.what();  // a damaged file (the message names it): the job runs again
   }
+  std::lock_guard<std::mutex> lock(mutex_);
+  ++summary_.recomputed;
+  if (summary_.reasons.size() < kReasonsKept) summary_.reasons.push_back(rejected);
+  return std::nullopt;
 }
 
-void ResumeFolder::Save(const std::string& stage, int index, std::string_view bytes) const {
-  WriteFileAtomically(JobPath(stage, index), JobFileBytes({stage, index, std::string(bytes)}));
+void ResumeFolder::Save(const JobStage& stage, int index, std::string_view bytes) const {
+  WriteFileAtomically(
+      JobPath(stage.name, index),
+      JobFileBytes({std::string(BuildId()), stage.name, index, stage.payload, std::string(bytes)}));
+}
+
+ResumeSummary ResumeFolder::summary() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return summary_;
 }
 
 void ResumeFolder::Remove() const {
@@ -182,7 +265,7 @@ StageResults::StageResults(const JobStage& stage, const ResumeFolder* resume)
     : stage_(stage), resume_(resume), results_(static_cast<size_t>(stage.count)) {
   DemandValidStage(stage);
   for (int i = 0; i < stage.count; ++i) {
-    std::optional<std::string> kept = resume ? resume->Load(stage.name, i) : std::nullopt;
+    std::optional<std::string> kept = resume ? resume->Load(stage, i) : std::nullopt;
     if (kept) {
       Keep(i, std::move(*kept), false, false);
     } else {
@@ -197,7 +280,7 @@ void StageResults::Add(int i, std::string bytes, bool here) {
 
 void StageResults::Keep(int i, std::string bytes, bool here, bool save) {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (save && resume_) resume_->Save(stage_.name, i, bytes);
+  if (save && resume_) resume_->Save(stage_, i, bytes);
   results_[static_cast<size_t>(i)] = std::move(bytes);
   if (stage_.finished) stage_.finished(i, here);
 }

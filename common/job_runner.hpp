@@ -14,8 +14,11 @@
 ///
 /// With a ResumeFolder, each finished job is written to the folder as it comes in (atomically),
 /// and a run started again with resume on takes the finished jobs from there and runs only the
-/// others. The folder's identity (the command, its arguments and the fingerprints of its input
-/// files) must match the new run's, or the resume is refused naming what differs.
+/// others. The folder's identity (the build of the program, the command, its arguments and the
+/// fingerprints of its input files) must match the new run's, or the resume is refused naming
+/// what differs. A kept job is taken only when everything about it checks out (its file's
+/// wrapper, its payload's checksum, layout and build, and the stage's own decoding of it);
+/// otherwise it runs again and is counted as recomputed.
 
 #include <cstdint>
 #include <filesystem>
@@ -52,6 +55,12 @@ struct JobStage {
   /// is in: `here` is true when one of its own threads ran it (and counted the job's own
   /// progress), false for a job run elsewhere or taken from the resume folder. May be empty.
   std::function<void(int i, bool here)> finished;
+  /// The layout of a result's bytes, e.g. "study-row/1", kept with each result in the resume
+  /// folder: a kept result of another layout runs again. Change it with the layout.
+  std::string payload;
+  /// Decodes job i's result kept in the resume folder and throws InputError when its bytes are
+  /// not a result of that job (it then runs again). May be empty (every kept result is taken).
+  std::function<void(int i, std::string_view bytes)> check;
 };
 
 /// What identifies a run for --resume: the command, and every argument and input (as a
@@ -70,22 +79,36 @@ struct RunIdentity {
   RunIdentity& AddFile(std::string name, const std::filesystem::path& path);
 };
 
+/// What a resumed run did with the jobs its folder kept.
+struct ResumeSummary {
+  int taken = 0;       ///< kept jobs taken as they were
+  int recomputed = 0;  ///< kept jobs that did not check out and ran again
+  /// Why, for the first few recomputed jobs ("synthesis/3.job: the payload's checksum ...").
+  std::vector<std::string> reasons;
+};
+
 /// The finished jobs of a run, kept in a folder so that the run can be resumed (see the file
-/// comment). Files: `run.json` (the identity) and `<stage>/<index>.job` (a result).
+/// comment). Files: `run.json` (the build and the identity) and `<stage>/<index>.job` (a
+/// result, with its build, its layout and its checksum).
 class ResumeFolder {
  public:
   /// Opens `folder` for the run `identity`. Without `resume`, starts afresh: whatever an
   /// earlier run left there is removed. With `resume`, keeps the finished jobs of the earlier
-  /// run after checking that its identity is this one; throws InputError naming the first
-  /// field that differs (with both values). A folder that does not exist holds no finished job
-  /// (the run starts afresh and `resumed()` says so).
+  /// run after checking that it was made by this build of the program (BuildId()) with this
+  /// identity; throws InputError naming the folder and the first field that differs (with both
+  /// values), and leaves the folder as it was. A folder that does not exist holds no finished
+  /// job (the run starts afresh and `resumed()` says so).
   ResumeFolder(std::filesystem::path folder, const RunIdentity& identity, bool resume);
 
-  /// The result of job `index` of `stage` that an earlier run finished, if any. A damaged file
-  /// is not used (the job runs again).
-  std::optional<std::string> Load(const std::string& stage, int index) const;
+  /// The result of job `index` of `stage` that an earlier run finished, if any, when its file
+  /// is whole, made by this build, for this stage and job, of the stage's payload layout, with
+  /// its checksum, and `stage.check` decodes it; otherwise std::nullopt (the job runs again,
+  /// and a file that was there is counted in summary() as recomputed, with the reason).
+  std::optional<std::string> Load(const JobStage& stage, int index) const;
   /// Keeps the result of job `index` of `stage` (atomically).
-  void Save(const std::string& stage, int index, std::string_view bytes) const;
+  void Save(const JobStage& stage, int index, std::string_view bytes) const;
+  /// The kept jobs taken and recomputed so far.
+  ResumeSummary summary() const;
   /// The run is over and its outputs are written: removes the folder.
   void Remove() const;
 
@@ -98,18 +121,24 @@ class ResumeFolder {
 
   std::filesystem::path folder_;
   bool resumed_ = false;
+  mutable std::mutex mutex_;
+  mutable ResumeSummary summary_;
 };
 
-/// A job file of a resume folder (`<stage>/<index>.job`): the format tag, the stage's name,
-/// the job's index and its result's bytes.
+/// A job file of a resume folder (`<stage>/<index>.job`): the format tag, the build that made
+/// it, the stage's name, the job's index, its result's layout, a checksum of the result and the
+/// result's bytes.
 struct JobFile {
+  std::string build;  ///< BuildId() of the program that wrote it
   std::string stage;
   int64_t index = 0;
+  std::string payload;  ///< JobStage::payload
   std::string result;
 };
 
-/// The bytes of `job` as a job file, and back. ParseJobFile throws InputError naming `source`
-/// for bytes that are not a job file.
+/// The bytes of `job` as a job file (with the checksum of its result), and back. ParseJobFile
+/// throws InputError naming `source` for bytes that are not a job file or whose result does not
+/// match its checksum.
 std::string JobFileBytes(const JobFile& job);
 JobFile ParseJobFile(std::string_view bytes, const std::string& source);
 
@@ -163,6 +192,11 @@ class StageResults {
   std::vector<int> todo_;
   std::mutex mutex_;
 };
+
+/// The build of this program, for resume folders: the version, the commit it was built from
+/// and whether the working tree had changes, e.g. "0.1.0 (git 1a2b3c4d5e6f, modified)" (the
+/// version alone when it was not built from a git checkout).
+std::string_view BuildId();
 
 /// Demands (GS_DEMAND) a valid stage: a name of letters, digits, '-' and '_', count >= 0 and a
 /// job function. Stages are made by the code, never from input.

@@ -1,5 +1,5 @@
 #include "common/json_reader.hpp"
-#include "common/atomic_file.hpp"
+#include "common/input_file.hpp"
 
 #include <cmath>
 #include <limits>
@@ -97,10 +97,8 @@ JsonReader JsonReader::Parse(std::string_view text, const std::string& source) {
   return JsonReader(std::move(document), root, "");
 }
 
-JsonReader JsonReader::Load(const std::filesystem::path& path) {
-  const std::optional<std::string> text = ReadWholeFile(path);
-  if (!text) throw InputError(path.string() + ": cannot read the file (missing or unreadable)");
-  return Parse(*text, path.string());
+JsonReader JsonReader::Load(const std::filesystem::path& path, const InputFileKind& kind) {
+  return Parse(ReadInputFile(path, kind), path.string());
 }
 
 std::string JsonReader::Shown() const {

@@ -22,6 +22,8 @@
 #include <string_view>
 #include <vector>
 
+#include "common/input_file.hpp"
+
 namespace graspsynth {
 
 /// One value of a parsed JSON document, with its source and field path (see the file comment).
@@ -31,9 +33,11 @@ class JsonReader {
   /// Parses `text`. Throws InputError "<source>: not valid JSON: <the parser's message, with
   /// the line and column>" when it is not JSON.
   static JsonReader Parse(std::string_view text, const std::string& source);
-  /// Reads and parses the file at `path` (the source is the path). Throws InputError when the
-  /// file cannot be read or is not JSON.
-  static JsonReader Load(const std::filesystem::path& path);
+  /// Reads (common/input_file.hpp's ReadInputFile, as a file of `kind`) and parses the file at
+  /// `path` (the source is the path). Throws InputError when the file cannot be read, is not a
+  /// regular file, is over the kind's size limit or is not JSON.
+  static JsonReader Load(const std::filesystem::path& path,
+                         const InputFileKind& kind = input_kind::kJson);
 
   /// The file or other source the document came from.
   const std::string& source() const;

@@ -19,9 +19,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::string why;
   ParseNumberList(text, 0, &why);
   ParseNumberList(text, 7, &why);
-  fuzz::RefusedOnlyWithInputError([&] {
-    teleop::ParseViewerCamera(text, teleop::ViewerCamera{});
-  });
+  fuzz::RefusedOnlyWithInputError([&] { teleop::ParseViewerCamera(text, teleop::ViewerCamera{}); });
   // one file per process, removed at its exit.
   static const struct KeyFile {
     std::filesystem::path path = std::filesystem::temp_directory_path() /
@@ -30,6 +28,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   } file;
   const std::filesystem::path& key_file = file.path;
   std::ofstream(key_file, std::ios::binary | std::ios::trunc) << text;
+  // owner-only, as a key file must be (a key others can read is refused before it is used).
+  std::filesystem::permissions(
+      key_file, std::filesystem::perms::owner_read | std::filesystem::perms::owner_write);
   fuzz::RefusedOnlyWithInputError([&] { teleop::PacketKey::Load(key_file); });
   return 0;
 }

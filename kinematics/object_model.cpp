@@ -7,9 +7,9 @@
 #include <optional>
 #include <set>
 
-#include "common/atomic_file.hpp"
 #include "common/data_dir.hpp"
 #include "common/errors.hpp"
+#include "common/input_file.hpp"
 #include "common/json_reader.hpp"
 #include "kinematics/triangle_mesh.hpp"
 #include "kinematics/types.hpp"
@@ -308,9 +308,8 @@ ObjectModel ParseObjectModel(std::string_view json_text, const std::string& sour
 }
 
 ObjectModel LoadObjectModel(const std::filesystem::path& path) {
-  const std::optional<std::string> text = ReadWholeFile(path);
-  if (!text) throw InputError("cannot open object description '" + path.string() + "'");
-  return ParseObjectModel(*text, path.string(), path.parent_path());
+  return ParseObjectModel(ReadInputFile(path, input_kind::kObject), path.string(),
+                          path.parent_path());
 }
 
 std::filesystem::path DefaultObjectDirectory() { return DataDirectory() / "models" / "objects"; }

@@ -15,9 +15,9 @@
 #include <sstream>
 #include <utility>
 
-#include "common/atomic_file.hpp"
 #include "common/data_dir.hpp"
 #include "common/errors.hpp"
+#include "common/input_file.hpp"
 #include "kinematics/pose_math.hpp"
 
 namespace graspsynth {
@@ -427,17 +427,7 @@ RobotModel ParseRobotModel(std::string_view urdf_xml, const std::string& source)
 }
 
 RobotModel LoadRobotModel(const std::filesystem::path& path) {
-  const std::string source = path.string();
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) {
-    throw InputError(source + ": robot description not found (no such file)");
-  }
-  if (!std::filesystem::is_regular_file(path, ec)) {
-    throw InputError(source + ": robot description is not a regular file");
-  }
-  const std::optional<std::string> text = ReadWholeFile(path);
-  if (!text) throw InputError(source + ": robot description could not be opened");
-  return ParseRobotModel(*text, source);
+  return ParseRobotModel(ReadInputFile(path, input_kind::kRobot), path.string());
 }
 
 std::filesystem::path DefaultRobotDescriptionPath() {

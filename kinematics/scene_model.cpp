@@ -5,9 +5,9 @@
 #include <optional>
 #include <sstream>
 
-#include "common/atomic_file.hpp"
 #include "common/data_dir.hpp"
 #include "common/errors.hpp"
+#include "common/input_file.hpp"
 #include "common/json_reader.hpp"
 
 namespace graspsynth {
@@ -151,9 +151,8 @@ SceneModel ParseSceneModel(std::string_view json_text, const std::string& source
 }
 
 SceneModel LoadSceneModel(const std::filesystem::path& path, const std::string& object_override) {
-  const std::optional<std::string> text = ReadWholeFile(path);
-  if (!text) throw InputError("cannot open scene description '" + path.string() + "'");
-  return ParseSceneModel(*text, path.string(), path.parent_path(), object_override);
+  return ParseSceneModel(ReadInputFile(path, input_kind::kScene), path.string(), path.parent_path(),
+                         object_override);
 }
 
 std::filesystem::path DefaultSceneModelPath() { return DataDirectory() / "models" / "scene.json"; }

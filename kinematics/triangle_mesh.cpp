@@ -10,8 +10,8 @@
 #include <optional>
 #include <sstream>
 
-#include "common/atomic_file.hpp"
 #include "common/errors.hpp"
+#include "common/input_file.hpp"
 #include "common/text_input.hpp"
 
 namespace graspsynth {
@@ -247,10 +247,9 @@ TriangleMesh LoadTriangleMesh(const std::filesystem::path& path, double scale) {
   if (ext != ".stl" && ext != ".obj") {
     throw InputError(path.string() + ": unknown mesh format '" + ext + "' (expected .stl or .obj)");
   }
-  const std::optional<std::string> data = ReadWholeFile(path);
-  if (!data) throw InputError("cannot open mesh '" + path.string() + "'");
-  return ext == ".stl" ? ParseStl(*data, scale, path.string())
-                       : ParseObj(*data, scale, path.string());
+  const std::string data = ReadInputFile(path, input_kind::kMesh);
+  return ext == ".stl" ? ParseStl(data, scale, path.string())
+                       : ParseObj(data, scale, path.string());
 }
 
 void CheckSolidMesh(const TriangleMesh& mesh, const MeshLimits& limits) {

@@ -25,8 +25,9 @@ DemoDirectory ReadDemoDirectory(const fs::path& directory) {
   for (; it != fs::directory_iterator(); it.increment(ec)) {
     const fs::path& path = it->path();
     const std::string name = path.filename().string();
+    // a *.csv that is not a regular file (a folder, a FIFO, a device) is read too, and so
+    // rejected by name (ReadInputFile) instead of skipped without a word.
     if (name.empty() || name.front() == '.' || path.extension() != ".csv") continue;
-    if (!it->is_regular_file(ec)) continue;
     files.push_back(path);
   }
   if (ec) {

@@ -25,9 +25,10 @@ struct DemoDirectory {
   std::vector<RejectedDemoFile> rejected;  ///< the bad files with reasons, sorted by file name
 };
 
-/// Reads every regular file whose name ends in ".csv" directly in `directory` (no recursion;
-/// other files and names starting with '.', such as temporary files of an interrupted atomic
-/// write, are ignored) with ReadDemoLog. Files are visited in file-name order, so the result does
+/// Reads every entry whose name ends in ".csv" directly in `directory` (no recursion; other
+/// files and names starting with '.', such as temporary files of an interrupted atomic write,
+/// are ignored) with ReadDemoLog: one that is not a regular file (a folder, a named pipe, a
+/// device) is rejected with that reason. Files are visited in file-name order, so the result does
 /// not depend on the file system's listing order.
 /// Throws InputError only when `directory` does not exist or is not a readable folder; a bad log
 /// goes to `rejected` with its reason.

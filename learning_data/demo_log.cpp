@@ -10,6 +10,7 @@
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
 #include "common/format.hpp"
+#include "common/input_file.hpp"
 #include "common/text_input.hpp"
 #include "kinematics/pose_math.hpp"
 
@@ -368,9 +369,7 @@ DemoLog ParseDemoLog(std::string_view text, const std::string& source) {
 }
 
 DemoLog ReadDemoLog(const std::filesystem::path& path) {
-  const std::optional<std::string> contents = ReadWholeFile(path);
-  if (!contents) throw InputError("cannot open demonstration log '" + path.string() + "'");
-  return ParseDemoLog(*contents, path.string());
+  return ParseDemoLog(ReadInputFile(path, input_kind::kDemoLog), path.string());
 }
 
 namespace {

@@ -250,7 +250,7 @@ OperatorOptions ReadOperator(const JsonReader& document) {
 }  // namespace
 
 OperatorOptions ReadOperatorOptions(const std::filesystem::path& path) {
-  return ReadOperator(JsonReader::Load(path));
+  return ReadOperator(JsonReader::Load(path, input_kind::kOperator));
 }
 
 OperatorOptions ParseOperatorOptions(std::string_view json_text, const std::string& source) {

@@ -18,6 +18,11 @@
 namespace graspsynth {
 namespace {
 
+// The layouts of the selection's job results (JobStage::payload): a nominal replay's success,
+// and an orientation's perturbed scores. Change them with EncodeScores and RunNominal.
+constexpr const char* kNominalLayout = "selection-nominal/1";
+constexpr const char* kScoresLayout = "selection-scores/1";
+
 std::string FileName(const std::string& source) {
   return std::filesystem::path(source).filename().string();
 }
@@ -163,6 +168,14 @@ std::string RunNominal(const SimulationModel& model, const SelectionOptions& opt
   return w.Take();
 }
 
+// Whether nominal replay i succeeded, from its job's result bytes.
+bool DecodeNominal(std::string_view bytes, int i) {
+  ByteReader r(bytes, "nominal replay " + std::to_string(i));
+  const bool success = r.Bool();
+  r.Finish();
+  return success;
+}
+
 // The perturbed replays' part of the scores of an orientation's demonstrations (`order`), as
 // a job's result bytes, and back.
 std::string EncodeScores(const std::vector<Scored*>& order) {
@@ -180,11 +193,12 @@ std::string EncodeScores(const std::vector<Scored*>& order) {
   return w.Take();
 }
 
-void DecodeScores(const std::string& bytes, const std::string& source,
-                  const std::vector<Scored*>& order) {
+// Decodes into `scores`, one per demonstration of the orientation, in order.
+void DecodeScores(std::string_view bytes, const std::string& source,
+                  const std::vector<DemoScore*>& scores) {
   ByteReader r(bytes, source);
-  for (Scored* s : order) {
-    DemoScore& d = s->candidate.score;
+  for (DemoScore* score : scores) {
+    DemoScore& d = *score;
     d.trials = r.Int32();
     d.successes = r.Int32();
     d.score = r.Double();
@@ -306,6 +320,39 @@ void PickRepresentatives(const SelectionOptions& options, std::vector<Scored>* s
   }
 }
 
+// The demonstrations of `scored` by placement, each placement's in kTieRule's order of ties (a
+// successful nominal replay, the shorter motion, the file name, so that a later one needs more
+// successes to win); the placements with the most demonstrations first: they are independent
+// jobs that run side by side, so that a small one ends the stage.
+std::vector<std::vector<Scored*>> GroupByPlacement(std::vector<Scored>* scored) {
+  std::vector<Scored*> order;
+  for (Scored& s : *scored) order.push_back(&s);
+  std::sort(order.begin(), order.end(), [](const Scored* a, const Scored* b) {
+    if (!SamePlacement(a->candidate.score, b->candidate.score)) {
+      return Before(a->candidate.score, b->candidate.score);
+    }
+    return PreferredOnTies(a->candidate, b->candidate);
+  });
+  std::vector<std::vector<Scored*>> placements;
+  for (Scored* s : order) {
+    if (placements.empty() ||
+        !SamePlacement(placements.back().front()->candidate.score, s->candidate.score)) {
+      placements.emplace_back();
+    }
+    placements.back().push_back(s);
+  }
+  std::stable_sort(placements.begin(), placements.end(),
+                   [](const auto& a, const auto& b) { return a.size() > b.size(); });
+  return placements;
+}
+
+// Pointers to the elements of `scores`.
+std::vector<DemoScore*> Pointers(std::vector<DemoScore>* scores) {
+  std::vector<DemoScore*> out;
+  for (DemoScore& d : *scores) out.push_back(&d);
+  return out;
+}
+
 }  // namespace
 
 SelectionResult SelectRepresentatives(const SimulationModel& model,
@@ -348,42 +395,23 @@ SelectionResult SelectRepresentatives(const SimulationModel& model,
   nominal.run = [&](int i) {
     return RunNominal(model, options, scored[static_cast<size_t>(i)], &counter);
   };
+  nominal.payload = kNominalLayout;
+  nominal.check = [](int i, std::string_view bytes) { DecodeNominal(bytes, i); };
   nominal.finished = [&](int i, bool here) {
     const Scored& s = scored[static_cast<size_t>(i)];
     if (!here && s.replay.ok) counter.Add(1, s.candidate.score.file);
   };
   const std::vector<std::string> nominal_results = runner.Run(nominal);
   for (size_t i = 0; i < scored.size(); ++i) {
-    ByteReader r(nominal_results[i], "nominal replay " + std::to_string(i));
-    scored[i].candidate.score.nominal_success = r.Bool();
-    r.Finish();
+    scored[i].candidate.score.nominal_success =
+        DecodeNominal(nominal_results[i], static_cast<int>(i));
   }
   for (const Scored& s : scored) {
     if (s.issue) result.issues.push_back(*s.issue);
   }
-  // each orientation's demonstrations in kTieRule's order of ties (a successful nominal replay,
-  // the shorter motion, the file name), so that a later one needs more successes to win.
-  std::vector<Scored*> order;
-  for (Scored& s : scored) order.push_back(&s);
-  std::sort(order.begin(), order.end(), [](const Scored* a, const Scored* b) {
-    if (!SamePlacement(a->candidate.score, b->candidate.score)) {
-      return Before(a->candidate.score, b->candidate.score);
-    }
-    return PreferredOnTies(a->candidate, b->candidate);
-  });
-  std::vector<std::vector<Scored*>> orientations;  // one per placement
-  for (Scored* s : order) {
-    if (orientations.empty() ||
-        !SamePlacement(orientations.back().front()->candidate.score, s->candidate.score)) {
-      orientations.emplace_back();
-    }
-    orientations.back().push_back(s);
-  }
-  // orientations are independent: they run side by side, the largest first so that a small one
-  // ends the stage, each on its share of the threads (one, when there are more orientations
-  // than threads; a replay never depends on the thread that runs it).
-  std::stable_sort(orientations.begin(), orientations.end(),
-                   [](const auto& a, const auto& b) { return a.size() > b.size(); });
+  const std::vector<std::vector<Scored*>> orientations = GroupByPlacement(&scored);
+  // each orientation on its share of the threads (one, when there are more orientations than
+  // threads; a replay never depends on the thread that runs it).
   const ThreadSplit split = SplitThreads(options.threads, static_cast<int>(orientations.size()));
   robustness.threads = split.inner;
   JobStage perturbed;
@@ -395,6 +423,11 @@ SelectionResult SelectRepresentatives(const SimulationModel& model,
     ScoreOrientation(model, options, robustness, order, &counter);
     return EncodeScores(order);
   };
+  perturbed.payload = kScoresLayout;
+  perturbed.check = [&](int k, std::string_view bytes) {
+    std::vector<DemoScore> scratch(orientations[static_cast<size_t>(k)].size());
+    DecodeScores(bytes, "selection job " + std::to_string(k), Pointers(&scratch));
+  };
   perturbed.finished = [&](int k, bool here) {
     if (here) return;
     for (const Scored* s : orientations[static_cast<size_t>(k)]) {
@@ -403,7 +436,9 @@ SelectionResult SelectRepresentatives(const SimulationModel& model,
   };
   const std::vector<std::string> perturbed_results = runner.Run(perturbed);
   for (size_t k = 0; k < orientations.size(); ++k) {
-    DecodeScores(perturbed_results[k], "selection job " + std::to_string(k), orientations[k]);
+    std::vector<DemoScore*> scores;
+    for (Scored* s : orientations[k]) scores.push_back(&s->candidate.score);
+    DecodeScores(perturbed_results[k], "selection job " + std::to_string(k), scores);
   }
 
   PickRepresentatives(options, &scored, &result);

@@ -342,6 +342,10 @@ std::vector<OperatorTrial> GenerateDemonstrations(const SimulationModel& model,
     return EncodeOperatorTrial(
         MakeTrial(model, options, options.plans[job.plan], positions[job.position], job.trial));
   };
+  stage.payload = kOperatorTrialLayout;
+  stage.check = [](int j, std::string_view bytes) {
+    DecodeOperatorTrial(bytes, "demos job " + std::to_string(j));
+  };
   stage.finished = [&](int, bool) {
     std::lock_guard<std::mutex> lock(mutex);
     ++finished;

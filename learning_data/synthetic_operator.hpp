@@ -73,6 +73,10 @@ std::vector<OperatorTrial> GenerateDemonstrations(const SimulationModel& model,
                                                   const OperatorProgress& progress = {},
                                                   JobRunner* runner = nullptr);
 
+/// The layout of EncodeOperatorTrial's bytes, kept with them in resume folders; change it with
+/// the layout.
+inline constexpr const char* kOperatorTrialLayout = "operator-trial/1";
+
 /// The bytes of a trial (common/byte_codec.hpp), for the job runner, and back. Decode throws
 /// InputError naming `source` for bytes that are not one.
 std::string EncodeOperatorTrial(const OperatorTrial& trial);

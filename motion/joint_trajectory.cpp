@@ -8,6 +8,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
+#include "common/input_file.hpp"
 #include "kinematics/pose_math.hpp"
 
 namespace graspsynth {
@@ -145,9 +146,8 @@ void CheckJointLimits(const JointTrajectory& trajectory, const ArmModel& arm, co
 
 JointTrajectory LoadJointTrajectory(const std::filesystem::path& path, const ArmModel& arm,
                                     const HandModel& hand) {
-  const std::optional<std::string> text = ReadWholeFile(path);
-  if (!text) throw InputError("cannot open trajectory file '" + path.string() + "'");
-  JointTrajectory trajectory = ParseJointTrajectory(*text, path.string());
+  JointTrajectory trajectory =
+      ParseJointTrajectory(ReadInputFile(path, input_kind::kTrajectory), path.string());
   CheckJointLimits(trajectory, arm, hand, path.string());
   return trajectory;
 }

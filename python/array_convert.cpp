@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -79,6 +80,18 @@ Batch ReadBatch(const DoubleArray& array, const std::vector<py::ssize_t>& item_s
   }
   batch.count = batch.single ? 1 : array.shape(0);
   batch.data = array.data();
+  // as the command line's number fields: a value that is not a finite number is refused, with
+  // where it is (the row of a batch, then the field of an item, 1-based as the commands count).
+  py::ssize_t per_item = 1;
+  for (const py::ssize_t n : item_shape) per_item *= n;
+  for (py::ssize_t k = 0; k < batch.count * per_item; ++k) {
+    if (std::isfinite(batch.data[k])) continue;
+    const std::string row = batch.single ? "" : "row " + std::to_string(k / per_item + 1) + ", ";
+    std::ostringstream value;
+    value << batch.data[k];
+    throw InputError(std::string(what) + ": " + row + "field " + std::to_string(k % per_item + 1) +
+                     " is not a finite number: '" + value.str() + "'");
+  }
   return batch;
 }
 

@@ -204,7 +204,7 @@ JointTrajectory ReadTrajectoryOrGrasp(const JsonReader& doc, const ArmModel& arm
 
 JointTrajectory LoadTrajectoryOrGraspFile(const std::filesystem::path& path, const ArmModel& arm,
                                           const HandModel& hand) {
-  return ReadTrajectoryOrGrasp(JsonReader::Load(path), arm, hand);
+  return ReadTrajectoryOrGrasp(JsonReader::Load(path, input_kind::kTrajectory), arm, hand);
 }
 
 JointTrajectory ParseTrajectoryOrGraspFile(std::string_view json_text, const std::string& source,

@@ -199,6 +199,10 @@ std::vector<StudyRow> SynthesisTable(const SimulationModel& model, const GraspLi
   stage.name = options.stage;
   stage.count = static_cast<int>(rows.size());
   stage.threads = split.outer;
+  stage.payload = kStudyRowLayout;
+  stage.check = [&](int i, std::string_view bytes) {
+    DecodeStudyRow(bytes, stage.name + " job " + std::to_string(i));
+  };
   stage.finished = [&](int i, bool here) {
     if (!here) counter.Add(per_row, rows[static_cast<size_t>(i)].method);
   };

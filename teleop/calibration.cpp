@@ -3,9 +3,9 @@
 #include <cmath>
 #include <optional>
 
-#include "common/atomic_file.hpp"
 #include "common/data_dir.hpp"
 #include "common/errors.hpp"
+#include "common/input_file.hpp"
 #include "common/json_reader.hpp"
 #include "kinematics/pose_math.hpp"
 
@@ -35,9 +35,7 @@ TeleopCalibration ParseTeleopCalibration(std::string_view json_text, const std::
 }
 
 TeleopCalibration LoadTeleopCalibration(const std::filesystem::path& path) {
-  const std::optional<std::string> text = ReadWholeFile(path);
-  if (!text) throw InputError(path.string() + ": cannot be read");
-  return ParseTeleopCalibration(*text, path.string());
+  return ParseTeleopCalibration(ReadInputFile(path, input_kind::kCalibration), path.string());
 }
 
 std::filesystem::path DefaultTeleopCalibrationPath() {

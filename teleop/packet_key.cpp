@@ -7,11 +7,11 @@
 #include <sys/stat.h>
 
 #include <cctype>
-#include <fstream>
 #include <stdexcept>
 
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
+#include "common/input_file.hpp"
 #include "common/text_input.hpp"
 
 namespace graspsynth::teleop {
@@ -45,16 +45,13 @@ PacketKey::PacketKey(std::vector<uint8_t> bytes) : bytes_(std::move(bytes)) {
 }
 
 PacketKey PacketKey::Load(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    throw InputError("key file " + path.string() +
-                     ": cannot read the file (missing or unreadable)");
-  }
+  const std::string contents = ReadInputFile(path, input_kind::kKey);
   const std::string where = "key file " + path.string();
   std::vector<uint8_t> key;
   int key_line = 0;
-  std::string line;
-  for (int number = 1; std::getline(in, line); ++number) {
+  int number = 0;
+  for (const std::string_view line : SplitFields(contents, '\n')) {
+    ++number;
     const std::string_view text = TrimBlanks(line);
     if (text.empty() || text.front() == '#') continue;
     const std::string at = where + ": line " + std::to_string(number);
@@ -83,6 +80,11 @@ PacketKey PacketKey::Load(const std::filesystem::path& path) {
     throw InputError(where +
                      ": no key line (only blank lines and comments); "
                      "graspsynth teleop-keygen --out FILE writes a key");
+  }
+  if (const std::optional<std::string> shared = KeyFileSharedWith(path)) {
+    throw InputError(where + ": can be read by " + *shared +
+                     ", so the key is not secret; chmod 600 it (as ssh does, a key that others "
+                     "can read is refused)");
   }
   return PacketKey(std::move(key));
 }
@@ -129,12 +131,14 @@ bool PacketKey::Verifies(std::span<const uint8_t> bytes, std::span<const uint8_t
   return CRYPTO_memcmp(expected.data(), tag.data(), kTagBytes) == 0;
 }
 
-std::optional<std::string> KeyFilePermissionWarning(const std::filesystem::path& path) {
+std::optional<std::string> KeyFileSharedWith(const std::filesystem::path& path) {
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0) return std::nullopt;
-  if ((st.st_mode & (S_IRGRP | S_IROTH)) == 0) return std::nullopt;
-  return "key file " + path.string() +
-         " can be read by other users (chmod 600 it to keep the key secret)";
+  const bool group = (st.st_mode & S_IRGRP) != 0, others = (st.st_mode & S_IROTH) != 0;
+  if (group && others) return "its group and other users";
+  if (group) return "its group";
+  if (others) return "other users";
+  return std::nullopt;
 }
 
 void WriteNewPacketKey(const std::filesystem::path& path) {

@@ -31,8 +31,10 @@ class PacketKey {
   explicit PacketKey(std::vector<uint8_t> bytes);
 
   /// Reads a key file (format above). Throws InputError naming the file (and the line) for a
-  /// missing or unreadable file, a line that is not hexadecimal, an odd number of digits, no
-  /// key line or more than one, a key too short or too long.
+  /// missing or unreadable file (or one that is not a regular file, or over 64 KiB), a line
+  /// that is not hexadecimal, an odd number of digits, no key line or more than one, a key too
+  /// short or too long, and a file that its group or other users can read (KeyFileSharedWith),
+  /// as ssh refuses such a private key.
   static PacketKey Load(const std::filesystem::path& path);
 
   /// A key of 32 bytes from OpenSSL's random generator. Throws std::runtime_error when the
@@ -53,9 +55,9 @@ class PacketKey {
   std::vector<uint8_t> bytes_;
 };
 
-/// A warning when the key file at `path` can be read by its group or by others (the key then
-/// is not secret on a shared machine); std::nullopt otherwise.
-std::optional<std::string> KeyFilePermissionWarning(const std::filesystem::path& path);
+/// Who besides its owner can read the key file at `path` ("its group", "other users", or both),
+/// or std::nullopt when nobody can (or the file cannot be looked at).
+std::optional<std::string> KeyFileSharedWith(const std::filesystem::path& path);
 
 /// Writes a new key (PacketKey::Generate) to `path`, readable and writable by its owner only
 /// (mode 0600), never overwriting: the file appears whole or not at all. Throws InputError when

@@ -15,8 +15,8 @@
 #include <cstring>
 #include <string_view>
 
-#include "common/atomic_file.hpp"
 #include "common/errors.hpp"
+#include "common/input_file.hpp"
 #include "teleop/http_request.hpp"
 
 namespace graspsynth::teleop {
@@ -42,14 +42,11 @@ constexpr AssetFile kAssetFiles[] = {
 std::string SystemError(const std::string& what) { return what + ": " + std::strerror(errno); }
 
 std::shared_ptr<const std::string> ReadAsset(const std::filesystem::path& path) {
-  std::optional<std::string> text;
   try {
-    text = ReadWholeFile(path);
+    return std::make_shared<const std::string>(ReadInputFile(path, input_kind::kViewerAsset));
   } catch (const InputError&) {
     return nullptr;
   }
-  if (!text) return nullptr;
-  return std::make_shared<const std::string>(std::move(*text));
 }
 
 const char* ReasonPhrase(int status) {

@@ -1,7 +1,8 @@
 // Tests of the scale-out (README, "Running at scale"): a generalize sweep killed midway (SIGKILL)
-// and resumed with --resume ends with the bytes of an uninterrupted run; a resume with another
-// seed is refused naming it; and, where the build has MPI, generalize, demos generate and
-// select under `mpirun -n 3` write the bytes of the single-process run.
+// and resumed with --resume ends with the bytes of an uninterrupted run, also when some of its
+// kept jobs are damaged or foreign (they run again); a resume with another seed, or of a folder
+// another build started, is refused naming it; and, where the build has MPI, generalize, demos
+// generate and select under `mpirun -n 3` write the bytes of the single-process run.
 
 #include <fcntl.h>
 #include <signal.h>
@@ -13,11 +14,13 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "common/job_runner.hpp"
 #include "tests/utils/run_command.hpp"
 
 namespace graspsynth {
@@ -81,6 +84,28 @@ class ScaleOut : public ::testing::Test {
     return n;
   }
 
+  // Runs `graspsynth <args>` and kills it (SIGKILL) once `kept` holds a finished job, long
+  // before the last; fails the test when it ends first.
+  static void StartAndKill(const std::string& args, const fs::path& kept) {
+    const pid_t pid = Start(args);
+    ASSERT_GT(pid, 0);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(5);
+    int status = 0;
+    bool exited = false;
+    while (JobFiles(kept) < 1 && std::chrono::steady_clock::now() < deadline) {
+      if (::waitpid(pid, &status, WNOHANG) == pid) {
+        exited = true;
+        break;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    ASSERT_FALSE(exited) << "the sweep ended before it could be killed";
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, &status, 0);
+    ASSERT_TRUE(WIFSIGNALED(status));
+    ASSERT_GE(JobFiles(kept), 1);
+  }
+
   fs::path dir_;
 };
 
@@ -89,27 +114,9 @@ TEST_F(ScaleOut, AKilledSweepResumesToTheBytesOfAnUninterruptedOne) {
   testing::CommandOutput r = RunGraspsynth(std::string(kSweep) + "--out " + whole.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
 
-  // killed once the first grasps are kept, long before the last.
   const std::string args = std::string(kSweep) + "--threads 1 --out " + killed.string();
-  const pid_t pid = Start(args);
-  ASSERT_GT(pid, 0);
   const fs::path kept = killed / ".generalization.resume";
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(5);
-  int status = 0;
-  bool exited = false;
-  while (JobFiles(kept) < 1 && std::chrono::steady_clock::now() < deadline) {
-    if (::waitpid(pid, &status, WNOHANG) == pid) {
-      exited = true;
-      break;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  ASSERT_FALSE(exited) << "the sweep ended before it could be killed";
-  ::kill(pid, SIGKILL);
-  ::waitpid(pid, &status, 0);
-  ASSERT_TRUE(WIFSIGNALED(status));
-  const int before = JobFiles(kept);
-  ASSERT_GE(before, 1);
+  StartAndKill(args, kept);
   EXPECT_FALSE(fs::exists(killed / "generalization.csv"));
 
   r = RunGraspsynth(args + " --resume");
@@ -118,6 +125,72 @@ TEST_F(ScaleOut, AKilledSweepResumesToTheBytesOfAnUninterruptedOne) {
   EXPECT_EQ(ReadFileText(killed / "generalization.csv"),
             ReadFileText(whole / "generalization.csv"));
   EXPECT_FALSE(fs::exists(kept)) << "the finished run leaves its resume folder behind";
+}
+
+// The job files of a killed run, damaged as a disk, a copy or another build could leave them:
+// each runs again, the summary counts them, and the outputs are the uninterrupted run's bytes.
+TEST_F(ScaleOut, DamagedOrForeignJobsRunAgainAndTheResumeEndsWithTheUninterruptedBytes) {
+  const fs::path whole = dir_ / "whole", killed = dir_ / "killed";
+  testing::CommandOutput r = RunGraspsynth(std::string(kSweep) + "--out " + whole.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string args = std::string(kSweep) + "--threads 1 --out " + killed.string();
+  const fs::path kept = killed / ".generalization.resume";
+  StartAndKill(args, kept);
+  fs::path first;
+  for (const fs::directory_entry& e : fs::directory_iterator(kept / "synthesis")) {
+    if (e.path().extension() == ".job") first = e.path();
+  }
+  ASSERT_FALSE(first.empty());
+  const JobFile job = ParseJobFile(ReadFileText(first), first.string());
+  const int rows = static_cast<int>(Words(ReadFileText(whole / "generalization.csv")).size()) - 1;
+  ASSERT_GE(rows, 4);
+  const auto write = [&](int index, const JobFile& file) {
+    std::ofstream(kept / "synthesis" / (std::to_string(index) + ".job"),
+                  std::ios::binary | std::ios::trunc)
+        << JobFileBytes(file);
+  };
+  // its row with 8 bytes more behind a right checksum (the wrapper whole: the row's decoding
+  // finds them), the same file under another index, and another build's copy.
+  JobFile longer = job;
+  longer.result += std::string(8, '\0');
+  write(static_cast<int>(job.index), longer);
+  write(static_cast<int>((job.index + 1) % rows), job);
+  JobFile foreign = job;
+  foreign.build = "graspsynth 0.0.1, build 0123456789abcdef";
+  foreign.index = (job.index + 2) % rows;
+  write(static_cast<int>(foreign.index), foreign);
+
+  r = RunGraspsynth(args + " --resume");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(ReadFileText(killed / "generalization.csv"),
+            ReadFileText(whole / "generalization.csv"));
+  EXPECT_THAT(r.err, HasSubstr(" 3 recomputed"));
+  EXPECT_THAT(r.err, HasSubstr("recomputed synthesis/" + std::to_string(job.index) +
+                               ".job: synthesis job " + std::to_string(job.index)));
+  EXPECT_THAT(r.err, HasSubstr("holds job " + std::to_string(job.index)));
+  EXPECT_THAT(r.err, HasSubstr("made by 'graspsynth 0.0.1, build 0123456789abcdef'"));
+  EXPECT_FALSE(fs::exists(kept));
+}
+
+// A resume folder that another build of graspsynth started is refused, naming the folder and
+// that build, and left for it.
+TEST_F(ScaleOut, AResumeFolderOfAnotherBuildIsRefusedNamingIt) {
+  const std::string args = std::string(kSweep) + "--threads 1 --out " + dir_.string();
+  const fs::path kept = dir_ / ".generalization.resume";
+  StartAndKill(args, kept);
+  std::string manifest = ReadFileText(kept / "run.json");
+  const std::string key = "\"build\": \"";
+  const size_t at = manifest.find(key);
+  ASSERT_NE(at, std::string::npos) << manifest;
+  const size_t end = manifest.find('"', at + key.size());
+  manifest.replace(at + key.size(), end - at - key.size(), "graspsynth 0.0.1, build 42");
+  std::ofstream(kept / "run.json", std::ios::trunc) << manifest;
+  const testing::CommandOutput r = RunGraspsynth(args + " --resume");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("--resume: the unfinished run in '" + kept.string() +
+                               "' was started by 'graspsynth 0.0.1, build 42', not by this build"));
+  EXPECT_FALSE(fs::exists(dir_ / "generalization.csv"));
+  EXPECT_EQ(ReadFileText(kept / "run.json"), manifest);
 }
 
 TEST_F(ScaleOut, AResumeWithAnotherSeedIsRefusedNamingIt) {

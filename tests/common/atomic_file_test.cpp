@@ -34,19 +34,6 @@ TEST(WriteFileAtomically, WritesReplacesAndLeavesNoTemporary) {
   fs::remove_all(dir);
 }
 
-TEST(ReadWholeFile, ReturnsEveryByteOrNothingForAMissingFileOrAFolder) {
-  const fs::path dir = fs::temp_directory_path() / "graspsynth_read_whole_test";
-  fs::remove_all(dir);
-  const std::string bytes("line 1\r\nnul \0 inside\n\xff", 22);
-  WriteFileAtomically(dir / "bytes.bin", bytes);
-  WriteFileAtomically(dir / "empty.txt", "");
-  EXPECT_EQ(ReadWholeFile(dir / "bytes.bin"), bytes);
-  EXPECT_EQ(ReadWholeFile(dir / "empty.txt"), "");
-  EXPECT_EQ(ReadWholeFile(dir / "missing.txt"), std::nullopt);
-  EXPECT_EQ(ReadWholeFile(dir), std::nullopt);
-  fs::remove_all(dir);
-}
-
 TEST(WriteFileAtomically, ThrowsNamingAnUnwritablePath) {
   // a regular file cannot be a folder.
   const fs::path blocker = fs::temp_directory_path() / "graspsynth_atomic_blocker";

@@ -177,7 +177,7 @@ TEST(JsonReader, LoadReadsAFileAndNamesIt) {
             path.string() + ": field 'x': expected a finite number, found \"y\"");
   std::filesystem::remove(path);
   EXPECT_THAT(ErrorOf([&] { JsonReader::Load(path); }),
-              ::testing::HasSubstr(path.string() + ": cannot read the file"));
+              ::testing::HasSubstr("cannot read JSON file '" + path.string() + "': no such file"));
 }
 
 }  // namespace

@@ -283,7 +283,7 @@ TEST_F(ObjectFiles, BadObjectFilesNameTheFileAndTheField) {
       LoadObjectModel(
           WriteObject({{"name", "m"}, {"type", "mesh"}, {"file", "gone.stl"}, {"mass", 1}})),
       InputError,
-      where + ": field 'parts[0].file': cannot open mesh '" + (dir_ / "gone.stl").string() + "'");
+      where + ": field 'parts[0].file': cannot read mesh '" + (dir_ / "gone.stl").string() + "'");
   const std::string tet = Tetrahedron(0.1);
   Write("open.obj", tet.substr(0, tet.rfind("f ")));
   GS_EXPECT_THROW_WITH(LoadObjectModel(WriteObject(
@@ -332,7 +332,7 @@ TEST_F(ObjectFiles, BadObjectFilesNameTheFileAndTheField) {
                        InputError, where + ": field 'handle.direction_deg': expected a number in",
                        "found 400");
   GS_EXPECT_THROW_WITH(LoadObjectModel(dir_ / "none.json"), InputError,
-                       "cannot open object description '" + (dir_ / "none.json").string() + "'");
+                       "cannot read object description '" + (dir_ / "none.json").string() + "'");
 }
 
 TEST(ObjectModel, ResolvesShippedNamesAndFiles) {

@@ -424,7 +424,7 @@ TEST(RobotDescriptionErrors, FingertipFrameWithGeometry) {
 
 TEST(RobotDescriptionErrors, MissingFile) {
   GS_EXPECT_THROW_WITH(LoadRobotModel("/nonexistent/dir/robot.urdf"), InputError,
-                       "/nonexistent/dir/robot.urdf", "not found");
+                       "cannot read robot description '/nonexistent/dir/robot.urdf': no such file");
 }
 
 TEST(RobotDescriptionErrors, NotXml) {

@@ -110,7 +110,7 @@ TEST(SceneModel, RejectsBadFieldsNamingThem) {
                        "\"sphere\", found \"cone\"");
   GS_EXPECT_THROW_WITH(
       ParseSceneModel(SceneWith("/object", "objects/teapot.json"), "s.json", dir), InputError,
-      "s.json: field 'object': cannot open object description '" + dir + "/objects/teapot.json'");
+      "s.json: field 'object': cannot read object description '" + dir + "/objects/teapot.json'");
   GS_EXPECT_THROW_WITH(ParseSceneModel(SceneWith("/object", 3), "s.json", dir), InputError,
                        "s.json: field 'object': expected a string");
   nlohmann::json j = nlohmann::json::parse(ShippedSceneText());

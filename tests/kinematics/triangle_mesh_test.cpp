@@ -123,7 +123,7 @@ TEST(TriangleMesh, BadFilesNameTheLineAndTheFault) {
   GS_EXPECT_THROW_WITH(ParseStl("PK\x03\x04 not a mesh", 1.0, "m.stl"), InputError,
                        "m.stl: not an STL file");
   GS_EXPECT_THROW_WITH(LoadTriangleMesh("/nonexistent/m.stl", 1.0), InputError,
-                       "cannot open mesh '/nonexistent/m.stl'");
+                       "cannot read mesh '/nonexistent/m.stl'");
   GS_EXPECT_THROW_WITH(LoadTriangleMesh("m.ply", 1.0), InputError,
                        "m.ply: unknown mesh format '.ply' (expected .stl or .obj)");
 }

@@ -103,7 +103,7 @@ TEST(OperatorOptions, BadFilesNameTheFileAndTheField) {
       "strategies": [{"weight": 1, "d": 0.3, "eta_deg": -70}]}]})",
                "lift_duration + hold_duration");
   GS_EXPECT_THROW_WITH(ReadOperatorOptions(TempFile("missing.json")), InputError,
-                       "missing.json: cannot read the file");
+                       "cannot read synthetic operator file", "missing.json': no such file");
   fs::remove(path);
 }
 

@@ -186,7 +186,7 @@ TEST(JointTrajectory, RejectsJointValuesOutsideTheLimits) {
 
 TEST(JointTrajectory, LoadNamesAMissingFile) {
   GS_EXPECT_THROW_WITH(LoadJointTrajectory("/nonexistent/t.json", Robot().arm, Robot().hand),
-                       InputError, "cannot open trajectory file '/nonexistent/t.json'");
+                       InputError, "cannot read trajectory file '/nonexistent/t.json'");
 }
 
 }  // namespace

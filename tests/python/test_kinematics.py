@@ -133,7 +133,16 @@ def test_ik_reports_an_unreachable_target_as_a_status(gs):
     (lambda gs: gs.ik(np.stack([np.eye(4)] * 2), [0.0, 0.1, 0.2]), "3 values for 2 targets"),
     (lambda gs: gs.ik(np.eye(4), 0.0, branch=(1, 0, 1)), "1 or -1"),
     (lambda gs: gs.ik(np.eye(4), 0.0, branch=(1, 1, 1), q_near=np.full(7, np.nan)),
-     r"q_near\[0\] has a value that is not finite"),
+     "q_near: field 1 is not a finite number: 'nan'"),
+    # non-finite configurations and poses, refused as the command line refuses them.
+    (lambda gs: gs.fk([0, 0, np.nan, 0, 0, 0, 0]), "q: field 3 is not a finite number: 'nan'"),
+    (lambda gs: gs.fk(np.array([np.zeros(7), [0, 0, 0, 0, 0, 0, np.inf]])),
+     "q: row 2, field 7 is not a finite number: 'inf'"),
+    (lambda gs: gs.arm_angle([0, -np.inf, 0, 0, 0, 0, 0]),
+     "q: field 2 is not a finite number: '-inf'"),
+    (lambda gs: gs.ik(np.full((4, 4), np.nan), 0.0), "X: field 1 is not a finite number"),
+    (lambda gs: gs.feasible_arm_angles(np.full((4, 4), np.inf)),
+     "X: field 1 is not a finite number: 'inf'"),
 ])
 def test_bad_kinematics_input_raises_input_error(gs, call, message):
     with pytest.raises(gs.InputError, match=message):

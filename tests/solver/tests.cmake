@@ -42,7 +42,7 @@ if(CMAKE_BUILD_TYPE STREQUAL "Release")
 endif()
 # The scale-out of generalize: resume after a kill, and (with MPI, not under the sanitizers,
 # where Open MPI's own allocations would be reported) mpirun -n 3 against one process.
-graspsynth_test(apps/scale_out_test.cpp)
+graspsynth_test(apps/scale_out_test.cpp LIBS graspsynth::common)
 add_dependencies(apps_scale_out_test graspsynth)
 if(GRASPSYNTH_MPI AND NOT GRASPSYNTH_SANITIZE)
   target_compile_definitions(apps_scale_out_test PRIVATE GRASPSYNTH_MPIEXEC="${MPIEXEC_EXECUTABLE}")

@@ -25,6 +25,7 @@ class KeyFile : public ::testing::Test {
   fs::path Write(const std::string& text) {
     const fs::path path = dir_ / "link.key";
     std::ofstream(path) << text;
+    fs::permissions(path, fs::perms::owner_read | fs::perms::owner_write);
     return path;
   }
   graspsynth::testing::TestFolder folder_;
@@ -76,7 +77,7 @@ TEST_F(KeyFile, ANewKeyIsOwnerOnlyRandomAndNeverOverwritten) {
   struct stat st {};
   ASSERT_EQ(::stat(a.c_str(), &st), 0);
   EXPECT_EQ(st.st_mode & 0777, 0600u);
-  EXPECT_FALSE(KeyFilePermissionWarning(a));
+  EXPECT_FALSE(KeyFileSharedWith(a));
   const std::vector<uint8_t> text = {7};
   EXPECT_NE(PacketKey::Load(a).Tag(text), PacketKey::Load(b).Tag(text));  // two random keys
   const std::string before = [&] {
@@ -88,8 +89,31 @@ TEST_F(KeyFile, ANewKeyIsOwnerOnlyRandomAndNeverOverwritten) {
   EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), before);
   // no temporary file is left behind.
   EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 2);
-  fs::permissions(a, fs::perms::group_read, fs::perm_options::add);
-  EXPECT_TRUE(KeyFilePermissionWarning(a));
+}
+
+TEST_F(KeyFile, AKeyThatOthersCanReadIsRefusedAsSshRefusesIt) {
+  const fs::path key = Write(std::string(kKeyHex) + "\n");
+  EXPECT_FALSE(KeyFileSharedWith(key));
+  fs::permissions(key, fs::perms::group_read, fs::perm_options::add);
+  EXPECT_EQ(KeyFileSharedWith(key), "its group");
+  GS_EXPECT_THROW_WITH(PacketKey::Load(key), InputError, key.string(), "can be read by its group",
+                       "chmod 600");
+  fs::permissions(key, fs::perms::others_read, fs::perm_options::add);
+  GS_EXPECT_THROW_WITH(PacketKey::Load(key), InputError, "its group and other users");
+  fs::permissions(key, fs::perms::group_read, fs::perm_options::remove);
+  GS_EXPECT_THROW_WITH(PacketKey::Load(key), InputError, "can be read by other users");
+}
+
+TEST_F(KeyFile, AnEndlessStreamAFifoOrAFolderIsRefusedByName) {
+  GS_EXPECT_THROW_WITH(PacketKey::Load("/dev/zero"), InputError, "/dev/zero",
+                       "a character device, not a regular file");
+  const fs::path fifo = dir_ / "fifo.key";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  GS_EXPECT_THROW_WITH(PacketKey::Load(fifo), InputError, fifo.string(), "named pipe (FIFO)");
+  GS_EXPECT_THROW_WITH(PacketKey::Load(dir_), InputError, "a folder, not a regular file");
+  // a key file has at most 64 KiB (one key line of at most 2048 digits and comments).
+  const fs::path big = Write("# " + std::string(70000, 'x') + "\n" + kKeyHex + "\n");
+  GS_EXPECT_THROW_WITH(PacketKey::Load(big), InputError, "over the limit of 65536 bytes");
 }
 
 }  // namespace

@@ -31,7 +31,10 @@ inline std::string ReadFileText(const std::filesystem::path& path) {
 }
 
 /// Runs `graspsynth <args>` (args are passed to the shell as written) with `input` on stdin.
-inline CommandOutput RunGraspsynth(const std::string& args, const std::string& input = "") {
+/// With `timeout_s` > 0, under coreutils' `timeout` (a command still running then is killed and
+/// exits 124): a guard against a hang, not a speed claim.
+inline CommandOutput RunGraspsynth(const std::string& args, const std::string& input = "",
+                                   int timeout_s = 0) {
   namespace fs = std::filesystem;
   const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
   const fs::path dir =
@@ -39,7 +42,9 @@ inline CommandOutput RunGraspsynth(const std::string& args, const std::string& i
                                    info->name() + "_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   std::ofstream(dir / "in") << input;
-  const std::string command = std::string(::testing::GraspsynthBinary()) + " " + args + " < " +
+  const std::string guard =
+      timeout_s > 0 ? "timeout -k 10 " + std::to_string(timeout_s) + " " : std::string();
+  const std::string command = guard + ::testing::GraspsynthBinary() + " " + args + " < " +
                               (dir / "in").string() + " > " + (dir / "out").string() + " 2> " +
                               (dir / "err").string();
   const int status = std::system(command.c_str());
