@@ -114,12 +114,15 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     // a stage's error reaches every rank of an MPI job: rank 0 reports it.
     if (dynamic_cast<const graspsynth::StageFailedElsewhere*>(&e)) return 2;
-    // an error that rank 0 meets, or that another rank meets alone (outside the stages whose
-    // errors go to every rank), ends the whole MPI job: the other ranks would wait for it.
     std::cerr << "graspsynth: error: "
               << (mpi.rank() > 0 ? "rank " + std::to_string(mpi.rank()) + ": " : std::string())
               << e.what() << "\n";
-    if (mpi.size() > 1) mpi.AbortAll(2);
+    // every rank has a stage's error and ends by itself. An error that rank 0 meets, or that
+    // another rank meets alone (outside the stages), ends the whole MPI job: the other ranks
+    // would wait for it.
+    if (mpi.size() > 1 && !dynamic_cast<const graspsynth::StageFailedEverywhere*>(&e)) {
+      mpi.AbortAll(2);
+    }
     return 2;
   }
   return exit_code;

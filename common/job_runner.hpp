@@ -32,14 +32,19 @@
 
 namespace graspsynth {
 
-/// Marks the exception that JobRunner::Run throws on the processes of an MPI job that do not
-/// write the outputs when a stage failed: an InputError or a std::runtime_error with the
-/// message of the error the stage met, as the process that writes the outputs throws it, so
-/// that every process goes the same way; that process reports it, the others need not.
-class StageFailedElsewhere {
+/// Marks the exception that JobRunner::Run throws on every process of an MPI job when a stage
+/// failed: an InputError or a std::runtime_error with the message of the error the stage met,
+/// so that every process goes the same way. Each process then ends by itself (none needs to end
+/// the others, as MPI_Abort would: it raced with their MPI_Finalize and could leave mpirun
+/// waiting for ever).
+class StageFailedEverywhere {
  public:
-  virtual ~StageFailedElsewhere() = default;
+  virtual ~StageFailedEverywhere() = default;
 };
+
+/// A StageFailedEverywhere on the processes that do not write the outputs: the process that
+/// does reports the error, the others need not.
+class StageFailedElsewhere : public StageFailedEverywhere {};
 
 /// A stage of independent jobs.
 struct JobStage {

@@ -61,14 +61,14 @@ json LibraryJson(const GraspLibrary& library) {
     scores.push_back({{"file", s.file}, {"trial", s.trial}, {"theta_deg", s.theta_deg}});
     if (v2) scores.back()["placement"] = PlacementJson(s.xy, s.theta_deg);
     scores.back().update(json{{"trials", s.trials},
-                              {"successes", s.successes},
-                              {"score", s.score},
-                              {"ci_low", s.ci_low},
-                              {"ci_high", s.ci_high},
-                              {"nominal_success", s.nominal_success},
-                              {"seed", s.seed},
-                              {"failures", s.failures},
-                              {"selected", s.selected}});
+                      {"successes", s.successes},
+                      {"score", s.score},
+                      {"ci_low", s.ci_low},
+                      {"ci_high", s.ci_high},
+                      {"nominal_success", s.nominal_success},
+                      {"seed", s.seed},
+                      {"failures", s.failures},
+                      {"selected", s.selected}});
     if (!s.stopped.empty()) scores.back()["stopped"] = s.stopped;
   }
   json entries = json::array();
@@ -76,11 +76,11 @@ json LibraryJson(const GraspLibrary& library) {
     entries.push_back({{"theta_deg", e.theta_deg}});
     if (v2) entries.back()["placement"] = PlacementJson(e.motion.p_WO.head<2>(), e.theta_deg);
     entries.back().update(json{{"file", e.file},
-                               {"trial", e.trial},
-                               {"score", e.score},
-                               {"lift_height", e.lift_height},
-                               {"lift_duration", e.lift_duration},
-                               {"motion", MotionJson(e.motion)}});
+                       {"trial", e.trial},
+                       {"score", e.score},
+                       {"lift_height", e.lift_height},
+                       {"lift_duration", e.lift_duration},
+                       {"motion", MotionJson(e.motion)}});
   }
   json j;
   j["format"] = v2 ? kLibraryFormatV2 : kLibraryFormat;
@@ -178,9 +178,9 @@ LibraryEntry ReadEntry(const JsonReader& object, bool v2) {
   e.lift_duration = object.NumberIn("lift_duration", 0.0, INFINITY);
   e.motion = ReadMotion(object.Field("motion"), e.theta_deg);
   if (v2 && (e.motion.p_WO.head<2>() - xy).norm() > kSamePosition) {
-    object.Field("placement")
-        .Fail("the motion's object_position in x and y (" + Shown(e.motion.p_WO.x()) + ", " +
-              Shown(e.motion.p_WO.y()) + ")");
+    object.Field("placement").Fail("the motion's object_position in x and y (" +
+                                   Shown(e.motion.p_WO.x()) + ", " + Shown(e.motion.p_WO.y()) +
+                                   ")");
   }
   return e;
 }
@@ -270,7 +270,7 @@ GraspLibrary ParseGraspLibrary(std::string_view json_text, const std::string& so
 }
 
 GraspLibrary ReadGraspLibrary(const std::filesystem::path& path) {
-  GraspLibrary library = ReadLibrary(JsonReader::Load(path, input_kind::kLibrary));
+  GraspLibrary library = ReadLibrary(JsonReader::Load(path));
   library.source = path.string();
   return library;
 }

@@ -12,6 +12,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -106,20 +107,26 @@ class ScaleOut : public ::testing::Test {
     ASSERT_GE(JobFiles(kept), 1);
   }
 
+  // The sweep run whole into `whole`, then into `killed` and killed there once it kept a job
+  // (StartAndKill); *args are the killed run's arguments.
+  static void WholeAndKilled(const fs::path& whole, const fs::path& killed, std::string* args) {
+    const testing::CommandOutput r = RunGraspsynth(std::string(kSweep) + "--out " + whole.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    *args = std::string(kSweep) + "--threads 1 --out " + killed.string();
+    StartAndKill(*args, killed / ".generalization.resume");
+  }
+
   fs::path dir_;
 };
 
 TEST_F(ScaleOut, AKilledSweepResumesToTheBytesOfAnUninterruptedOne) {
   const fs::path whole = dir_ / "whole", killed = dir_ / "killed";
-  testing::CommandOutput r = RunGraspsynth(std::string(kSweep) + "--out " + whole.string());
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-
-  const std::string args = std::string(kSweep) + "--threads 1 --out " + killed.string();
+  std::string args;
+  ASSERT_NO_FATAL_FAILURE(WholeAndKilled(whole, killed, &args));
   const fs::path kept = killed / ".generalization.resume";
-  StartAndKill(args, kept);
   EXPECT_FALSE(fs::exists(killed / "generalization.csv"));
 
-  r = RunGraspsynth(args + " --resume");
+  const testing::CommandOutput r = RunGraspsynth(args + " --resume");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.err, HasSubstr("resuming the run kept in"));
   EXPECT_EQ(ReadFileText(killed / "generalization.csv"),
@@ -131,11 +138,9 @@ TEST_F(ScaleOut, AKilledSweepResumesToTheBytesOfAnUninterruptedOne) {
 // each runs again, the summary counts them, and the outputs are the uninterrupted run's bytes.
 TEST_F(ScaleOut, DamagedOrForeignJobsRunAgainAndTheResumeEndsWithTheUninterruptedBytes) {
   const fs::path whole = dir_ / "whole", killed = dir_ / "killed";
-  testing::CommandOutput r = RunGraspsynth(std::string(kSweep) + "--out " + whole.string());
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  const std::string args = std::string(kSweep) + "--threads 1 --out " + killed.string();
+  std::string args;
+  ASSERT_NO_FATAL_FAILURE(WholeAndKilled(whole, killed, &args));
   const fs::path kept = killed / ".generalization.resume";
-  StartAndKill(args, kept);
   fs::path first;
   for (const fs::directory_entry& e : fs::directory_iterator(kept / "synthesis")) {
     if (e.path().extension() == ".job") first = e.path();
@@ -160,7 +165,7 @@ TEST_F(ScaleOut, DamagedOrForeignJobsRunAgainAndTheResumeEndsWithTheUninterrupte
   foreign.index = (job.index + 2) % rows;
   write(static_cast<int>(foreign.index), foreign);
 
-  r = RunGraspsynth(args + " --resume");
+  const testing::CommandOutput r = RunGraspsynth(args + " --resume");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(ReadFileText(killed / "generalization.csv"),
             ReadFileText(whole / "generalization.csv"));
@@ -218,12 +223,17 @@ TEST_F(ScaleOut, AResumeWithAnotherSeedIsRefusedNamingIt) {
 }
 
 #ifdef GRASPSYNTH_MPIEXEC
-// Runs `graspsynth <args>` as an MPI job of `ranks` processes; its stdout in *out.
-int RunMpi(int ranks, const std::string& args, const fs::path& dir, std::string* out) {
-  const std::string mpirun =
-      std::string(GRASPSYNTH_MPIEXEC) + " --oversubscribe -n " + std::to_string(ranks) + " " +
-      (::geteuid() == 0 ? "--allow-run-as-root " : "") + testing::GraspsynthBinary() + " " + args +
-      " > " + (dir / "out").string() + " 2> " + (dir / "err").string();
+// Runs `graspsynth <args>` as an MPI job of `ranks` processes; its stdout in *out. `env`
+// (NAME=VALUE) is set on every rank. Under a hang guard of 5 minutes (exit 124).
+int RunMpi(int ranks, const std::string& args, const fs::path& dir, std::string* out,
+           const std::string& env = "") {
+  const std::string mpirun = (env.empty() ? std::string() : env + " ") + "timeout -k 10 300 " +
+                             std::string(GRASPSYNTH_MPIEXEC) +
+                             (env.empty() ? std::string() : " -x " + env.substr(0, env.find('='))) +
+                             " --oversubscribe -n " + std::to_string(ranks) + " " +
+                             (::geteuid() == 0 ? "--allow-run-as-root " : "") +
+                             testing::GraspsynthBinary() + " " + args + " > " +
+                             (dir / "out").string() + " 2> " + (dir / "err").string();
   const int status = std::system(mpirun.c_str());
   *out = ReadFileText(dir / "out") + ReadFileText(dir / "err");
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -242,6 +252,103 @@ TEST_F(ScaleOut, ThreeMpiRanksWriteTheBytesOfOneProcess) {
   // rank 0 alone reports: one summary line per method, not three.
   EXPECT_EQ(out.find("nearest: "), out.rfind("nearest: ")) << out;
   EXPECT_FALSE(fs::exists(three / ".generalization.resume"));
+}
+
+// A job that fails on another rank than the first fails the stage on every rank: the command
+// ends with that job's error (exit 2), the resume folder keeps only whole results, and a resume
+// writes the bytes of one process.
+TEST_F(ScaleOut, AJobFailingOnAnotherRankEndsTheRunAndItsResumeIsTheBytesOfOneProcess) {
+  const fs::path one = dir_ / "one", three = dir_ / "three";
+  testing::CommandOutput r =
+      RunGraspsynth(std::string(kSweep) + "--threads 1 --out " + one.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string args = std::string(kSweep) + "--threads 1 --out " + three.string();
+  std::string out;
+  EXPECT_EQ(RunMpi(3, args, dir_, &out, "GRASPSYNTH_TEST_FAIL_STAGE=synthesis"), 2) << out;
+  EXPECT_THAT(out, HasSubstr("of stage 'synthesis' failed (GRASPSYNTH_TEST_FAIL_STAGE"));
+  EXPECT_FALSE(fs::exists(three / "generalization.csv"));
+  const fs::path kept = three / ".generalization.resume";
+  ASSERT_TRUE(fs::exists(kept / "run.json"));
+  ASSERT_EQ(RunMpi(3, args + " --resume", dir_, &out), 0) << out;
+  EXPECT_THAT(out, HasSubstr("resuming the run kept in"));
+  EXPECT_THAT(out, HasSubstr(" 0 recomputed"));
+  EXPECT_EQ(ReadFileText(three / "generalization.csv"), ReadFileText(one / "generalization.csv"));
+}
+
+// The pid of the process of MPI rank `rank` whose command line holds `marker`, or -1.
+pid_t RankProcess(int rank, const std::string& marker) {
+  const std::string want = "OMPI_COMM_WORLD_RANK=" + std::to_string(rank);
+  for (const fs::directory_entry& e : fs::directory_iterator("/proc")) {
+    const std::string name = e.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::string cmdline = ReadFileText(e.path() / "cmdline");
+    std::replace(cmdline.begin(), cmdline.end(), '\0', ' ');
+    if (cmdline.find(marker) == std::string::npos) continue;
+    if (cmdline.find("graspsynth") == std::string::npos) continue;
+    const std::string environ = ReadFileText(e.path() / "environ");
+    for (size_t at = 0; at < environ.size();) {
+      const size_t end = std::min(environ.find('\0', at), environ.size());
+      if (environ.compare(at, end - at, want) == 0) return std::stoi(name);
+      at = end + 1;
+    }
+  }
+  return -1;
+}
+
+// A rank killed in the middle of a job ends the MPI job; its resume, under three ranks again,
+// writes the bytes of one process.
+TEST_F(ScaleOut, AnMpiJobWhoseRankIsKilledMidJobResumesToTheBytesOfOneProcess) {
+  const fs::path one = dir_ / "one", three = dir_ / "three";
+  testing::CommandOutput r =
+      RunGraspsynth(std::string(kSweep) + "--threads 1 --out " + one.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string args = std::string(kSweep) + "--threads 1 --out " + three.string();
+  const std::string mpirun = std::string(GRASPSYNTH_MPIEXEC) + " --oversubscribe -n 3 " +
+                             (::geteuid() == 0 ? "--allow-run-as-root " : "") +
+                             testing::GraspsynthBinary() + " " + args + " > /dev/null 2>&1";
+  const pid_t job = ::fork();
+  if (job == 0) {
+    ::setpgid(0, 0);  // a group of its own, which the hang guard below can end whole
+    ::execl("/bin/sh", "sh", "-c", mpirun.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  ASSERT_GT(job, 0);
+  const fs::path kept = three / ".generalization.resume";
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(5);
+  pid_t victim = -1;
+  int status = 0;
+  bool ended = false;
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (::waitpid(job, &status, WNOHANG) == job) {
+      ended = true;
+      break;
+    }
+    if (JobFiles(kept) >= 1 && (victim = RankProcess(1, three.string())) > 0) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_FALSE(ended) << "the MPI job ended before a rank could be killed";
+  ASSERT_GT(victim, 0) << "rank 1 was not found";
+  ::kill(victim, SIGKILL);
+  // mpirun ends the others; should it hang instead, the guard ends it and the test fails.
+  const auto guard = std::chrono::steady_clock::now() + std::chrono::minutes(2);
+  while (::waitpid(job, &status, WNOHANG) != job) {
+    if (std::chrono::steady_clock::now() > guard) {
+      ADD_FAILURE() << "mpirun did not end after rank 1 was killed";
+      ::kill(-job, SIGKILL);
+      ::waitpid(job, &status, 0);
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  EXPECT_NE(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 0) << "mpirun ended well without rank 1";
+  EXPECT_FALSE(fs::exists(three / "generalization.csv"));
+  ASSERT_TRUE(fs::exists(kept / "run.json"));
+
+  std::string out;
+  ASSERT_EQ(RunMpi(3, args + " --resume", dir_, &out), 0) << out;
+  EXPECT_THAT(out, HasSubstr("resuming the run kept in"));
+  EXPECT_EQ(ReadFileText(three / "generalization.csv"), ReadFileText(one / "generalization.csv"));
+  EXPECT_FALSE(fs::exists(kept));
 }
 
 TEST_F(ScaleOut, DemonstrationsAndTheSelectionUnderThreeRanksAreTheBytesOfOneProcess) {
