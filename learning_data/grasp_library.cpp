@@ -270,7 +270,7 @@ GraspLibrary ParseGraspLibrary(std::string_view json_text, const std::string& so
 }
 
 GraspLibrary ReadGraspLibrary(const std::filesystem::path& path) {
-  GraspLibrary library = ReadLibrary(JsonReader::Load(path));
+  GraspLibrary library = ReadLibrary(JsonReader::Load(path, input_kind::kLibrary));
   library.source = path.string();
   return library;
 }

@@ -303,7 +303,8 @@ metres.)doc")
 Flange poses of arm configurations.
 
 q: shape (7,) or (N, 7), rad (S1 S2 S3 E1 E2 W1 W2). Returns shape (4, 4) or (N, 4, 4): the
-flange pose in the world frame, metres. Releases the GIL.)doc")
+flange pose in the world frame, metres. A value that is not a finite number raises InputError
+naming its row and field, as `graspsynth fk` refuses it. Releases the GIL.)doc")
       .def("ik", &Ik, py::arg("X"), py::arg("psi"), py::arg("branch") = py::none(),
            py::arg("q_near") = py::none(), R"doc(
 Analytic inverse kinematics at a given arm angle.

@@ -2,6 +2,8 @@
 with `graspsynth fk` and `graspsynth ik`."""
 
 import json
+import os
+import re
 
 import numpy as np
 import pytest
@@ -148,6 +150,17 @@ def test_bad_kinematics_input_raises_input_error(gs, call, message):
     with pytest.raises(gs.InputError, match=message):
         call(gs)
     assert issubclass(gs.InputError, ValueError)
+
+
+def test_an_object_file_that_is_not_a_regular_file_is_refused_by_name(gs, tmp_path):
+    # read as the command line reads it: refused before a byte is read, never blocking.
+    fifo = tmp_path / "object.json"
+    os.mkfifo(fifo)
+    for path, why in (("/dev/zero", "a character device"), (fifo, "a named pipe (FIFO)"),
+                      (tmp_path, "a folder")):
+        message = f"cannot read object description '{path}': it is {why}"
+        with pytest.raises(gs.InputError, match=re.escape(message)):
+            gs.Scene(object=str(path))
 
 
 def test_scene_model_places_the_object(gs):
