@@ -180,7 +180,8 @@ void AddSynthesizeCommand(CLI::App& app, int* exit_code) {
       "--at X,Y puts the object elsewhere on the table. With a library over placements\n"
       "(learning_data/placements/library.json) interp blends the demonstrations at the\n"
       "corners of the query's cell in a Delaunay triangulation of the demonstrated (x, y,\n"
-      "theta); nearest moves and turns the nearest one with the object.\n"
+      "theta); nearest moves and turns the nearest one with the object. Without --at the\n"
+      "object stands at the scene's centre, and the grasp is made for it there.\n"
       "Example:\n"
       "  graspsynth synthesize --library learning_data/placements/library.json \\\n"
       "      --at -0.27,0.87 --theta 65 --out grasp.json");

@@ -4,6 +4,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -50,11 +51,21 @@ PlacementTriangulation::PlacementTriangulation(const std::vector<Eigen::Vector3d
     }
     v->info() = static_cast<int>(i);
   }
-  if (dt.dimension() < 3) {
+  // flat exactly (CGAL's exact predicates), or up to roundoff: positions on one line but for
+  // digits past the 15th make cells of no volume in which no query is found.
+  const double thickness = Thickness();
+  if (dt.dimension() < 3 || thickness < kMinThickness) {
+    std::ostringstream spread;
+    if (dt.dimension() == 3) {
+      spread << "; they leave it by " << thickness << " m at most, under the " << kMinThickness
+             << " m taken as none";
+    }
     throw InputError(source + ": the " + std::to_string(placements_.size()) +
                      " placements span no volume in (x, y, theta) (all at one orientation, or "
-                     "their positions on one line): interpolation over placements needs at "
-                     "least two orientations at positions that are not on one line");
+                     "their positions on one line" +
+                     spread.str() +
+                     "): interpolation over placements needs at least two orientations at "
+                     "positions that are not on one line");
   }
   for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
     std::array<int, 4> v{};
@@ -63,6 +74,25 @@ PlacementTriangulation::PlacementTriangulation(const std::vector<Eigen::Vector3d
     cells_.push_back(v);
   }
   std::sort(cells_.begin(), cells_.end());
+}
+
+double PlacementTriangulation::Thickness() const {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : placements_) mean += Point(p);
+  mean /= static_cast<double>(placements_.size());
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  for (const Eigen::Vector3d& p : placements_) {
+    const Eigen::Vector3d d = Point(p) - mean;
+    scatter += d * d.transpose();
+  }
+  // the direction in which the points spread least, and how far they leave their mean plane.
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(scatter);
+  const Eigen::Vector3d normal = eigen.eigenvectors().col(0);
+  double most = 0.0;
+  for (const Eigen::Vector3d& p : placements_) {
+    most = std::max(most, std::abs(normal.dot(Point(p) - mean)));
+  }
+  return most;
 }
 
 Eigen::Vector3d PlacementTriangulation::Point(const Eigen::Vector3d& placement) const {

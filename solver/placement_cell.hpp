@@ -23,6 +23,9 @@ namespace graspsynth {
 
 /// The metres per radian of orientation in the placement space.
 inline constexpr double kDefaultThetaLength = 0.41;
+/// Placements that leave their mean plane in the placement space by less than this (m) at most
+/// span no volume (the shipped ones: several centimetres).
+inline constexpr double kMinThickness = 1e-6;
 
 /// The cell of a query: the demonstrated placements (vertex indices) with nonzero weight.
 struct PlacementCell {
@@ -38,8 +41,9 @@ class PlacementTriangulation {
  public:
   /// Triangulates `placements` in the placement space (x, y, theta_length * theta). Throws
   /// InputError naming `source` when two placements coincide or when they span less than a
-  /// volume (all at one orientation, or at positions on one line), or theta_length is not
-  /// positive and finite.
+  /// volume (all at one orientation, or at positions on one line, exactly or up to
+  /// kMinThickness: roundoff would leave cells of no volume that hold no query), or
+  /// theta_length is not positive and finite.
   PlacementTriangulation(const std::vector<Eigen::Vector3d>& placements, double theta_length,
                          const std::string& source);
 
@@ -59,6 +63,8 @@ class PlacementTriangulation {
 
  private:
   Eigen::Vector3d Point(const Eigen::Vector3d& placement) const;
+  // The most any placement leaves the plane the placements spread least from (m).
+  double Thickness() const;
 
   std::vector<Eigen::Vector3d> placements_;  // (x, y, theta)
   double theta_length_ = kDefaultThetaLength;

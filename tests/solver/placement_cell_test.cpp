@@ -77,9 +77,9 @@ TEST(PlacementTriangulation, OnAConstantPositionItIsThePapersBracket) {
 
 TEST(PlacementTriangulation, OutsideTheHullIsRefusedWithTheHull) {
   const PlacementTriangulation t(Grid(), kDefaultThetaLength, "grid");
-  for (const Eigen::Vector3d& q : {Eigen::Vector3d(-0.35, 0.85, 60 * kDeg),
-                                   Eigen::Vector3d(-0.25, 0.85, 105 * kDeg),
-                                   Eigen::Vector3d(-0.25, 0.95, 60 * kDeg)}) {
+  for (const Eigen::Vector3d& q :
+       {Eigen::Vector3d(-0.35, 0.85, 60 * kDeg), Eigen::Vector3d(-0.25, 0.85, 105 * kDeg),
+        Eigen::Vector3d(-0.25, 0.95, 60 * kDeg)}) {
     const PlacementCell cell = t.Locate(q);
     EXPECT_FALSE(cell.inside);
     EXPECT_TRUE(cell.vertices.empty());
@@ -123,6 +123,31 @@ TEST(PlacementTriangulation, DegenerateSetsAreRefused) {
     EXPECT_NE(std::string(e.what()).find("there twice"), std::string::npos);
   }
   EXPECT_THROW(PlacementTriangulation(Grid(), 0.0, "zero"), InputError);
+}
+
+// Positions on one line but for roundoff (x = -0.25 + 1e-16 noise) used to make cells of no
+// volume, whose queries all came out "outside the convex hull": refused as a line is.
+TEST(PlacementTriangulation, PositionsOnOneLineUpToRoundoffAreRefusedAsALine) {
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> roundoff(-4e-16, 4e-16);
+  std::vector<Eigen::Vector3d> line;
+  for (double y : {0.80, 0.83, 0.85, 0.88, 0.90}) {
+    for (int theta = 20; theta <= 100; theta += 20) {
+      line.emplace_back(-0.25 + roundoff(random), y, theta * kDeg);
+    }
+  }
+  try {
+    PlacementTriangulation(line, kDefaultThetaLength, "line.json");
+    FAIL() << "placements on one line up to roundoff were accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("line.json: the 25 placements span no volume"),
+              std::string::npos)
+        << e.what();
+  }
+  // a millimetre off the line is a volume: taken, and a query between them is inside.
+  line[7].x() += 1e-3;
+  const PlacementTriangulation thin(line, kDefaultThetaLength, "thin.json");
+  EXPECT_TRUE(thin.Locate({-0.2499, 0.84, 50 * kDeg}).inside);
 }
 
 }  // namespace

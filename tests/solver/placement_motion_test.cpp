@@ -105,6 +105,30 @@ TEST(PlacementMotion, BetweenPlacementsItIsThePapersBlendMovedWithTheObject) {
   }
 }
 
+// A library over placements queried without a position (synthesize without --at, Python's
+// at=None): the object stands at the scene's centre, and that is where the grasp is made for,
+// the same grasp as with the centre given (decided and documented: issue 43).
+TEST(PlacementMotion, WithoutAPositionTheGraspIsForTheScenesCentreWhereTheObjectStands) {
+  const SynthesisModel& model = PlacementsModel();
+  const Eigen::Vector2d centre = model.scene().CentreXY(Placement{});
+  for (double theta : {47.0, 60.0}) {
+    MotionGenerationOptions options;
+    const SynthesisTask task = MakeSynthesisTask(model.scene(), theta, std::nullopt);
+    EXPECT_TRUE(MatricesNear(task.X_WO.translation().head<2>(), centre, 0.0));
+    const MotionGenerationResult without = GenerateGraspingMotion(model, task, options);
+    const MotionGenerationResult with = Generate(model, theta, centre);
+    ASSERT_TRUE(without.ok()) << without.message;
+    ASSERT_TRUE(with.ok()) << with.message;
+    EXPECT_TRUE(MatricesNear(without.motion.p_WO.head<2>(), centre, 1e-12));
+    ASSERT_EQ(without.motion.waypoints.size(), with.motion.waypoints.size());
+    for (size_t i = 0; i < with.motion.waypoints.size(); ++i) {
+      EXPECT_TRUE(
+          MatricesNear(without.motion.waypoints[i].p_WH, with.motion.waypoints[i].p_WH, 1e-12))
+          << theta << " " << i;
+    }
+  }
+}
+
 TEST(PlacementMotion, OutsideTheHullInterpIsRefusedAndNearestMovesTheNearest) {
   const Eigen::Vector2d outside(-0.35, 0.85);
   const MotionGenerationResult r = Generate(PlacementsModel(), 60.0, outside);
