@@ -68,9 +68,17 @@ def json_files():
     scene = json.loads(read("models/scene.json"))
     scene["object"] = "objects/mug.json"
     put("scene", "scene_mug.json", json.dumps(scene, indent=1))
+    # paths that must be refused, not cut or read: a NUL inside, and an endless device.
+    scene["object"] = "objects/pan.json\u0000.stl"
+    put("scene", "scene_nul_object.json", json.dumps(scene, indent=1))
+    scene["object"] = "/dev/zero"
+    put("scene", "scene_device_object.json", json.dumps(scene, indent=1))
     reset("object")
     for path in sorted(glob.glob(os.path.join(ROOT, "models", "objects", "*.json"))):
         put("object", os.path.basename(path), read(os.path.relpath(path, ROOT)))
+    mesh = json.loads(read("models/objects/pan_mesh.json"))
+    mesh["parts"][0]["file"] = "meshes/pan_body.stl\u0000.obj"
+    put("object", "pan_mesh_nul_file.json", json.dumps(mesh, indent=1))
     reset("operator")
     put("operator", "pan.json", read("learning_data/demos/operator.json"))
     for path in sorted(glob.glob(os.path.join(ROOT, "learning_data", "objects", "*", "demos",
@@ -79,6 +87,20 @@ def json_files():
         put("operator", name + ".json", read(os.path.relpath(path, ROOT)))
     reset("calibration")
     put("calibration", "calibration.json", read("examples/teleop_calibration.json"))
+
+
+def placements():
+    """The placements of a library over placements as (x, y, theta) doubles, a query last: the
+    shape of the shipped grid (3 x 3 positions, 20..100 deg), and a line up to roundoff."""
+    reset("placements")
+    triples = [(x, y, t * 3.141592653589793 / 180) for x in (-0.30, -0.25, -0.20)
+               for y in (0.80, 0.85, 0.90) for t in range(20, 101, 10)]
+    query = [(-0.26, 0.855, 0.9)]
+    put("placements", "grid.bin", b"".join(struct.pack("<3d", *p) for p in triples + query))
+    line = [(-0.25 + (i % 3 - 1) * 1e-16, y, t * 3.141592653589793 / 180)
+            for i, (y, t) in enumerate((y, t) for y in (0.80, 0.85, 0.90) for t in (20, 60, 100))]
+    put("placements", "line_up_to_roundoff.bin",
+        b"".join(struct.pack("<3d", *p) for p in line + query))
 
 
 def library():
@@ -177,6 +199,7 @@ def text():
 def main():
     demo_logs()
     json_files()
+    placements()
     library()
     trajectories()
     meshes()
