@@ -9,6 +9,4 @@ if(GRASPSYNTH_BUILD_PYTHON)
       ENVIRONMENT "PYTHONPATH=${CMAKE_BINARY_DIR}/python;GRASPSYNTH_BINARY=$<TARGET_FILE:graspsynth>;GRASPSYNTH_BUILD_DIR=${CMAKE_BINARY_DIR}"
       LABELS python TIMEOUT 600)
   endforeach()
-  # it measures two threads against one: nothing else may hold the second core meanwhile.
-  set_tests_properties(python.threads PROPERTIES RUN_SERIAL TRUE)
 endif()
