@@ -81,13 +81,24 @@ TEST_F(GeneralizeCommand, LeaveOneOutSynthesizesEachInnerOrientationWithoutIt) {
   for (int k = 0; k < 7; ++k) {
     const std::string theta = std::to_string(30 + 10 * k);
     EXPECT_EQ(lines[k + 1].rfind(theta + ",interp,ok,", 0), 0u) << lines[k + 1];
-    // without its own demonstration, an inner orientation is a blend of its neighbours, or the
-    // hard case's fallback.
+    // without its own demonstration, an inner orientation is a blend of its neighbours from
+    // 70 deg on; below, the shipped neighbours hold the handle too differently to blend (more
+    // than 60 deg apart, or from both sides of it), and the nearer one is used, said why.
     std::vector<std::string> f;
     std::istringstream in(lines[k + 1]);
     for (std::string field; std::getline(in, field, ',');) f.push_back(field);
     ASSERT_GT(f.size(), 4u);
-    EXPECT_TRUE(f[3] == "interp" || f[4] == "1") << lines[k + 1];
+    const bool blended = 30 + 10 * k >= 70;
+    EXPECT_EQ(f[3], blended ? "interp" : "nearest") << lines[k + 1];
+    EXPECT_EQ(f[4], blended ? "0" : "1") << lines[k + 1];
+    if (!blended) {
+      EXPECT_NE(ReadFileText(dir_ / "loo.md")
+                    .find("- " + theta +
+                          " deg, interp used nearest: the "
+                          "bracket"),
+                std::string::npos)
+          << theta;
+    }
   }
 }
 

@@ -79,10 +79,9 @@ TEST(Synthesis, LineAndNearestWorkOutsideTheRange) {
 TEST(Synthesis, UnplayableGraspIsAResultNotAnException) {
   // a right-side grasp turned 30 deg below the range leaves the arm's reach on the way.
   const SynthesisResult r = Synthesize(Model406080(), 10.0, SynthesisMethod::kNearest);
-  if (!r.ok()) {
-    EXPECT_EQ(r.status, SynthesisStatus::kUnreachable);
-    EXPECT_FALSE(r.message.empty());
-  }
+  ASSERT_FALSE(r.ok()) << "the grasp at 10 deg was playable: " << r.message;
+  EXPECT_EQ(r.status, SynthesisStatus::kUnreachable);
+  EXPECT_FALSE(r.message.empty());
 }
 
 TEST(Synthesis, HardCaseFallsBackAndSaysWhy) {
