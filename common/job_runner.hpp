@@ -88,7 +88,7 @@ struct RunIdentity {
 struct ResumeSummary {
   int taken = 0;       ///< kept jobs taken as they were
   int recomputed = 0;  ///< kept jobs that did not check out and ran again
-  /// Why, for the first few recomputed jobs ("synthesis/3.job: the payload's checksum ...").
+  /// Why, for the first few recomputed jobs ("synthesis/3.job: the result's checksum ...").
   std::vector<std::string> reasons;
 };
 
@@ -198,9 +198,10 @@ class StageResults {
   std::mutex mutex_;
 };
 
-/// The build of this program, for resume folders: the version, the commit it was built from
-/// and whether the working tree had changes, e.g. "0.1.0 (git 1a2b3c4d5e6f, modified)" (the
-/// version alone when it was not built from a git checkout).
+/// The build of this program, for resume folders: "graspsynth <version>, build <16 hex
+/// digits>", the version and the 64-bit FNV-1a fingerprint of the file that holds this code
+/// (the executable, or the Python module), read once; any rebuild that changes the code is
+/// another build. The version alone when that file cannot be read.
 std::string_view BuildId();
 
 /// Demands (GS_DEMAND) a valid stage: a name of letters, digits, '-' and '_', count >= 0 and a
