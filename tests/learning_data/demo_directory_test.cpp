@@ -32,7 +32,8 @@ TEST(DemoDirectory, ReportsEveryBadFileAndReadsTheGoodOnes) {
   spec.trial = "a";
   WriteDemoLog(dir / "a_good.csv", testing::MakeTrial(spec));
   WriteFile(dir / "z_good.csv", testing::GoodDemoText());
-  // ignored: other extensions, hidden files (e.g. an interrupted atomic write), folders.
+  // ignored: other extensions, hidden files (e.g. an interrupted atomic write). A folder named
+  // like a log is rejected by name, as a named pipe or a device would be.
   WriteFile(dir / "notes.txt", "not a log");
   WriteFile(dir / ".a_good.csv.tmp.123.csv", "half a file");
   std::filesystem::create_directories(dir / "folder.csv");
@@ -49,10 +50,12 @@ TEST(DemoDirectory, ReportsEveryBadFileAndReadsTheGoodOnes) {
   EXPECT_EQ(demos.logs[0].metadata.trial, std::optional<std::string>("a"));
   EXPECT_EQ(demos.logs[2].samples.size(), 4u);
 
-  ASSERT_EQ(demos.rejected.size(), cases.size());
+  ASSERT_EQ(demos.rejected.size(), cases.size() + 1);
   for (size_t i = 1; i < demos.rejected.size(); ++i) {
     EXPECT_LT(demos.rejected[i - 1].file, demos.rejected[i].file);  // sorted by name
   }
+  EXPECT_EQ(demos.rejected[0].file, (dir / "folder.csv").string());
+  EXPECT_THAT(demos.rejected[0].reason, HasSubstr("it is a folder, not a regular file"));
   for (const testing::MalformedCase& c : cases) {
     SCOPED_TRACE(c.name);
     const std::string file = (dir / ("m_" + c.name + ".csv")).string();
