@@ -145,10 +145,8 @@ py::tuple Ik(const RobotModel& robot, const DoubleArray& X, const py::object& ps
       Vector7d near_q;
       const Vector7d* near_ptr = nullptr;
       if (q_near) {
+        // finite: ReadBatch checked every value.
         near_q = Eigen::Map<const Vector7d>(near.data + kArmDof * (near.single ? 0 : i));
-        if (!near_q.allFinite()) {
-          throw InputError("q_near[" + std::to_string(i) + "] has a value that is not finite");
-        }
         near_ptr = &near_q;
       }
       for (py::ssize_t k = 0; k < per_target; ++k) {
