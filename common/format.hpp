@@ -5,6 +5,7 @@
 
 #include <charconv>
 #include <cstdio>
+#include <sstream>
 #include <string>
 
 namespace graspsynth {
@@ -19,6 +20,14 @@ std::string Format(const char* format, Args... args) {
   std::string text(static_cast<size_t>(n), '\0');
   std::snprintf(text.data(), text.size() + 1, format, args...);
   return text;
+}
+
+/// `value` as an output stream writes it by default (6 significant digits: 62.5, 1e-07), for the
+/// numbers of messages.
+inline std::string StreamNumber(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
 }
 
 /// The shortest text that reads back to exactly `value` (std::to_chars): 0.85, not

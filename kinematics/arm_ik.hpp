@@ -41,6 +41,10 @@ struct ArmBranch {
   bool operator==(const ArmBranch&) const = default;
 };
 
+/// The order in which a replay or a reach tries the branches (ArmBranch::index()): every sign
+/// +1 first, then GC2, GC4 and both negated, each followed by its wrist flip (GC6 negated).
+inline constexpr std::array<int, 8> kBranchPreference = {0, 4, 1, 5, 2, 6, 3, 7};
+
 /// The branch of configuration q (a zero joint counts as +1).
 ArmBranch BranchOf(const Eigen::Ref<const Vector7d>& q);
 

@@ -31,7 +31,7 @@ DemoReplay ReplayDemoLog(const RobotModel& robot, const DemoLog& log,
   std::optional<MidArcSolution> start;
   JointSpaceResult joints;
   std::string first_failure;
-  for (int index : {0, 4, 1, 5, 2, 6, 3, 7}) {
+  for (int index : kBranchPreference) {
     const std::optional<MidArcSolution> s =
         SolveArmIkMidArc(robot.arm, X_WF0, ArmBranch::FromIndex(index));
     if (!s) continue;

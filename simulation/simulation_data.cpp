@@ -17,6 +17,7 @@
 
 #include "common/demand.hpp"
 #include "common/errors.hpp"
+#include "common/stopwatch.hpp"
 #include "kinematics/pose_math.hpp"
 #include "kinematics/triangle_mesh.hpp"
 #include "simulation/constraint_solver.hpp"
@@ -29,11 +30,7 @@
 namespace graspsynth {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double Seconds(Clock::time_point a, Clock::time_point b) {
-  return std::chrono::duration<double>(b - a).count();
-}
+using Clock = WallClock;
 
 // Roles of geometry, ordered so that a pair can be classified with role(a) <= role(b).
 enum class Role { kTable, kObject, kArm, kPalm, kFinger, kProxy };
@@ -1276,9 +1273,9 @@ struct SimulationData::Impl {
     if (!arm_kinematic()) ArmLinkFrames(robot().arm, q_arm, &arm_frames);
     time += h;
     stats.dynamic_steps++;
-    stats.control_s += Seconds(t0, t1) + Seconds(t3, Clock::now());
-    stats.collision_s += Seconds(t1, t2);
-    stats.solver_s += Seconds(t2, t3);
+    stats.control_s += SecondsBetween(t0, t1) + SecondsBetween(t3, Clock::now());
+    stats.collision_s += SecondsBetween(t1, t2);
+    stats.solver_s += SecondsBetween(t2, t3);
     stats.max_contacts = std::max(stats.max_contacts, report.total);
   }
 
@@ -1313,8 +1310,8 @@ struct SimulationData::Impl {
     Collide(true);
     time += h;
     stats.kinematic_steps++;
-    stats.control_s += Seconds(t0, t1);
-    stats.collision_s += Seconds(t1, Clock::now());
+    stats.control_s += SecondsBetween(t0, t1);
+    stats.collision_s += SecondsBetween(t1, Clock::now());
   }
 
   static void ProxyCallback(void* data, dGeomID a, dGeomID b) {
@@ -1333,7 +1330,7 @@ struct SimulationData::Impl {
     near_object = false;
     dSpaceCollide2(reinterpret_cast<dGeomID>(proxy_space), reinterpret_cast<dGeomID>(space), this,
                    &Impl::ProxyCallback);
-    stats.collision_s += Seconds(t0, Clock::now());
+    stats.collision_s += SecondsBetween(t0, Clock::now());
     return near_object;
   }
 

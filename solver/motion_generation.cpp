@@ -3,18 +3,13 @@
 #include <sstream>
 
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "motion/joint_space.hpp"
 #include "solver/placement_motion.hpp"
 
 namespace graspsynth {
 
 namespace {
-
-std::string Degrees(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 SourceDemo Source(const GraspLibrary& library, int i, double weight) {
   const LibraryEntry& e = library.entries[i];
@@ -99,8 +94,8 @@ void GenerateInterp(const SynthesisModel& model, const SynthesisTask& task,
   const Bracket& b = r->bracket;
   if (b.kind == BracketKind::kBelowRange || b.kind == BracketKind::kAboveRange) {
     r->status = MotionGenerationStatus::kOutOfRange;
-    r->message = "theta " + Degrees(task.theta_deg) + " deg is outside the library's range [" +
-                 Degrees(model.theta_min_deg()) + ", " + Degrees(model.theta_max_deg()) +
+    r->message = "theta " + StreamNumber(task.theta_deg) + " deg is outside the library's range [" +
+                 StreamNumber(model.theta_min_deg()) + ", " + StreamNumber(model.theta_max_deg()) +
                  "] deg: interpolation needs a demonstration on each side; use method "
                  "'line' (the line principle) or 'nearest' beyond the range";
     return;

@@ -98,7 +98,7 @@ std::optional<ReachAttempt> JointReachAttempt(const SynthesisModel& model,
   const double psi = ArmAngleOf(robot.arm, q_start);
   std::ostringstream failures;
   std::vector<int> order = {start_branch};
-  for (int index : {0, 4, 1, 5, 2, 6, 3, 7}) {
+  for (int index : kBranchPreference) {
     if (index != start_branch) order.push_back(index);
   }
   for (int index : order) {
@@ -153,6 +153,16 @@ std::optional<ReachAttempt> JointReachAttempt(const SynthesisModel& model,
   return std::nullopt;
 }
 
+// `r` with the reach `chosen`.
+ReachPlanResult Chosen(ReachAttempt chosen, ReachPlanResult r) {
+  r.chosen = true;
+  r.used = chosen.method;
+  r.path = std::move(chosen.path);
+  r.reach_samples = chosen.reach_samples;
+  r.joints = std::move(chosen.joints);
+  return r;
+}
+
 // The spline reach, with the default rest pose on another branch when it cannot be played.
 ReachPlanResult PlanSplineReach(const SynthesisModel& model, const SynthesisTask& task,
                                 const GraspingMotion& motion, const CartesianPath& tail,
@@ -181,12 +191,7 @@ ReachPlanResult PlanSplineReach(const SynthesisModel& model, const SynthesisTask
     }
   }
   r.reason = why.str();
-  r.chosen = true;
-  r.used = chosen->method;
-  r.path = std::move(chosen->path);
-  r.reach_samples = chosen->reach_samples;
-  r.joints = std::move(chosen->joints);
-  return r;
+  return Chosen(std::move(*chosen), std::move(r));
 }
 
 }  // namespace
@@ -255,12 +260,7 @@ ReachPlanResult PlanReach(const SynthesisModel& model, const SynthesisTask& task
   }
   r.reason = why.str();
   if (!chosen) return r;
-  r.chosen = true;
-  r.used = chosen->method;
-  r.path = std::move(chosen->path);
-  r.reach_samples = chosen->reach_samples;
-  r.joints = std::move(chosen->joints);
-  return r;
+  return Chosen(std::move(*chosen), std::move(r));
 }
 
 }  // namespace graspsynth

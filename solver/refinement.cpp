@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "common/errors.hpp"
+#include "common/stopwatch.hpp"
 #include "kinematics/arm_ik.hpp"
 #include "motion/joint_space.hpp"
 
@@ -21,10 +22,7 @@ constexpr double kRadToMetre = 0.1;  // weight of a rad of violation against a m
 // a constraint violated by less than this (m) holds: NLopt's constraint tolerance.
 constexpr double kFeasibilityTolerance = 1e-5;
 
-using Clock = std::chrono::steady_clock;
-double Since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
+using Clock = WallClock;
 
 // Index of the first waypoint where the fingers have started closing (motion size if never).
 int FingerStart(const GraspingMotion& m, double threshold) {
@@ -508,7 +506,7 @@ CeresStageResult RunCeresStage(const RobotModel& robot, const GraspingMotion& mo
   if (result.usable) {
     for (int i = 0; i < n; ++i) result.motion.waypoints[i].p_WH += d[i];
   }
-  cr.time_s = Since(t0);
+  cr.time_s = SecondsSince(t0);
   return result;
 }
 
@@ -546,7 +544,7 @@ NloptStageResult RunNloptStage(const RobotModel& robot, const SceneModel& scene,
   result.motion = Transformed(motion, best.x.data(), robot.hand);
   result.constraints =
       EvaluateRefinementConstraints(robot, scene, collision, result.motion, inputs, options, data);
-  nr.time_s = Since(t0);
+  nr.time_s = SecondsSince(t0);
   return result;
 }
 
@@ -607,7 +605,7 @@ RefinementResult RefineGraspingMotion(const RobotModel& robot, const SceneModel&
     }
   }
   rep.after = current_c;
-  rep.time_s = Since(t_start);
+  rep.time_s = SecondsSince(t_start);
   result.motion = std::move(current);
   return result;
 }

@@ -5,16 +5,14 @@
 #include <sstream>
 
 #include "common/errors.hpp"
+#include "common/stopwatch.hpp"
 #include "kinematics/rest_pose.hpp"
 
 namespace graspsynth {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double Since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
+using Clock = WallClock;
 
 // The motion generation's outcome copied into the synthesis result.
 void TakeGeneration(const MotionGenerationResult& g, SynthesisResult* r) {
@@ -269,7 +267,7 @@ SynthesisResult SynthesizeGrasp(const SynthesisModel& model, const SynthesisTask
   TakeGeneration(generated, &r);
   if (!generated.ok()) return r;
   r.unrefined = generated.motion;
-  r.generate_s = Since(t_generate);
+  r.generate_s = SecondsSince(t_generate);
 
   // 2. the start configuration.
   const StartCheckResult start = CheckStart(model, task, generated.motion, {options.start}, data);
@@ -303,14 +301,14 @@ SynthesisResult SynthesizeGrasp(const SynthesisModel& model, const SynthesisTask
     r.grip_slide = slid.distance;
     r.grip_radius = slid.grip_radius;
   }
-  r.refine_s = Since(t_refine);
+  r.refine_s = SecondsSince(t_refine);
 
   // 4. reach, grasping motion, lift, joints.
   const auto t_joints = Clock::now();
   const GraspAndLiftPath tail = GraspAndLift(model.library(), r.sources, r.motion, options.lift);
   ReachPlanResult reach =
       PlanReach(model, task, r.motion, tail.path, r.start, options.Reach(), data);
-  r.joints_s = Since(t_joints);
+  r.joints_s = SecondsSince(t_joints);
   r.reach_reason = reach.reason;
   if (!reach.ok()) {
     r.status = SynthesisStatus::kUnreachable;

@@ -6,19 +6,10 @@
 
 #include "common/demand.hpp"
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "simulation/scripted_grasp.hpp"
 
 namespace graspsynth {
-
-namespace {
-
-std::string Degrees(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
-}  // namespace
 
 SynthesisTask MakeSynthesisTask(const SceneModel& scene, double theta_deg,
                                 const std::optional<Eigen::Vector2d>& at) {
@@ -70,7 +61,7 @@ SynthesisModel::SynthesisModel(RobotModel robot, SceneModel scene, GraspLibrary 
                          "then y, then theta)");
       }
     } else if (i > 0 && !(e.theta_deg > library_.entries[i - 1].theta_deg)) {
-      throw InputError(field + ".theta_deg = " + Degrees(e.theta_deg) + " does not increase");
+      throw InputError(field + ".theta_deg = " + StreamNumber(e.theta_deg) + " does not increase");
     }
     if (!IsWellFormed(e.motion, &why)) throw InputError(field + ".motion: " + why);
     theta_min_deg_ = i == 0 ? e.theta_deg : std::min(theta_min_deg_, e.theta_deg);
