@@ -46,6 +46,8 @@ struct Mpi {
 };
 #endif
 
+constexpr const char* kEmptyValue = "an empty value (leave the option out to take its default)";
+
 // Refuses an empty value for every option that takes one, in `app` and its subcommands: an
 // empty --object or --at would otherwise mean "not given" without a word (README, "Commands");
 // leaving the option out is how its default is asked for.
@@ -54,9 +56,7 @@ void RefuseEmptyValues(CLI::App* app) {
     if (option->get_type_size() == 0) continue;  // a flag takes no value
     option->check(CLI::Validator(
         [](const std::string& value) {
-          return value.empty()
-                     ? std::string("an empty value (leave the option out to take its default)")
-                     : std::string();
+          return value.empty() ? std::string(kEmptyValue) : std::string();
         },
         "", "non-empty"));
   }
@@ -102,8 +102,7 @@ int main(int argc, char** argv) {
     const std::string arg = argv[i];
     if (arg == "--") break;
     if (arg.size() > 3 && arg.rfind("--", 0) == 0 && arg.back() == '=') {
-      std::cerr << arg.substr(0, arg.size() - 1)
-                << ": an empty value (leave the option out to take its default)\n";
+      std::cerr << arg.substr(0, arg.size() - 1) << ": " << kEmptyValue << "\n";
       return 2;
     }
   }

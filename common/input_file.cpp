@@ -37,6 +37,19 @@ std::string OverLimit(uint64_t bytes, const InputFileKind& kind, bool at_least) 
          std::string(kind.name) + " (docs/formats.md, \"Input limits\")";
 }
 
+// `path` as messages show it: its text, with a NUL byte written as "\0".
+std::string ShownPath(const std::filesystem::path& path) {
+  std::string shown;
+  for (const char c : path.native()) {
+    if (c == '\0') {
+      shown += "\\0";
+    } else {
+      shown += c;
+    }
+  }
+  return shown;
+}
+
 // Closes a file descriptor when it goes out of scope.
 class FileDescriptor {
  public:
@@ -54,18 +67,6 @@ class FileDescriptor {
 
 }  // namespace
 
-std::string ShownPath(const std::filesystem::path& path) {
-  std::string shown;
-  for (const char c : path.native()) {
-    if (c == '\0') {
-      shown += "\\0";
-    } else {
-      shown += c;
-    }
-  }
-  return shown;
-}
-
 std::string ReadInputFile(const std::filesystem::path& path, const InputFileKind& kind) {
   const std::string& native = path.native();
   const auto refuse = [&](const std::string& why) -> InputError {
@@ -74,22 +75,24 @@ std::string ReadInputFile(const std::filesystem::path& path, const InputFileKind
   };
   if (native.find('\0') != std::string::npos) throw refuse("the path holds a NUL byte");
   if (native.empty()) throw refuse("the path is empty");
+  // a regular file within the limit, or the refusal.
+  const auto require_regular = [&](const struct stat& st) {
+    if (!S_ISREG(st.st_mode)) throw refuse(NotRegular(st.st_mode));
+    if (static_cast<uint64_t>(st.st_size) > kind.max_bytes) {
+      throw refuse(OverLimit(static_cast<uint64_t>(st.st_size), kind, false));
+    }
+  };
   // look before opening: opening a FIFO for reading blocks until a writer comes, and a device
   // may never end.
   struct stat st {};
   if (::stat(native.c_str(), &st) != 0) throw refuse(SystemReason(errno));
-  if (!S_ISREG(st.st_mode)) throw refuse(NotRegular(st.st_mode));
-  if (static_cast<uint64_t>(st.st_size) > kind.max_bytes) {
-    throw refuse(OverLimit(static_cast<uint64_t>(st.st_size), kind, false));
-  }
-  // O_NONBLOCK: whatever was put at the path since the look, opening it does not block.
+  require_regular(st);
+  // O_NONBLOCK: whatever was put at the path since the look, opening it does not block; the
+  // look is repeated on what was opened.
   const FileDescriptor fd(::open(native.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY));
   if (fd.get() < 0) throw refuse(SystemReason(errno));
   if (::fstat(fd.get(), &st) != 0) throw refuse(SystemReason(errno));
-  if (!S_ISREG(st.st_mode)) throw refuse(NotRegular(st.st_mode));
-  if (static_cast<uint64_t>(st.st_size) > kind.max_bytes) {
-    throw refuse(OverLimit(static_cast<uint64_t>(st.st_size), kind, false));
-  }
+  require_regular(st);
   std::string bytes;
   bytes.resize(static_cast<size_t>(st.st_size));
   size_t filled = 0;

@@ -66,7 +66,4 @@ inline constexpr InputFileKind kToolOutput{"tool output", 256 * kMiB};
 /// limit, or when `path` holds a NUL byte.
 std::string ReadInputFile(const std::filesystem::path& path, const InputFileKind& kind);
 
-/// `path` as it is shown in messages: its text, with a NUL byte written as "\0".
-std::string ShownPath(const std::filesystem::path& path);
-
 }  // namespace graspsynth

@@ -424,9 +424,14 @@ SelectionResult SelectRepresentatives(const SimulationModel& model,
     return EncodeScores(order);
   };
   perturbed.payload = kScoresLayout;
+  // job k's scores from its bytes into `scores`: a kept one is checked with it (into scratch
+  // scores), and every one read back.
+  const auto decode = [](int k, std::string_view bytes, const std::vector<DemoScore*>& scores) {
+    DecodeScores(bytes, "selection job " + std::to_string(k), scores);
+  };
   perturbed.check = [&](int k, std::string_view bytes) {
     std::vector<DemoScore> scratch(orientations[static_cast<size_t>(k)].size());
-    DecodeScores(bytes, "selection job " + std::to_string(k), Pointers(&scratch));
+    decode(k, bytes, Pointers(&scratch));
   };
   perturbed.finished = [&](int k, bool here) {
     if (here) return;
@@ -438,7 +443,7 @@ SelectionResult SelectRepresentatives(const SimulationModel& model,
   for (size_t k = 0; k < orientations.size(); ++k) {
     std::vector<DemoScore*> scores;
     for (Scored* s : orientations[k]) scores.push_back(&s->candidate.score);
-    DecodeScores(perturbed_results[k], "selection job " + std::to_string(k), scores);
+    decode(static_cast<int>(k), perturbed_results[k], scores);
   }
 
   PickRepresentatives(options, &scored, &result);

@@ -343,9 +343,11 @@ std::vector<OperatorTrial> GenerateDemonstrations(const SimulationModel& model,
         MakeTrial(model, options, options.plans[job.plan], positions[job.position], job.trial));
   };
   stage.payload = kOperatorTrialLayout;
-  stage.check = [](int j, std::string_view bytes) {
-    DecodeOperatorTrial(bytes, "demos job " + std::to_string(j));
+  // job j's trial from its bytes: a kept one is checked with it, and every one read back.
+  const auto decode = [](int j, std::string_view bytes) {
+    return DecodeOperatorTrial(bytes, "demos job " + std::to_string(j));
   };
+  stage.check = decode;
   stage.finished = [&](int, bool) {
     std::lock_guard<std::mutex> lock(mutex);
     ++finished;
@@ -356,7 +358,7 @@ std::vector<OperatorTrial> GenerateDemonstrations(const SimulationModel& model,
   std::vector<OperatorTrial> trials;
   trials.reserve(done.size());
   for (size_t j = 0; j < done.size(); ++j) {
-    trials.push_back(DecodeOperatorTrial(done[j], "demos job " + std::to_string(j)));
+    trials.push_back(decode(static_cast<int>(j), done[j]));
   }
   return trials;
 }

@@ -167,6 +167,26 @@ StudyRow NewRow(double theta, const StudyMethod& method, uint64_t seed,
   return row;
 }
 
+// The table's rows: at each position (the scene's centre without any), each orientation by
+// each method; `methods` gets each row's method. Throws InputError for an off-table position.
+std::vector<StudyRow> NewRows(const SceneModel& scene, const SynthesisTableOptions& options,
+                              std::vector<StudyMethod>* methods) {
+  std::vector<StudyRow> rows;
+  std::vector<std::optional<Eigen::Vector2d>> positions(options.positions.begin(),
+                                                        options.positions.end());
+  if (positions.empty()) positions.emplace_back();  // the scene's centre
+  for (const std::optional<Eigen::Vector2d>& at : positions) {
+    if (at) MakeSynthesisTask(scene, 0.0, at);  // an off-table position: InputError
+    for (double theta : options.orientations) {
+      for (const StudyMethod& method : options.methods) {
+        rows.push_back(NewRow(theta, method, options.seed, at));
+        methods->push_back(method);
+      }
+    }
+  }
+  return rows;
+}
+
 }  // namespace
 
 std::vector<StudyRow> SynthesisTable(const SimulationModel& model, const GraspLibrary& library,
@@ -176,20 +196,8 @@ std::vector<StudyRow> SynthesisTable(const SimulationModel& model, const GraspLi
   // the nominal trial, the perturbed replays and the sensitivity table's replays.
   const int per_row = options.gate_perturbations + 1 +
                       2 * static_cast<int>(AllPhysicsFactors().size()) * options.sensitivity_trials;
-  std::vector<StudyRow> rows;
   std::vector<StudyMethod> methods;  // of each row
-  std::vector<std::optional<Eigen::Vector2d>> positions(options.positions.begin(),
-                                                        options.positions.end());
-  if (positions.empty()) positions.emplace_back();  // the scene's centre
-  for (const std::optional<Eigen::Vector2d>& at : positions) {
-    if (at) MakeSynthesisTask(model.scene(), 0.0, at);  // an off-table position: InputError
-    for (double theta : options.orientations) {
-      for (const StudyMethod& method : options.methods) {
-        rows.push_back(NewRow(theta, method, options.seed, at));
-        methods.push_back(method);
-      }
-    }
-  }
+  std::vector<StudyRow> rows = NewRows(model.scene(), options, &methods);
   ProgressCounter counter(static_cast<int>(rows.size()) * per_row, progress);
   // rows are independent jobs: they run side by side, each on its share of the threads (one,
   // when there are more rows than threads), so that no thread waits for another's nominal trial
@@ -200,9 +208,11 @@ std::vector<StudyRow> SynthesisTable(const SimulationModel& model, const GraspLi
   stage.count = static_cast<int>(rows.size());
   stage.threads = split.outer;
   stage.payload = kStudyRowLayout;
-  stage.check = [&](int i, std::string_view bytes) {
-    DecodeStudyRow(bytes, stage.name + " job " + std::to_string(i));
+  // job i's row from its bytes: a kept one is checked with it, and every one read back.
+  const auto decode = [&](int i, std::string_view bytes) {
+    return DecodeStudyRow(bytes, stage.name + " job " + std::to_string(i));
   };
+  stage.check = decode;
   stage.finished = [&](int i, bool here) {
     if (!here) counter.Add(per_row, rows[static_cast<size_t>(i)].method);
   };
@@ -268,7 +278,7 @@ std::vector<StudyRow> SynthesisTable(const SimulationModel& model, const GraspLi
   LocalJobRunner local;
   const std::vector<std::string> done = (options.runner ? *options.runner : local).Run(stage);
   for (size_t i = 0; i < rows.size(); ++i) {
-    rows[i] = DecodeStudyRow(done[i], stage.name + " job " + std::to_string(i));
+    rows[i] = decode(static_cast<int>(i), done[i]);
   }
   return rows;
 }

@@ -239,11 +239,16 @@ int RunMpi(int ranks, const std::string& args, const fs::path& dir, std::string*
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-TEST_F(ScaleOut, ThreeMpiRanksWriteTheBytesOfOneProcess) {
-  const fs::path one = dir_ / "one", three = dir_ / "three";
-  testing::CommandOutput r =
+// The sweep run by one process (one thread) into `one`: the bytes an MPI job must write.
+void SweepOnOneProcess(const fs::path& one) {
+  const testing::CommandOutput r =
       RunGraspsynth(std::string(kSweep) + "--threads 1 --out " + one.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
+}
+
+TEST_F(ScaleOut, ThreeMpiRanksWriteTheBytesOfOneProcess) {
+  const fs::path one = dir_ / "one", three = dir_ / "three";
+  ASSERT_NO_FATAL_FAILURE(SweepOnOneProcess(one));
   fs::create_directories(dir_);
   std::string out;
   ASSERT_EQ(RunMpi(3, std::string(kSweep) + "--threads 2 --out " + three.string(), dir_, &out), 0)
@@ -259,9 +264,7 @@ TEST_F(ScaleOut, ThreeMpiRanksWriteTheBytesOfOneProcess) {
 // writes the bytes of one process.
 TEST_F(ScaleOut, AJobFailingOnAnotherRankEndsTheRunAndItsResumeIsTheBytesOfOneProcess) {
   const fs::path one = dir_ / "one", three = dir_ / "three";
-  testing::CommandOutput r =
-      RunGraspsynth(std::string(kSweep) + "--threads 1 --out " + one.string());
-  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_NO_FATAL_FAILURE(SweepOnOneProcess(one));
   const std::string args = std::string(kSweep) + "--threads 1 --out " + three.string();
   std::string out;
   EXPECT_EQ(RunMpi(3, args, dir_, &out, "GRASPSYNTH_TEST_FAIL_STAGE=synthesis"), 2) << out;
@@ -299,9 +302,7 @@ pid_t RankProcess(int rank, const std::string& marker) {
 // writes the bytes of one process.
 TEST_F(ScaleOut, AnMpiJobWhoseRankIsKilledMidJobResumesToTheBytesOfOneProcess) {
   const fs::path one = dir_ / "one", three = dir_ / "three";
-  testing::CommandOutput r =
-      RunGraspsynth(std::string(kSweep) + "--threads 1 --out " + one.string());
-  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_NO_FATAL_FAILURE(SweepOnOneProcess(one));
   const std::string args = std::string(kSweep) + "--threads 1 --out " + three.string();
   const std::string mpirun = std::string(GRASPSYNTH_MPIEXEC) + " --oversubscribe -n 3 " +
                              (::geteuid() == 0 ? "--allow-run-as-root " : "") +
