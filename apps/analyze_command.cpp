@@ -13,13 +13,13 @@
 #include <string>
 #include <vector>
 
+#include "analysis/analysis_report.hpp"
 #include "apps/cli_helpers.hpp"
 #include "apps/figure8.hpp"
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
-#include "kinematics/scene_model.hpp"
 #include "learning_data/demo_directory.hpp"
-#include "solver/analysis_report.hpp"
+#include "scene/scene_model.hpp"
 
 namespace graspsynth::apps {
 namespace {

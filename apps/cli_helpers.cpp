@@ -10,8 +10,8 @@
 
 #include "common/errors.hpp"
 #include "common/format.hpp"
-#include "kinematics/object_model.hpp"
 #include "kinematics/robot_description.hpp"
+#include "scene/object_model.hpp"
 
 namespace graspsynth::apps {
 

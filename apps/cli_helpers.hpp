@@ -15,8 +15,8 @@
 
 #include "common/job_runner.hpp"
 #include "common/orientation_list.hpp"
-#include "kinematics/scene_model.hpp"
 #include "motion/joint_trajectory.hpp"
+#include "scene/scene_model.hpp"
 #include "simulation/physics_perturbation.hpp"
 #include "solver/synthesis_model.hpp"
 

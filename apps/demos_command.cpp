@@ -13,16 +13,16 @@
 #include <string>
 #include <vector>
 
+#include "analysis/analysis_report.hpp"
+#include "analysis/table_analysis.hpp"
 #include "apps/cli_helpers.hpp"
 #include "common/errors.hpp"
 #include "common/orientation_list.hpp"
 #include "kinematics/robot_description.hpp"
-#include "kinematics/scene_model.hpp"
 #include "learning_data/segmentation.hpp"
 #include "learning_data/synthetic_operator.hpp"
+#include "scene/scene_model.hpp"
 #include "simulation/simulation_model.hpp"
-#include "solver/analysis_report.hpp"
-#include "solver/table_analysis.hpp"
 
 namespace graspsynth::apps {
 namespace {

@@ -21,8 +21,9 @@
 
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "common/input_file.hpp"
-#include "kinematics/triangle_mesh.hpp"
+#include "scene/triangle_mesh.hpp"
 
 extern char** environ;
 
@@ -101,12 +102,6 @@ void RunGnuplot(const std::string& program, const fs::path& script, const fs::pa
   }
 }
 
-std::string Num(double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.9g", value);
-  return buffer;
-}
-
 // The paper's symbols of Table I (*, o, x, +, *, square, diamond, triangle down, triangle up) as
 // gnuplot point types, with the second * made a filled circle so that all nine differ; more
 // orientations reuse them cyclically.
@@ -154,8 +149,8 @@ std::string ObjectData(const SceneModel& scene, const std::vector<OrientationSta
     if (!object.empty()) object += "\n";
     for (int i = 0; i <= 72; ++i) {
       const double a = 2.0 * M_PI * i / 72.0;
-      object += Num(centre.x() + s.size[0] * std::cos(a)) + " " +
-                Num(centre.y() + s.size[0] * std::sin(a)) + "\n";
+      object += StreamNumber(centre.x() + s.size[0] * std::cos(a), 9) + " " +
+                StreamNumber(centre.y() + s.size[0] * std::sin(a), 9) + "\n";
     }
   }
   std::vector<double> thetas;
@@ -178,12 +173,13 @@ std::string ObjectData(const SceneModel& scene, const std::vector<OrientationSta
       object += "\n";
       for (const Eigen::Vector2d& c : corners) {
         const Eigen::Vector2d w = c.x() * u + c.y() * v;
-        object += Num(w.x()) + " " + Num(w.y()) + "\n";
+        object += StreamNumber(w.x(), 9) + " " + StreamNumber(w.y(), 9) + "\n";
       }
     }
     const Eigen::Vector2d tip = (reach + 0.12) * u;
-    *labels += "set label '" + what + " θ = " + Num(theta_deg) + "' at " + Num(tip.x()) + "," +
-               Num(tip.y()) + " font ',9' textcolor rgb '#606060' center\n";
+    *labels += "set label '" + what + " θ = " + StreamNumber(theta_deg, 9) + "' at " +
+               StreamNumber(tip.x(), 9) + "," + StreamNumber(tip.y(), 9) +
+               " font ',9' textcolor rgb '#606060' center\n";
   }
   return object;
 }
@@ -202,7 +198,7 @@ std::string WristLineData(const DemonstrationAnalysis& analysis) {
   }
   for (double s : {lo - 0.05, hi + 0.05}) {
     const Eigen::Vector2d p = line.line.point + s * line.line.direction;
-    line_data += Num(p.x()) + " " + Num(p.y()) + "\n";
+    line_data += StreamNumber(p.x(), 9) + " " + StreamNumber(p.y(), 9) + "\n";
   }
   return line_data;
 }
@@ -226,7 +222,7 @@ std::string Figure8Script(const fs::path& dir, const std::string& labels, double
   script +=
       "plot 'region.dat'"
       " using 1:2 with lines dt 2 lc rgb '#9090c0' title 'grasp region (" +
-      Num(r) + " m)', \\\n";
+      StreamNumber(r, 9) + " m)', \\\n";
   script += "     'object.dat' using 1:2 with lines lw 2 lc rgb '#606060' title 'object', \\\n";
   if (with_line) {
     script +=
@@ -241,7 +237,7 @@ std::string Figure8Script(const fs::path& dir, const std::string& labels, double
     script += ", \\\n     " + block + " using 1:2 with points pt " + pt +
               " ps 1.4 lc rgb '#1f77b4' notitle";
     script += ", \\\n     " + block + " using 3:4 with points pt " + pt +
-              " ps 1.4 lc rgb '#d62728' title 'θ = " + Num(rows[i].theta_deg) + "'";
+              " ps 1.4 lc rgb '#d62728' title 'θ = " + StreamNumber(rows[i].theta_deg, 9) + "'";
   }
   script += "\nunset output\n";
   return script;
@@ -269,15 +265,17 @@ void DrawFigure8(const DemonstrationAnalysis& analysis, const SceneModel& scene,
   const double r = analysis.options.segmentation.region.radius;
   for (int i = 0; i <= 180; ++i) {
     const double a = 2.0 * M_PI * i / 180.0;
-    region += Num(r * std::cos(a)) + " " + Num(r * std::sin(a)) + "\n";
+    region += StreamNumber(r * std::cos(a), 9) + " " + StreamNumber(r * std::sin(a), 9) + "\n";
   }
   WriteText(dir / "region.dat", region);
 
   // one block per orientation: pre-grasp mean, then grasp mean.
   std::string means;
   for (const OrientationStats& row : rows) {
-    means += Num(row.pregrasp.mean_xy.x()) + " " + Num(row.pregrasp.mean_xy.y()) + " " +
-             Num(row.grasp.mean_xy.x()) + " " + Num(row.grasp.mean_xy.y()) + "\n\n\n";
+    means += StreamNumber(row.pregrasp.mean_xy.x(), 9) + " " +
+             StreamNumber(row.pregrasp.mean_xy.y(), 9) + " " +
+             StreamNumber(row.grasp.mean_xy.x(), 9) + " " + StreamNumber(row.grasp.mean_xy.y(), 9) +
+             "\n\n\n";
   }
   WriteText(dir / "means.dat", means.empty() ? std::string("\n") : means);
 

@@ -8,8 +8,8 @@
 #include <filesystem>
 #include <string>
 
-#include "kinematics/scene_model.hpp"
-#include "solver/analysis_report.hpp"
+#include "analysis/analysis_report.hpp"
+#include "scene/scene_model.hpp"
 
 namespace graspsynth::apps {
 

@@ -1,5 +1,5 @@
 // graspsynth generalize: grasps for many orientations from a grasp library by several methods,
-// each validated in physics (solver/study.hpp's SynthesisTable), as CSV and markdown; with
+// each validated in physics (study/study.hpp's SynthesisTable), as CSV and markdown; with
 // --leave-one-out, each inner demonstrated orientation synthesized from the library without it.
 
 #include "apps/generalize_command.hpp"
@@ -16,11 +16,11 @@
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
 #include "kinematics/robot_description.hpp"
-#include "kinematics/scene_model.hpp"
 #include "learning_data/grasp_library.hpp"
+#include "scene/scene_model.hpp"
 #include "simulation/simulation_model.hpp"
-#include "solver/study.hpp"
-#include "solver/study_report.hpp"
+#include "study/study.hpp"
+#include "study/study_report.hpp"
 
 namespace graspsynth::apps {
 namespace {

@@ -14,9 +14,9 @@
 #include "apps/cli_helpers.hpp"
 #include "common/errors.hpp"
 #include "kinematics/robot_description.hpp"
-#include "kinematics/scene_model.hpp"
 #include "learning_data/grasp_library.hpp"
 #include "learning_data/representative_selection.hpp"
+#include "scene/scene_model.hpp"
 
 namespace graspsynth::apps {
 namespace {

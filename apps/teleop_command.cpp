@@ -1,7 +1,7 @@
 // graspsynth teleop: the live teleoperation loop. One thread runs the control tick at --rate:
 // it drains the UDP socket, steps the TeleopSession (teleop/teleop_session.hpp), sends the
 // robot state back to the operator and publishes a viewer frame; the viewer's HTTP server has
-// its own thread (teleop/viewer_server.hpp). graspsynth teleop-client: replays a demonstration
+// its own thread (viewer/viewer_server.hpp). graspsynth teleop-client: replays a demonstration
 // log over UDP at its own rate, as a tracker and a glove would, and counts the states it gets.
 
 #include "apps/teleop_command.hpp"
@@ -34,8 +34,8 @@
 #include "teleop/protocol.hpp"
 #include "teleop/teleop_session.hpp"
 #include "teleop/udp_link.hpp"
-#include "teleop/viewer_scene.hpp"
-#include "teleop/viewer_server.hpp"
+#include "viewer/viewer_scene.hpp"
+#include "viewer/viewer_server.hpp"
 
 namespace graspsynth::apps {
 namespace {
@@ -102,17 +102,17 @@ teleop::TeleopOptions SessionOptions(const ServerOptions& opts) {
 }
 
 // The viewer's HTTP server when --viewer-port asks for one.
-std::unique_ptr<teleop::ViewerServer> StartViewer(const SimulationModel& model,
+std::unique_ptr<viewer::ViewerServer> StartViewer(const SimulationModel& model,
                                                   const ServerOptions& opts) {
   if (opts.viewer_port < 0) return nullptr;
-  const teleop::ViewerCamera camera =
+  const viewer::ViewerCamera camera =
       opts.camera.empty()
-          ? teleop::DefaultViewerCamera(model.scene())
-          : teleop::ParseViewerCamera(opts.camera, teleop::DefaultViewerCamera(model.scene()));
-  teleop::ViewerServerOptions viewer_options;
+          ? viewer::DefaultViewerCamera(model.scene())
+          : viewer::ParseViewerCamera(opts.camera, viewer::DefaultViewerCamera(model.scene()));
+  viewer::ViewerServerOptions viewer_options;
   viewer_options.port = opts.viewer_port;
-  auto viewer = std::make_unique<teleop::ViewerServer>(
-      teleop::ViewerSceneJson(model.robot(), model.scene(), camera), viewer_options);
+  auto viewer = std::make_unique<viewer::ViewerServer>(
+      viewer::ViewerSceneJson(model.robot(), model.scene(), camera), viewer_options);
   for (const std::string& missing : viewer->missing_assets()) {
     std::cerr << "graspsynth teleop: warning: " << missing
               << " is missing; run scripts/setup.sh (npm ci --prefix viewer) and rebuild\n";
@@ -139,7 +139,7 @@ struct LoopFigures {
 // The control loop at the session's rate until the session is over.
 LoopFigures RunControlLoop(const SimulationModel& model, const ServerOptions& opts,
                            teleop::TeleopSession* session, teleop::UdpLink* link,
-                           teleop::ViewerServer* viewer) {
+                           viewer::ViewerServer* viewer) {
   const StopSignals signals;
   const Clock::time_point start = Clock::now();
   const auto tick = std::chrono::duration_cast<Clock::duration>(
@@ -165,7 +165,7 @@ LoopFigures RunControlLoop(const SimulationModel& model, const ServerOptions& op
     const teleop::TickResult r =
         session->Step(incoming, std::chrono::duration<double>(tick_start - start).count());
     if (!r.state_packet.empty() && r.peer) link->Send(r.state_packet, *r.peer);
-    if (viewer) viewer->Publish(teleop::ViewerFrameJson(model.robot(), r.view));
+    if (viewer) viewer->Publish(viewer::ViewerFrameJson(model.robot(), r.view));
     const double busy = SecondsSince(tick_start);
     f.busy_s += busy;
     f.busy_max_s = std::max(f.busy_max_s, busy);
@@ -194,7 +194,7 @@ int RunServer(const ServerOptions& opts) {
   link_options.port = opts.port;
   teleop::UdpLink link(link_options);
   if (!opts.port_file.empty()) WriteFileAtomically(opts.port_file, std::to_string(link.port()));
-  std::unique_ptr<teleop::ViewerServer> viewer = StartViewer(model, opts);
+  std::unique_ptr<viewer::ViewerServer> viewer = StartViewer(model, opts);
   std::cerr << "graspsynth teleop: listening on udp " << opts.bind << ":" << link.port() << " at "
             << options.rate_hz << " Hz (" << (options.key ? "authenticated" : "not authenticated")
             << "; " << session.steps_per_tick() << " physics steps of "

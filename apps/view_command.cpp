@@ -1,5 +1,5 @@
 // graspsynth view: the browser viewer with a replay. The server and the drawing are the
-// teleoperation viewer's (teleop/viewer_server.hpp, teleop/viewer_scene.hpp); this command only
+// teleoperation viewer's (viewer/viewer_server.hpp, viewer/viewer_scene.hpp); this command only
 // produces the frames: from a trajectory file (the samples' joints), a demonstration log (the
 // wrist poses through the analytic IK with a continuous arm angle) or, with neither, the robot
 // at rest.
@@ -20,12 +20,12 @@
 #include "common/errors.hpp"
 #include "common/stopwatch.hpp"
 #include "kinematics/robot_description.hpp"
-#include "kinematics/scene_model.hpp"
 #include "learning_data/demo_log.hpp"
 #include "motion/joint_trajectory.hpp"
-#include "teleop/viewer_replay.hpp"
-#include "teleop/viewer_scene.hpp"
-#include "teleop/viewer_server.hpp"
+#include "scene/scene_model.hpp"
+#include "viewer/viewer_replay.hpp"
+#include "viewer/viewer_scene.hpp"
+#include "viewer/viewer_server.hpp"
 
 namespace graspsynth::apps {
 namespace {
@@ -49,7 +49,7 @@ struct ViewOptions {
 };
 
 // The replay of --trajectory or --log, or the robot at rest with neither.
-teleop::ViewerReplay LoadReplay(const ViewOptions& opts, const RobotModel& robot,
+viewer::ViewerReplay LoadReplay(const ViewOptions& opts, const RobotModel& robot,
                                 const SceneModel& scene) {
   const std::optional<Eigen::Vector2d> at = ParseAt(opts.at);
   if (at && opts.trajectory.empty()) {
@@ -60,10 +60,10 @@ teleop::ViewerReplay LoadReplay(const ViewOptions& opts, const RobotModel& robot
   if (!opts.trajectory.empty()) {
     JointTrajectory trajectory = LoadJointTrajectory(opts.trajectory, robot.arm, robot.hand);
     PlaceTrajectoryObject(scene, at, opts.trajectory, &trajectory);
-    return teleop::ReplayOfTrajectory(std::move(trajectory), opts.trajectory);
+    return viewer::ReplayOfTrajectory(std::move(trajectory), opts.trajectory);
   }
   if (!opts.log.empty()) {
-    teleop::ViewerReplay replay = teleop::ReplayOfLog(robot, ReadDemoLog(opts.log));
+    viewer::ViewerReplay replay = viewer::ReplayOfLog(robot, ReadDemoLog(opts.log));
     if (replay.unreached > 0) {
       std::cerr << "graspsynth view: " << replay.unreached << " of "
                 << replay.trajectory.samples.size()
@@ -71,7 +71,7 @@ teleop::ViewerReplay LoadReplay(const ViewOptions& opts, const RobotModel& robot
     }
     return replay;
   }
-  return teleop::RestReplay();
+  return viewer::RestReplay();
 }
 
 using Clock = std::chrono::steady_clock;
@@ -86,7 +86,7 @@ struct PlayFigures {
 // or until `out_of_time`.
 template <typename OutOfTime>
 PlayFigures PlayReplay(const ViewOptions& opts, const RobotModel& robot, const SceneModel& scene,
-                       const teleop::ViewerReplay& replay, teleop::ViewerServer* server,
+                       const viewer::ViewerReplay& replay, viewer::ViewerServer* server,
                        const OutOfTime& out_of_time) {
   const bool ends = !opts.trajectory.empty() || !opts.log.empty();
   // replay time runs from the first sample's time to the last one's.
@@ -96,7 +96,7 @@ PlayFigures PlayReplay(const ViewOptions& opts, const RobotModel& robot, const S
       std::chrono::duration<double>(1.0 / opts.rate_hz));
 
   // the first frame; the replay's clock starts when a page first gets it (unless --no-wait).
-  server->Publish(teleop::ViewerFrameJson(robot, teleop::ReplayStateAt(replay, scene, t_first)));
+  server->Publish(viewer::ViewerFrameJson(robot, viewer::ReplayStateAt(replay, scene, t_first)));
   if (!opts.no_wait) {
     std::cerr << "graspsynth view: waiting for a browser to open the page" << std::endl;
     while (server->counters().frame_requests == 0 && !out_of_time()) {
@@ -114,9 +114,9 @@ PlayFigures PlayReplay(const ViewOptions& opts, const RobotModel& robot, const S
     double t = t_first + elapsed;
     if (opts.loop && t_last > t_first) t = t_first + std::fmod(elapsed, t_last - t_first);
     if (ends && !opts.loop && t >= t_last && !ended) ended = Clock::now();
-    teleop::ViewerState state = teleop::ReplayStateAt(replay, scene, t);
+    viewer::ViewerState state = viewer::ReplayStateAt(replay, scene, t);
     if (ended) state.text += " | replay done";
-    server->Publish(teleop::ViewerFrameJson(robot, state));
+    server->Publish(viewer::ViewerFrameJson(robot, state));
     ++figures.published;
     if (ended && SecondsSince(*ended) >= opts.hold_s) break;
     next += tick;
@@ -141,16 +141,16 @@ int RunView(const ViewOptions& opts) {
   const RobotModel robot = LoadRobotModel(opts.robot.empty() ? DefaultRobotDescriptionPath()
                                                              : std::filesystem::path(opts.robot));
   const SceneModel scene = LoadScene(opts.scene, opts.object);
-  const teleop::ViewerCamera camera =
+  const viewer::ViewerCamera camera =
       opts.camera.empty()
-          ? teleop::DefaultViewerCamera(scene)
-          : teleop::ParseViewerCamera(opts.camera, teleop::DefaultViewerCamera(scene));
-  const teleop::ViewerReplay replay = LoadReplay(opts, robot, scene);
+          ? viewer::DefaultViewerCamera(scene)
+          : viewer::ParseViewerCamera(opts.camera, viewer::DefaultViewerCamera(scene));
+  const viewer::ViewerReplay replay = LoadReplay(opts, robot, scene);
 
-  teleop::ViewerServerOptions server_options;
+  viewer::ViewerServerOptions server_options;
   server_options.address = opts.address;
   server_options.port = opts.port;
-  teleop::ViewerServer server(teleop::ViewerSceneJson(robot, scene, camera), server_options);
+  viewer::ViewerServer server(viewer::ViewerSceneJson(robot, scene, camera), server_options);
   for (const std::string& missing : server.missing_assets()) {
     std::cerr << "graspsynth view: warning: " << missing
               << " is missing; run scripts/setup.sh (npm ci --prefix viewer) and rebuild\n";
@@ -165,7 +165,7 @@ int RunView(const ViewOptions& opts) {
   };
   const PlayFigures figures = PlayReplay(opts, robot, scene, replay, &server, out_of_time);
   server.Stop();
-  const teleop::ViewerServerCounters counters = server.counters();
+  const viewer::ViewerServerCounters counters = server.counters();
   std::cerr << "graspsynth view: "
             << (signals.stopped() ? "stopped by a signal"
                 : figures.ended   ? "replay done"

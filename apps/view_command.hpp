@@ -4,7 +4,7 @@
 
 namespace graspsynth::apps {
 
-/// Registers `graspsynth view`: serves the browser viewer (teleop/viewer_server.hpp) and
+/// Registers `graspsynth view`: serves the browser viewer (viewer/viewer_server.hpp) and
 /// replays a trajectory file or a demonstration log in it at the file's rate, until the end of
 /// the replay (after --hold), Ctrl-C or SIGTERM.
 void AddViewCommand(CLI::App& app, int* exit_code);

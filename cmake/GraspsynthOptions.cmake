@@ -18,13 +18,25 @@ if(GRASPSYNTH_SANITIZE)
   target_compile_definitions(graspsynth_options INTERFACE GRASPSYNTH_SANITIZED=1)
 endif()
 
-# graspsynth_module(NAME SOURCES ... DEPS ...): one library target per module, with the
-# graspsynth:: alias. Headers are included as "module/file.hpp" from the repository root.
+# graspsynth_module(NAME SOURCES ... PUBLIC_DEPS ... PRIVATE_DEPS ...): one library target per
+# module folder, with the graspsynth:: alias. Headers are included as "module/file.hpp".
+#
+# The direction of the modules is enforced by the include path: a module's target exports an
+# include folder that holds its own folder only (<build>/module_include/NAME/NAME, a link to
+# NAME/ in the sources), never the repository root. A source sees the headers of its own module
+# and of the modules it links (PUBLIC_DEPS, PRIVATE_DEPS, and theirs), so an include in the wrong
+# direction, say kinematics including "study/study.hpp", fails to compile
+# (tests/architecture/).
 function(graspsynth_module name)
   cmake_parse_arguments(ARG "" "" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
   add_library(graspsynth_${name} ${ARG_SOURCES})
   add_library(graspsynth::${name} ALIAS graspsynth_${name})
-  target_include_directories(graspsynth_${name} PUBLIC ${PROJECT_SOURCE_DIR})
+  # the folder's own name: a second target of a folder (mpi, in common/) shows the same headers.
+  get_filename_component(folder ${CMAKE_CURRENT_SOURCE_DIR} NAME)
+  set(include_root ${CMAKE_BINARY_DIR}/module_include/${name})
+  file(MAKE_DIRECTORY ${include_root})
+  file(CREATE_LINK ${CMAKE_CURRENT_SOURCE_DIR} ${include_root}/${folder} SYMBOLIC)
+  target_include_directories(graspsynth_${name} PUBLIC ${include_root})
   target_link_libraries(graspsynth_${name} PUBLIC graspsynth_options ${ARG_PUBLIC_DEPS}
                                            PRIVATE ${ARG_PRIVATE_DEPS})
   if(GRASPSYNTH_BUILD_PYTHON)

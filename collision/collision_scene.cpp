@@ -20,7 +20,7 @@
 #include <utility>
 
 #include "common/demand.hpp"
-#include "kinematics/triangle_mesh.hpp"
+#include "scene/triangle_mesh.hpp"
 
 namespace graspsynth {
 

@@ -67,8 +67,8 @@
 #include <vector>
 
 #include "kinematics/robot_description.hpp"
-#include "kinematics/scene_model.hpp"
 #include "kinematics/types.hpp"
+#include "scene/scene_model.hpp"
 
 namespace graspsynth {
 

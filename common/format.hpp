@@ -1,7 +1,8 @@
 #pragma once
 
 /// @file
-/// printf-style formatting into a std::string, for the sentences of reports and reasons.
+/// printf-style formatting into a std::string, for the sentences of reports and reasons, and the
+/// number formats every module shares.
 
 #include <charconv>
 #include <cstdio>
@@ -22,12 +23,18 @@ std::string Format(const char* format, Args... args) {
   return text;
 }
 
-/// `value` as an output stream writes it by default (6 significant digits: 62.5, 1e-07), for the
-/// numbers of messages.
-inline std::string StreamNumber(double value) {
+/// `value` as an output stream writes it with `precision` significant digits, which is printf's
+/// "%.*g": by default 6 (20, 22.5, 1e-07), for messages and reports; 17 reads back bit for bit.
+inline std::string StreamNumber(double value, int precision = 6) {
   std::ostringstream text;
+  text.precision(precision);
   text << value;
   return text.str();
+}
+
+/// `value` with `decimals` digits after the point (printf's "%.*f"): 0.850, -12.0.
+inline std::string FixedNumber(double value, int decimals) {
+  return Format("%.*f", decimals, value);
 }
 
 /// The shortest text that reads back to exactly `value` (std::to_chars): 0.85, not

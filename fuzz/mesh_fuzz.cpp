@@ -1,7 +1,7 @@
-// Triangle meshes (kinematics/triangle_mesh.hpp): the first byte chooses the reader (even: STL,
+// Triangle meshes (scene/triangle_mesh.hpp): the first byte chooses the reader (even: STL,
 // binary or ASCII; odd: OBJ), the rest is the file.
 #include "fuzz/fuzz_support.hpp"
-#include "kinematics/triangle_mesh.hpp"
+#include "scene/triangle_mesh.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace graspsynth;

@@ -1,8 +1,8 @@
-// Object files (graspsynth-object/1, kinematics/object_model.hpp), with mesh files found
+// Object files (graspsynth-object/1, scene/object_model.hpp), with mesh files found
 // beside the shipped objects (models/objects/meshes/).
 #include "common/data_dir.hpp"
 #include "fuzz/fuzz_support.hpp"
-#include "kinematics/object_model.hpp"
+#include "scene/object_model.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace graspsynth;

@@ -1,8 +1,8 @@
-// Scene files (graspsynth-scene/1 and /2, kinematics/scene_model.hpp), with their object
+// Scene files (graspsynth-scene/1 and /2, scene/scene_model.hpp), with their object
 // files found beside the shipped scene (models/objects/).
 #include "common/data_dir.hpp"
 #include "fuzz/fuzz_support.hpp"
-#include "kinematics/scene_model.hpp"
+#include "scene/scene_model.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace graspsynth;

@@ -1,6 +1,6 @@
 // The small grammars of command-line values and input lines: orientation lists
 // (common/orientation_list.hpp), number lines (common/text_input.hpp, the fk/ik input), the
-// viewer camera (teleop/viewer_scene.hpp) and the teleoperation key file
+// viewer camera (viewer/viewer_scene.hpp) and the teleoperation key file
 // (teleop/packet_key.hpp, through a file: it is only ever read from one).
 #include <unistd.h>
 
@@ -10,7 +10,7 @@
 #include "common/text_input.hpp"
 #include "fuzz/fuzz_support.hpp"
 #include "teleop/packet_key.hpp"
-#include "teleop/viewer_scene.hpp"
+#include "viewer/viewer_scene.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace graspsynth;
@@ -19,7 +19,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::string why;
   ParseNumberList(text, 0, &why);
   ParseNumberList(text, 7, &why);
-  fuzz::RefusedOnlyWithInputError([&] { teleop::ParseViewerCamera(text, teleop::ViewerCamera{}); });
+  fuzz::RefusedOnlyWithInputError([&] { viewer::ParseViewerCamera(text, viewer::ViewerCamera{}); });
   // one file per process, removed at its exit.
   static const struct KeyFile {
     std::filesystem::path path = std::filesystem::temp_directory_path() /

@@ -25,7 +25,7 @@ struct CollisionShape {
   Eigen::Vector3d size = Eigen::Vector3d::Zero();
   /// Pose of the shape (centred at its origin; a mesh's own frame) in its link frame.
   Eigen::Isometry3d X_LG = Eigen::Isometry3d::Identity();
-  /// Mesh: its closed triangle mesh (kinematics/triangle_mesh.hpp), shared between copies.
+  /// Mesh: its closed triangle mesh (scene/triangle_mesh.hpp), shared between copies.
   std::shared_ptr<const TriangleMesh> mesh;
 };
 

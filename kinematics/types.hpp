@@ -23,6 +23,15 @@ namespace graspsynth {
 /// One degree in radians: degrees (files, flags, reports) times kDeg are radians.
 inline constexpr double kDeg = M_PI / 180.0;
 
+/// `deg` degrees in radians, computed as deg * pi / 180. Its rounding can differ from
+/// deg * kDeg in the last bit, and the shipped results were made with each where it is used:
+/// Radians() where a value read in degrees (a file's theta_deg, a default written in degrees)
+/// becomes radians, kDeg where a literal angle is written as `30 * kDeg`.
+constexpr double Radians(double deg) { return deg * M_PI / 180.0; }
+
+/// `rad` radians in degrees, computed as rad * 180 / pi (for reports and messages).
+constexpr double Degrees(double rad) { return rad * 180.0 / M_PI; }
+
 /// Number of arm joints (PA-10-7C: S1 S2 S3 E1 E2 W1 W2).
 inline constexpr int kArmDof = 7;
 /// Number of actuated hand joints (Gifu Hand III), the order f0..f15 of every file format.

@@ -18,8 +18,8 @@
 #include <string_view>
 #include <vector>
 
-#include "kinematics/scene_model.hpp"
 #include "motion/grasping_motion.hpp"
+#include "scene/scene_model.hpp"
 
 namespace graspsynth {
 
@@ -31,10 +31,10 @@ struct DemoScore {
   /// The object centre on the table in its log, world, m (the log's object_position); version-1
   /// files do not record it (zero when read from one).
   Eigen::Vector2d xy = Eigen::Vector2d::Zero();
-  int trials = 0;          ///< perturbed replays
-  int successes = 0;       ///< of which succeeded
-  double score = 0.0;      ///< successes / trials
-  double ci_low = 0.0;     ///< Wilson 95% interval of the success probability
+  int trials = 0;       ///< perturbed replays
+  int successes = 0;    ///< of which succeeded
+  double score = 0.0;   ///< successes / trials
+  double ci_low = 0.0;  ///< Wilson 95% interval of the success probability
   double ci_high = 1.0;
   bool nominal_success = false;  ///< the unperturbed replay succeeded
   uint64_t seed = 0;             ///< seed of this demonstration's perturbation stream
@@ -73,10 +73,10 @@ struct GraspLibrary {
   /// The file it was read from (ReadGraspLibrary), for error messages; empty when the library
   /// was built in memory. Not written.
   std::string source;
-  std::string demo_directory;         ///< the directory the demonstrations were read from
-  uint64_t seed = 0;                  ///< seed of the selection
-  int perturbations = 0;              ///< perturbed replays per demonstration
-  std::string tie_rule;               ///< how ties in score were broken, in words
+  std::string demo_directory;  ///< the directory the demonstrations were read from
+  uint64_t seed = 0;           ///< seed of the selection
+  int perturbations = 0;       ///< perturbed replays per demonstration
+  std::string tie_rule;        ///< how ties in score were broken, in words
   /// Every successful demonstration, by placement (PlacementBefore) then file.
   std::vector<DemoScore> scores;
   /// One per placement, strictly increasing by PlacementBefore (one position: by theta).

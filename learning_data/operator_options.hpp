@@ -88,7 +88,7 @@ struct OperatorOptions {
   /// Rest wrist: rest_distance from the base in the direction of the object turned by
   /// rest_turn about the vertical (outside the grasp region), rest_height above the table.
   double rest_distance = 0.55;
-  double rest_turn = -30.0 * M_PI / 180.0;
+  double rest_turn = -Radians(30.0);
   double rest_height = 0.30;
   double entry_out = 0.43;      ///< reach ends this far from the object centre (outside)
   double entry_in = 0.38;       ///< entry goes radially to this distance (inside)
@@ -106,23 +106,24 @@ struct OperatorOptions {
   double rest_duration = 0.3;
 
   // Variability, drawn per trial.
-  double timing_spread = 0.12;    ///< every duration scaled by U[1 - s, 1 + s] (own draw)
-  double position_noise = 0.005;  ///< std of the wrist's grasp position, per horizontal axis
-  double height_noise = 0.003;    ///< std of the wrist's grasp height
-  double yaw_noise = 3.0 * M_PI / 180.0;     ///< std of the hand's yaw at the grasp
-  double path_noise = 0.02;                  ///< std of the reach's mid-path bow, per axis
-  double finger_noise = 3.0 * M_PI / 180.0;  ///< std of each closed-hand joint
-  double sloppy_fraction = 0.15;             ///< share of trials made with sloppy_scale x the noise
+  double timing_spread = 0.12;         ///< every duration scaled by U[1 - s, 1 + s] (own draw)
+  double position_noise = 0.005;       ///< std of the wrist's grasp position, per horizontal axis
+  double height_noise = 0.003;         ///< std of the wrist's grasp height
+  double yaw_noise = Radians(3.0);     ///< std of the hand's yaw at the grasp
+  double path_noise = 0.02;            ///< std of the reach's mid-path bow, per axis
+  double finger_noise = Radians(3.0);  ///< std of each closed-hand joint
+  double sloppy_fraction = 0.15;       ///< share of trials made with sloppy_scale x the noise
   double sloppy_scale = 3.0;
 
   bool IsValid(std::string* why) const;
 };
 
 /// Reads operator options (format graspsynth-operator/1, JSON). Fields that are absent keep
-/// their defaults; `plans` is required, `positions` ([[x, y], ...], m) optional. A strategy's optional `grasp` object holds the fields
-/// of its own grip (the GraspStyle fields of the top level: hook_reach, wrist_above_handle,
-/// max_pitch_deg, yaw_offset_deg, roll_deg, open_hand_deg, closed_hand_deg); the ones it leaves
-/// out come from the top level. Throws InputError naming the file and the field.
+/// their defaults; `plans` is required, `positions` ([[x, y], ...], m) optional. A strategy's
+/// optional `grasp` object holds the fields of its own grip (the GraspStyle fields of the top
+/// level: hook_reach, wrist_above_handle, max_pitch_deg, yaw_offset_deg, roll_deg, open_hand_deg,
+/// closed_hand_deg); the ones it leaves out come from the top level. Throws InputError naming the
+/// file and the field.
 OperatorOptions ReadOperatorOptions(const std::filesystem::path& path);
 /// The same from the text of an operator file; `source` names it in messages.
 OperatorOptions ParseOperatorOptions(std::string_view json_text, const std::string& source);

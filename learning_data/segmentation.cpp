@@ -4,17 +4,12 @@
 #include <sstream>
 
 #include "common/demand.hpp"
+#include "common/format.hpp"
 
 namespace graspsynth {
 namespace {
 
 constexpr double kLiftSlack = 1e-9;  // m
-
-std::string FormatMetres(double value) {
-  std::ostringstream text;
-  text << value << " m";
-  return text.str();
-}
 
 }  // namespace
 
@@ -94,7 +89,7 @@ SegmentedTrial Segment(const DemoLog& log, const SegmentationOptions& options) {
   };
   const std::string region_text =
       (options.region.shape == GraspRegionModel::Shape::kSphere ? "sphere" : "cylinder") +
-      std::string(" of radius ") + FormatMetres(options.region.radius);
+      std::string(" of radius ") + StreamNumber(options.region.radius) + " m";
   if (entry == log.samples.size()) {
     return fail(SegmentationStatus::kNeverEntersRegion,
                 "the wrist never enters the grasp region (" + region_text + ")");
@@ -113,7 +108,7 @@ SegmentedTrial Segment(const DemoLog& log, const SegmentationOptions& options) {
   }
 
   GraspingMotion& motion = trial.motion;
-  motion.theta = log.metadata.theta_deg * M_PI / 180.0;
+  motion.theta = Radians(log.metadata.theta_deg);
   motion.p_WO = p_WO;
   motion.source = log.source;
   if (log.metadata.trial) motion.source += " (trial " + *log.metadata.trial + ")";

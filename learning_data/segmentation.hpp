@@ -7,9 +7,9 @@
 
 #include <string>
 
-#include "kinematics/scene_model.hpp"
 #include "learning_data/demo_log.hpp"
 #include "motion/grasping_motion.hpp"
+#include "scene/scene_model.hpp"
 
 namespace graspsynth {
 

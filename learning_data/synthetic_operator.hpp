@@ -30,9 +30,9 @@
 
 #include "common/job_runner.hpp"
 #include "kinematics/robot_description.hpp"
-#include "kinematics/scene_model.hpp"
 #include "learning_data/demo_log.hpp"
 #include "learning_data/operator_options.hpp"
+#include "scene/scene_model.hpp"
 #include "simulation/simulation_model.hpp"
 #include "simulation/trial.hpp"
 

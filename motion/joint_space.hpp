@@ -22,7 +22,7 @@ namespace graspsynth {
 struct JointSpaceOptions {
   /// When the arm angle has to move into a feasible arc, it goes this far inside it (rad), or
   /// to the arc's middle when the arc is narrower than twice this.
-  double psi_margin = 5.0 * M_PI / 180.0;
+  double psi_margin = Radians(5.0);
   /// A joint step larger than this between consecutive samples (rad) is a jump: a failure.
   double max_joint_step = 0.35;
   /// Stretch segments so that no arm or hand joint exceeds velocity_scale times its cap.
@@ -84,7 +84,7 @@ std::vector<TrajectorySample> JointReach(const RobotModel& robot, const Vector7d
 /// nearest q_near. std::nullopt when the pose has no feasible arm angle on that branch.
 std::optional<Vector7d> SolveWristPose(const RobotModel& robot, const Eigen::Isometry3d& X_WH,
                                        ArmBranch branch, double psi, const Vector7d& q_near,
-                                       double margin = 5.0 * M_PI / 180.0);
+                                       double margin = Radians(5.0));
 
 /// The width of the widest feasible arm-angle arc of wrist pose X_WH (hand mount H in world)
 /// on `branch`, rad; 0 when the pose has none (outside the workspace or every arm angle beyond

@@ -8,6 +8,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "common/input_file.hpp"
 #include "kinematics/pose_math.hpp"
 
@@ -15,13 +16,6 @@ namespace graspsynth {
 namespace {
 
 using nlohmann::json;
-
-std::string Number(double x) {
-  std::ostringstream s;
-  s.precision(10);
-  s << x;
-  return s.str();
-}
 
 double Rounded(double x) {
   const double r = std::round(x * 1e10) / 1e10;
@@ -99,7 +93,7 @@ JointTrajectory ReadJointTrajectory(const JsonReader& object) {
     const TrajectorySample s = ReadSample(sample.AsObject());
     if (!trajectory.samples.empty() && !(s.t > trajectory.samples.back().t)) {
       sample.Field("t").Fail("a time after the previous sample's " +
-                             Number(trajectory.samples.back().t));
+                             StreamNumber(trajectory.samples.back().t, 10));
     }
     trajectory.samples.push_back(s);
   }
@@ -109,7 +103,7 @@ JointTrajectory ReadJointTrajectory(const JsonReader& object) {
       const WristWaypoint p = ReadWaypoint(waypoint.AsObject());
       if (!trajectory.waypoints.empty() && !(p.t > trajectory.waypoints.back().t)) {
         waypoint.Field("t").Fail("a time after the previous waypoint's " +
-                                 Number(trajectory.waypoints.back().t));
+                                 StreamNumber(trajectory.waypoints.back().t, 10));
       }
       trajectory.waypoints.push_back(p);
     }
@@ -127,7 +121,8 @@ void CheckJointLimits(const JointTrajectory& trajectory, const ArmModel& arm, co
                   double hi) {
     throw InputError(source + ": field '" + field_prefix + "samples[" + std::to_string(i) + "]." +
                      part + "[" + std::to_string(j) + "]': expected a value within " + name +
-                     "'s limits [" + Number(lo) + ", " + Number(hi) + "] rad, found " + Number(v));
+                     "'s limits [" + StreamNumber(lo, 10) + ", " + StreamNumber(hi, 10) +
+                     "] rad, found " + StreamNumber(v, 10));
   };
   for (size_t i = 0; i < trajectory.samples.size(); ++i) {
     const TrajectorySample& s = trajectory.samples[i];

@@ -26,8 +26,8 @@
 #include "common/json_reader.hpp"
 #include "kinematics/arm_model.hpp"
 #include "kinematics/hand_model.hpp"
-#include "kinematics/scene_model.hpp"
 #include "kinematics/types.hpp"
+#include "scene/scene_model.hpp"
 
 namespace graspsynth {
 
@@ -63,7 +63,7 @@ struct JointTrajectory {
   /// Time of the last sample (s); 0 for an empty trajectory.
   double duration() const { return samples.empty() ? 0.0 : samples.back().t; }
   /// The object's placement: theta_deg in radians at object_xy.
-  Placement placement() const { return {theta_deg * M_PI / 180.0, object_xy}; }
+  Placement placement() const { return {Radians(theta_deg), object_xy}; }
 };
 
 /// The command at time t: linear interpolation between the bracketing samples; the first

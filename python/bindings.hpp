@@ -20,9 +20,9 @@
 #include <vector>
 
 #include "kinematics/robot_description.hpp"
-#include "kinematics/scene_model.hpp"
 #include "learning_data/grasp_library.hpp"
 #include "motion/grasping_motion.hpp"
+#include "scene/scene_model.hpp"
 
 namespace graspsynth::python {
 

@@ -10,14 +10,14 @@
 #include <string>
 #include <vector>
 
+#include "analysis/analysis_report.hpp"
+#include "analysis/wrist_line.hpp"
 #include "common/errors.hpp"
-#include "kinematics/scene_model.hpp"
 #include "learning_data/demo_directory.hpp"
 #include "learning_data/demo_log.hpp"
 #include "learning_data/segmentation.hpp"
 #include "python/bindings.hpp"
-#include "solver/analysis_report.hpp"
-#include "solver/wrist_line.hpp"
+#include "scene/scene_model.hpp"
 
 namespace graspsynth::python {
 namespace {

@@ -15,8 +15,8 @@
 #include "common/errors.hpp"
 #include "kinematics/arm_ik.hpp"
 #include "kinematics/robot_description.hpp"
-#include "kinematics/scene_model.hpp"
 #include "python/bindings.hpp"
+#include "scene/scene_model.hpp"
 
 namespace graspsynth::python {
 namespace {

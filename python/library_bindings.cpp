@@ -12,11 +12,11 @@
 
 #include "common/errors.hpp"
 #include "kinematics/robot_description.hpp"
-#include "kinematics/scene_model.hpp"
 #include "learning_data/demo_directory.hpp"
 #include "learning_data/grasp_library.hpp"
 #include "learning_data/representative_selection.hpp"
 #include "python/bindings.hpp"
+#include "scene/scene_model.hpp"
 #include "simulation/simulation_model.hpp"
 #include "solver/grasp_file.hpp"
 #include "solver/motion_generation.hpp"

@@ -14,14 +14,14 @@
 #include "common/errors.hpp"
 #include "kinematics/pose_math.hpp"
 #include "kinematics/robot_description.hpp"
-#include "kinematics/scene_model.hpp"
 #include "motion/joint_trajectory.hpp"
 #include "python/bindings.hpp"
 #include "python/simulation_bindings.hpp"
+#include "scene/scene_model.hpp"
 #include "simulation/robustness.hpp"
 #include "simulation/trial.hpp"
 #include "solver/grasp_file.hpp"
-#include "solver/trial_json.hpp"
+#include "study/trial_json.hpp"
 
 namespace graspsynth::python {
 namespace {

@@ -11,19 +11,19 @@
 #include <variant>
 #include <vector>
 
+#include "analysis/analysis_report.hpp"
 #include "common/errors.hpp"
 #include "common/orientation_list.hpp"
 #include "kinematics/robot_description.hpp"
-#include "kinematics/scene_model.hpp"
 #include "learning_data/demo_directory.hpp"
 #include "learning_data/grasp_library.hpp"
 #include "python/bindings.hpp"
+#include "scene/scene_model.hpp"
 #include "simulation/simulation_model.hpp"
-#include "solver/analysis_report.hpp"
-#include "solver/study.hpp"
-#include "solver/study_method.hpp"
-#include "solver/study_report.hpp"
 #include "solver/synthesis_model.hpp"
+#include "study/study.hpp"
+#include "study/study_method.hpp"
+#include "study/study_report.hpp"
 
 namespace graspsynth::python {
 namespace {

@@ -34,12 +34,12 @@ class SplitMix64;
 
 /// Noise and time scaling of a perturbed replay. Defaults: reference/ode.md and the issue.
 struct PerturbationOptions {
-  double time_scale_min = 0.7;                    ///< 1
-  double time_scale_max = 1.3;                    ///< 1
-  double position_sigma = 0.005;                  ///< m, per world axis
-  double orientation_sigma = 2.0 * M_PI / 180.0;  ///< rad, per world axis (rotation vector)
-  double finger_sigma = 2.0 * M_PI / 180.0;       ///< rad, per actuated finger joint
-  double knot_interval = 0.5;                     ///< s, noise knots without waypoints
+  double time_scale_min = 0.7;              ///< 1
+  double time_scale_max = 1.3;              ///< 1
+  double position_sigma = 0.005;            ///< m, per world axis
+  double orientation_sigma = Radians(2.0);  ///< rad, per world axis (rotation vector)
+  double finger_sigma = Radians(2.0);       ///< rad, per actuated finger joint
+  double knot_interval = 0.5;               ///< s, noise knots without waypoints
   /// Ranges of the physics each replay draws after the motion's noise
   /// (simulation/physics_perturbation.hpp); PerturbTrajectory itself does not read them.
   PhysicsPerturbationOptions physics;

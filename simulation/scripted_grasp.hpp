@@ -15,10 +15,10 @@
 #include <optional>
 #include <string>
 
-#include "kinematics/rest_pose.hpp"
 #include "kinematics/robot_description.hpp"
-#include "kinematics/scene_model.hpp"
 #include "motion/joint_trajectory.hpp"
+#include "scene/rest_pose.hpp"
+#include "scene/scene_model.hpp"
 
 namespace graspsynth {
 
@@ -90,7 +90,7 @@ struct ScriptedGraspResult {
 };
 
 /// Builds the scripted trajectory. Throws InputError for invalid options and for a scene whose
-/// default rest pose is out of reach (DefaultRestConfiguration, kinematics/rest_pose.hpp); an
+/// default rest pose is out of reach (DefaultRestConfiguration, scene/rest_pose.hpp); an
 /// unreachable pose or a joint jump is a result with ok = false.
 ScriptedGraspResult BuildScriptedGrasp(const RobotModel& robot, const SceneModel& scene,
                                        const ScriptedGraspOptions& options);

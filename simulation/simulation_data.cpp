@@ -19,7 +19,7 @@
 #include "common/errors.hpp"
 #include "common/stopwatch.hpp"
 #include "kinematics/pose_math.hpp"
-#include "kinematics/triangle_mesh.hpp"
+#include "scene/triangle_mesh.hpp"
 #include "simulation/constraint_solver.hpp"
 #include "simulation/library_info.hpp"
 

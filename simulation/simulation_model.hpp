@@ -13,7 +13,7 @@
 #include <string>
 
 #include "kinematics/robot_description.hpp"
-#include "kinematics/scene_model.hpp"
+#include "scene/scene_model.hpp"
 
 namespace graspsynth {
 

@@ -65,7 +65,7 @@ SimulationData MakeTrialWorld(const SimulationModel& model, const JointTrajector
   world_options.arm_mode = options.fidelity == Fidelity::kFast   ? ArmMode::kKinematic
                            : options.fidelity == Fidelity::kFull ? ArmMode::kDynamic
                                                                  : ArmMode::kWristDynamic;
-  world_options.theta = trajectory.theta_deg * M_PI / 180.0;
+  world_options.theta = Radians(trajectory.theta_deg);
   world_options.object_xy = trajectory.object_xy;
   world_options.proximity_margin = options.proximity_margin;
   world_options.physics = options.physics;

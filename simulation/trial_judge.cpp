@@ -128,7 +128,7 @@ TrialVerdict JudgeTrial(const SimulationData& data, const TrialWatch& watch, dou
       return {TrialOutcome::kTilted,
               Format("lifted %.1f mm and held %.2f s by the hand alone, but tilted %.1f deg "
                      "(limit %.1f deg)",
-                     lift * 1e3, held, tilt * 180.0 / M_PI, options.max_hold_tilt * 180.0 / M_PI)};
+                     lift * 1e3, held, Degrees(tilt), Degrees(options.max_hold_tilt))};
     }
     return {TrialOutcome::kSuccess,
             Format("lifted %.1f mm and held %.2f s, touching only the hand", lift * 1e3, held)};
@@ -148,7 +148,7 @@ TrialVerdict JudgeTrial(const SimulationData& data, const TrialWatch& watch, dou
     return {TrialOutcome::kKnockedOver,
             Format("object knocked over or pushed away: tilted up to %.1f deg, moved %.1f mm on "
                    "the table",
-                   watch.max_tilt * 180.0 / M_PI, watch.max_shift * 1e3)};
+                   Degrees(watch.max_tilt), watch.max_shift * 1e3)};
   }
   return {TrialOutcome::kNotLifted,
           Format("object not lifted: its centre rose at most %.1f mm (needs %.0f mm)",

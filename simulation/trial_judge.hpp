@@ -49,7 +49,7 @@ struct TrialJudgeOptions {
   double lifted_min = 0.01;
   /// Object tilt (rad) or horizontal shift (m) beyond which an object that was not lifted
   /// counts as knocked over or pushed away.
-  double knocked_tilt = 20.0 * M_PI / 180.0;
+  double knocked_tilt = Radians(20.0);
   double knocked_shift = 0.03;
   /// A held object may be tilted at most this much at the end of the hold, rad (the angle of
   /// its up axis from vertical); beyond it the trial is kTilted. 30 deg: the demonstrations
@@ -57,7 +57,7 @@ struct TrialJudgeOptions {
   /// load still acts mostly along the fingers' grip, while one hanging at 60 deg from a
   /// sideways pinch is held by friction at its limit (README.md, "Robustness under the
   /// contact model").
-  double max_hold_tilt = 30.0 * M_PI / 180.0;
+  double max_hold_tilt = Radians(30.0);
   /// Instability: a finger or the object faster than this (m/s, rad/s) or with more kinetic
   /// energy (J; the hand moves at well under 1 m/s) is a numerical failure.
   double max_speed = 5.0;

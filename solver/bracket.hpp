@@ -21,8 +21,8 @@
 #include <string>
 #include <vector>
 
-#include "kinematics/scene_model.hpp"
 #include "learning_data/grasp_library.hpp"
+#include "scene/scene_model.hpp"
 
 namespace graspsynth {
 
@@ -30,7 +30,7 @@ namespace graspsynth {
 struct BracketOptions {
   /// Two grasps whose wrist orientations relative to the object (R_OH) differ by more than
   /// this cannot be blended, rad.
-  double max_orientation_change = 60.0 * M_PI / 180.0;
+  double max_orientation_change = Radians(60.0);
   /// A wrist closer than this to the handle's line has no side, m.
   double side_dead_band = 0.01;
   /// A query within this of a demonstrated orientation is that demonstration, deg.

@@ -10,7 +10,7 @@
 /// of the handle (bracket.hpp: a side switch turns the hand by about 180 deg and changes the
 /// grip, which no model over both sides could follow):
 /// - the wrist's position on the table: the wrist line fitted to the side's grasp positions
-///   (solver/wrist_line.hpp) and the position along it, s(theta) = s0 + s1 theta (least
+///   (analysis/wrist_line.hpp) and the position along it, s(theta) = s0 + s1 theta (least
 ///   squares over the entries); the library-wide line when the side has fewer than two
 ///   entries with distinct positions. This is the principle itself: the only model fitted.
 /// - everything else is taken from the side's demonstrated grasps, relative to the handle,
@@ -32,10 +32,10 @@
 #include <string>
 #include <vector>
 
+#include "analysis/wrist_line.hpp"
 #include "kinematics/hand_model.hpp"
-#include "kinematics/scene_model.hpp"
 #include "learning_data/grasp_library.hpp"
-#include "solver/wrist_line.hpp"
+#include "scene/scene_model.hpp"
 
 namespace graspsynth {
 

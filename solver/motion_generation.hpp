@@ -88,7 +88,7 @@ struct MotionGenerationOptions {
   BracketOptions bracket;
   BlendOptions blend = {.waypoints = 40};
   /// rad, the feasible arm-angle arc a fallback's grasp and pre-grasp need on `branch`.
-  double min_psi_width = 10.0 * M_PI / 180.0;
+  double min_psi_width = Radians(10.0);
   /// The start configuration's branch, on which the fallbacks' reachability is judged.
   ArmBranch branch;
   /// The blend of this task's bracket failed its nominal trial in physics: the interp method

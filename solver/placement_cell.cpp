@@ -24,7 +24,7 @@ constexpr double kZeroWeight = 1e-12;
 
 std::string Triple(const Eigen::Vector3d& p) {
   std::ostringstream s;
-  s << "(x " << p.x() << " m, y " << p.y() << " m, theta " << p.z() * 180.0 / M_PI << " deg)";
+  s << "(x " << p.x() << " m, y " << p.y() << " m, theta " << Degrees(p.z()) << " deg)";
   return s.str();
 }
 
@@ -155,8 +155,8 @@ PlacementCell PlacementTriangulation::Locate(const Eigen::Vector3d& query) const
   std::ostringstream why;
   why << "the placement " << Triple(query) << " is outside the convex hull of the library's "
       << placements_.size() << " demonstrated placements (x " << lo.x() << " to " << hi.x()
-      << " m, y " << lo.y() << " to " << hi.y() << " m, theta " << lo.z() * 180.0 / M_PI << " to "
-      << hi.z() * 180.0 / M_PI << " deg; the nearest is "
+      << " m, y " << lo.y() << " to " << hi.y() << " m, theta " << Degrees(lo.z()) << " to "
+      << Degrees(hi.z()) << " deg; the nearest is "
       << Triple(placements_[static_cast<size_t>(Nearest(query))]) << ")";
   cell.reason = why.str();
   return cell;

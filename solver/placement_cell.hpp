@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "kinematics/scene_model.hpp"
+#include "scene/scene_model.hpp"
 
 namespace graspsynth {
 

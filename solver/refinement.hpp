@@ -39,11 +39,11 @@
 #include <string>
 #include <vector>
 
+#include "analysis/wrist_line.hpp"
 #include "collision/collision_scene.hpp"
 #include "kinematics/robot_description.hpp"
-#include "kinematics/scene_model.hpp"
 #include "motion/grasping_motion.hpp"
-#include "solver/wrist_line.hpp"
+#include "scene/scene_model.hpp"
 
 namespace graspsynth {
 
@@ -55,13 +55,13 @@ const char* ToString(NloptAlgorithm algorithm);
 
 /// Options of RefineGraspingMotion. Lengths in m, angles in rad.
 struct RefinementOptions {
-  double fidelity_sigma = 0.01;                ///< m
-  double smoothness_sigma = 0.002;             ///< m
-  double line_sigma = 0.05;                    ///< m
-  double reach_sigma = 1.0 * M_PI / 180.0;     ///< rad
-  double min_psi_width = 10.0 * M_PI / 180.0;  ///< rad, also stage 2's joint-limit constraint
-  int reach_stride = 5;                        ///< >= 1
-  int ceres_max_iterations = 20;               ///< >= 1
+  double fidelity_sigma = 0.01;          ///< m
+  double smoothness_sigma = 0.002;       ///< m
+  double line_sigma = 0.05;              ///< m
+  double reach_sigma = Radians(1.0);     ///< rad
+  double min_psi_width = Radians(10.0);  ///< rad, also stage 2's joint-limit constraint
+  int reach_stride = 5;                  ///< >= 1
+  int ceres_max_iterations = 20;         ///< >= 1
 
   NloptAlgorithm algorithm = NloptAlgorithm::kSlsqp;
   bool cobyla_fallback = true;
@@ -73,12 +73,12 @@ struct RefinementOptions {
   int near_states = 4;                   ///< near states checked besides the grasp, >= 0
   /// The fingers start closing at the first waypoint where a finger has moved this far from
   /// its shape at the first waypoint, rad.
-  double finger_start_threshold = 2.0 * M_PI / 180.0;
-  double max_shift = 0.15;               ///< bound on |dx|, |dy|, |dz|, m
-  double max_yaw = 30.0 * M_PI / 180.0;  ///< bound on |yaw|, rad
+  double finger_start_threshold = Radians(2.0);
+  double max_shift = 0.15;         ///< bound on |dx|, |dy|, |dz|, m
+  double max_yaw = Radians(30.0);  ///< bound on |yaw|, rad
   double min_closure = 0.8, max_closure = 1.2;
-  double shift_scale = 0.01;              ///< m
-  double yaw_scale = 5.0 * M_PI / 180.0;  ///< rad
+  double shift_scale = 0.01;        ///< m
+  double yaw_scale = Radians(5.0);  ///< rad
   double closure_scale = 0.1;
   int max_evaluations = 300;  ///< per algorithm, >= 1
   double xtol = 1e-5;         ///< relative tolerance on x

@@ -6,7 +6,7 @@
 
 #include "common/errors.hpp"
 #include "common/stopwatch.hpp"
-#include "kinematics/rest_pose.hpp"
+#include "scene/rest_pose.hpp"
 
 namespace graspsynth {
 

@@ -17,7 +17,7 @@
 /// 5. AssembleTrajectory: the robot's trajectory and its waypoints.
 /// SynthesizeGrasp runs them in that order on one SynthesisTask, the object's placement
 /// entered once and its pose X_WO computed once, which every stage reads; SynthesisOptions
-/// says which optional stages run (solver/study_method.hpp builds it from a method's label).
+/// says which optional stages run (study/study_method.hpp builds it from a method's label).
 
 #include <limits>
 #include <optional>
@@ -26,11 +26,11 @@
 
 #include "collision/collision_scene.hpp"
 #include "kinematics/robot_description.hpp"
-#include "kinematics/scene_model.hpp"
 #include "learning_data/grasp_library.hpp"
 #include "motion/interpolation.hpp"
 #include "motion/joint_space.hpp"
 #include "motion/reach.hpp"
+#include "scene/scene_model.hpp"
 #include "solver/bracket.hpp"
 #include "solver/line_principle.hpp"
 #include "solver/motion_generation.hpp"

@@ -10,8 +10,8 @@
 
 #include "collision/collision_scene.hpp"
 #include "kinematics/robot_description.hpp"
-#include "kinematics/scene_model.hpp"
 #include "learning_data/grasp_library.hpp"
+#include "scene/scene_model.hpp"
 #include "solver/line_principle.hpp"
 #include "solver/placement_cell.hpp"
 #include "solver/refinement.hpp"

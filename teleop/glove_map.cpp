@@ -6,9 +6,9 @@
 namespace graspsynth::teleop {
 namespace {
 
-constexpr double kSpread = 15.0 * M_PI / 180.0;  // finger spread at full abduction reading
-constexpr int kThumbOpposition = 0;              // f0, derived
-constexpr int kMiddleAbduction = 7;              // f7, derived
+constexpr double kSpread = Radians(15.0);  // finger spread at full abduction reading
+constexpr int kThumbOpposition = 0;        // f0, derived
+constexpr int kMiddleAbduction = 7;        // f7, derived
 
 }  // namespace
 

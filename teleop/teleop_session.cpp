@@ -10,20 +10,14 @@
 #include "common/format.hpp"
 #include "kinematics/arm_ik.hpp"
 #include "kinematics/pose_math.hpp"
-#include "kinematics/rest_pose.hpp"
 #include "motion/joint_space.hpp"
+#include "scene/rest_pose.hpp"
 #include "simulation/scripted_grasp.hpp"
 #include "simulation/simulation_data.hpp"
 #include "simulation/trial_judge.hpp"
 
 namespace graspsynth::teleop {
 namespace {
-
-std::string Format(const char* fmt, double a, double b = 0.0) {
-  char buf[160];
-  std::snprintf(buf, sizeof(buf), fmt, a, b);
-  return buf;
-}
 
 enum class Phase {
   kWaiting,  // world reset, no command applied since: no trial open
@@ -139,7 +133,7 @@ struct TeleopSession::Impl {
     WorldOptions world_options;
     world_options.time_step = h;
     world_options.arm_mode = ArmMode::kKinematic;
-    world_options.theta = theta_deg() * M_PI / 180.0;
+    world_options.theta = Radians(theta_deg());
     world_options.object_xy = options.object_xy;
     const Vector7d& rest = rest_arms[orientation];
     world = std::make_unique<SimulationData>(model, world_options, rest, RestHand());

@@ -58,7 +58,7 @@
 #include "teleop/calibration.hpp"
 #include "teleop/glove_map.hpp"
 #include "teleop/protocol.hpp"
-#include "teleop/viewer_scene.hpp"
+#include "viewer/viewer_scene.hpp"
 
 namespace graspsynth::teleop {
 
@@ -144,7 +144,7 @@ struct TickResult {
   /// The encoded state packet for `peer`; empty when no valid command has come in yet.
   std::vector<uint8_t> state_packet;
   std::optional<uint64_t> peer;      ///< the sender of the newest valid command
-  ViewerState view;                  ///< what the viewer should draw
+  viewer::ViewerState view;          ///< what the viewer should draw
   uint32_t flags = 0;                ///< StateFlag bits of the state
   std::optional<TrialRecord> trial;  ///< a trial that ended at this tick
   bool finished = false;             ///< the session is over (end requested, nothing pending)
@@ -189,7 +189,7 @@ class TeleopSession {
   const Vector7d& arm_command() const;
   const HandVector& hand_command() const;
   /// The rest configuration of the arm for orientation theta (deg): where every trial starts
-  /// (DefaultRestConfiguration, kinematics/rest_pose.hpp, for the wrist orientation of the
+  /// (DefaultRestConfiguration, scene/rest_pose.hpp, for the wrist orientation of the
   /// scripted grasp, simulation/scripted_grasp.hpp), and the open hand. Throws InputError when
   /// the rest pose of the scene is out of reach.
   static Vector7d RestArm(const RobotModel& robot, const SceneModel& scene, double theta_deg);

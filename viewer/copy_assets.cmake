@@ -1,4 +1,4 @@
-# cmake -DSOURCE_DIR=<repo>/viewer -DDEST_DIR=<build>/viewer -P copy_assets.cmake
+# cmake -DSOURCE_DIR=<repo>/viewer -DDEST_DIR=<build>/viewer_assets -P copy_assets.cmake
 # Copies the viewer's page and the vendored three.js into DEST_DIR (only files that changed).
 # A missing three.js is not an error of the build: the server answers its paths with how to get
 # it, and `graspsynth view` says so when it starts.

@@ -1,12 +1,12 @@
 // The graspsynth viewer (an ES module). Draws the scene of /scene.json (format
-// graspsynth-viewer-scene/1, teleop/viewer_scene.hpp) with three.js and moves it to each frame
+// graspsynth-viewer-scene/1, viewer/viewer_scene.hpp) with three.js and moves it to each frame
 // of /frame, polled once per animation frame. World frame: z up, metres; poses are
 // [x, y, z, qw, qx, qy, qz].
 
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 
-// colours by group; the screenshot test (tests/teleop/viewer_screenshot_test.py) looks for
+// colours by group; the screenshot test (tests/viewer/viewer_screenshot_test.py) looks for
 // these hues, keep them apart.
 const COLOURS = { arm: 0x5b8fd9, hand: 0x1fa38f, object: 0xff7f1f, table: 0xcfcfcf };
 

@@ -6,7 +6,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "tests/solver/table_i_demos.hpp"
+#include "tests/analysis/table_i_demos.hpp"
 #include "tests/utils/run_command.hpp"
 
 namespace graspsynth {

@@ -1,5 +1,5 @@
 // Tests of `graspsynth view` through the built binary (without a browser; the page itself is
-// tested by tests/teleop/viewer_screenshot_test.py).
+// tested by tests/viewer/viewer_screenshot_test.py).
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

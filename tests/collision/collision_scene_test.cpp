@@ -12,7 +12,7 @@
 #include <thread>
 
 #include "kinematics/arm_ik.hpp"
-#include "kinematics/triangle_mesh.hpp"
+#include "scene/triangle_mesh.hpp"
 #include "tests/utils/eigen_matchers.hpp"
 #include "tests/utils/robot_fixtures.hpp"
 

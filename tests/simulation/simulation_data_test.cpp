@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "common/errors.hpp"
-#include "kinematics/triangle_mesh.hpp"
+#include "scene/triangle_mesh.hpp"
 #include "tests/utils/eigen_matchers.hpp"
 #include "tests/utils/robot_fixtures.hpp"
 

@@ -5,7 +5,7 @@
 
 #include <limits>
 
-#include "kinematics/rest_pose.hpp"
+#include "scene/rest_pose.hpp"
 #include "simulation/scripted_grasp.hpp"
 #include "tests/utils/eigen_matchers.hpp"
 #include "tests/utils/simulation_fixtures.hpp"

@@ -7,10 +7,10 @@
 #include <cmath>
 #include <map>
 
-#include "kinematics/scene_model.hpp"
+#include "analysis/analysis_report.hpp"
 #include "learning_data/demo_directory.hpp"
 #include "learning_data/synthetic_operator.hpp"
-#include "solver/analysis_report.hpp"
+#include "scene/scene_model.hpp"
 
 namespace graspsynth {
 namespace {

@@ -1,7 +1,7 @@
 // Each stage of the synthesis pipeline (solver/synthesis.hpp) on its own.
 #include <gtest/gtest.h>
 
-#include "kinematics/rest_pose.hpp"
+#include "scene/rest_pose.hpp"
 #include "simulation/scripted_grasp.hpp"
 #include "solver/motion_generation.hpp"
 #include "solver/reach_planning.hpp"

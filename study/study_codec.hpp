@@ -1,0 +1,25 @@
+#pragma once
+
+/// @file
+/// A synthesis table's row (StudyRow) as bytes, for the job runner (common/job_runner.hpp): a
+/// row synthesized by another process of an MPI job, or kept in a resume folder, comes back as
+/// the same values, every number to the bit.
+
+#include <string>
+#include <string_view>
+
+#include "study/study.hpp"
+
+namespace graspsynth {
+
+/// The bytes of `row` (common/byte_codec.hpp).
+std::string EncodeStudyRow(const StudyRow& row);
+
+/// The layout of EncodeStudyRow's bytes, kept with them in resume folders; change it with the
+/// layout.
+inline constexpr const char* kStudyRowLayout = "study-row/1";
+
+/// The row EncodeStudyRow wrote. Throws InputError naming `source` for bytes that are not one.
+StudyRow DecodeStudyRow(std::string_view bytes, const std::string& source);
+
+}  // namespace graspsynth
