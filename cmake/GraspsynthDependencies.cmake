@@ -29,11 +29,19 @@ find_package(OpenSSL 3 QUIET COMPONENTS Crypto)
 graspsynth_require(OpenSSL_FOUND "OpenSSL 3 (libcrypto)" libssl-dev)
 
 # ODE ships no CMake config on Debian; pkg-config 'ode'. graspsynth needs the double-precision
-# build, which is what Debian's libode-dev is (checked in simulation/ at compile time).
+# build, which is what Debian's libode-dev is (checked in simulation/ at compile time and at
+# first use), of the 0.16 series: the structured step (simulation/structured_step.cpp) and the
+# broad phase re-derive ODE 0.16's dWorldStep and simple space, so another series is refused
+# here, by the headers (simulation/library_info.cpp) and at run time.
 find_package(PkgConfig QUIET)
 graspsynth_require(PkgConfig_FOUND "pkg-config" pkg-config)
-pkg_check_modules(ODE QUIET IMPORTED_TARGET ode>=0.16)
+pkg_check_modules(ODE QUIET IMPORTED_TARGET ode)
 graspsynth_require(ODE_FOUND "ODE 0.16 (double precision)" libode-dev)
+if(NOT ODE_VERSION MATCHES "^0\\.16(\\.|$)")
+  message(FATAL_ERROR "ODE ${ODE_VERSION} found (pkg-config 'ode'), but graspsynth needs ODE 0.16.x: "
+                      "its structured step mirrors ODE 0.16's dWorldStep "
+                      "(simulation/structured_step.cpp). Install libode-dev 0.16.")
+endif()
 # TinyXML (urdfdom's XML parser, installed with it): the robot description's joint graph is
 # checked before urdfdom reads it (kinematics/robot_description.cpp).
 pkg_check_modules(TINYXML QUIET IMPORTED_TARGET tinyxml)

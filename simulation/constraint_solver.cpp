@@ -9,6 +9,88 @@ namespace {
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// Where each keyed row ended in a solve, without the friction rows and with them (0 free, 1 at
+// its lower bound, 2 at its upper bound): an open-addressing table of its keys (key 0 marks an
+// empty slot), kept from call to call so that a step allocates nothing.
+class RowStates {
+ public:
+  struct Slot {
+    std::uint64_t key = 0;
+    std::uint8_t frictionless = 0, final = 0;
+  };
+  void Clear();
+  void Set(const Slot& slot);                 // replaces the slot of the same key
+  const Slot* Find(std::uint64_t key) const;  // nullptr when absent
+
+ private:
+  size_t Home(std::uint64_t key) const;
+  std::vector<Slot> slots_;
+  size_t size_ = 0;
+};
+
+void RowStates::Clear() {
+  std::fill(slots_.begin(), slots_.end(), Slot{});
+  size_ = 0;
+}
+
+size_t RowStates::Home(std::uint64_t key) const {
+  // Fibonacci hashing: the high bits of key times 2^64 / golden ratio.
+  return static_cast<size_t>((key * 0x9E3779B97F4A7C15ull) >> 32) & (slots_.size() - 1);
+}
+
+void RowStates::Set(const Slot& slot) {
+  if (2 * (size_ + 1) > slots_.size()) {  // at most half full
+    std::vector<Slot> old(std::max<size_t>(64, 2 * slots_.size()));
+    old.swap(slots_);
+    size_ = 0;
+    for (const Slot& s : old) {
+      if (s.key != 0) Set(s);
+    }
+  }
+  for (size_t i = Home(slot.key);; i = (i + 1) & (slots_.size() - 1)) {
+    if (slots_[i].key == 0) ++size_;
+    if (slots_[i].key == 0 || slots_[i].key == slot.key) {
+      slots_[i] = slot;
+      return;
+    }
+  }
+}
+
+const RowStates::Slot* RowStates::Find(std::uint64_t key) const {
+  if (slots_.empty() || key == 0) return nullptr;
+  for (size_t i = Home(key);; i = (i + 1) & (slots_.size() - 1)) {
+    if (slots_[i].key == key) return &slots_[i];
+    if (slots_[i].key == 0) return nullptr;
+  }
+}
+
+}  // namespace
+
+// The solver's memory: the last forces, statistics, the rows' states and the buffers.
+struct ConstraintSolverData::Work {
+  std::vector<double> lambda;  // the rows' forces after the last solve (N or N m)
+  ConstraintSolverStatistics stats;
+  RowStates last_states, next_states;  // the last solve's, the one being solved
+
+  struct Block {         // an eliminated equality block of the island being solved
+    int e0 = 0, ne = 0;  // its rows: e_rows[e0, e0 + ne)
+    int c0 = 0, nc = 0;  // the bounded rows it touches: cols[c0, c0 + nc)
+    size_t g0 = 0;       // its [W z] = L^-1 [A_eu b_e] from G[g0], ne rows of nc + 1
+    size_t l0 = 0;       // its A_ee = L L^T from Aee[l0], ne x ne (envelope[e0...])
+  };
+  std::vector<Block> blocks;
+  std::vector<int> island, block, row_root, order, local, cols, C, state, count, grouped;
+  std::vector<Eigen::Matrix<double, 6, 1>> im0, im1, tmp, f;
+  // update: a block's row of W^T [W z] while it is eliminated, its equality forces after
+  std::vector<double> S, b, x, w, dx, dw, L, y, lo, hi, mu, Aee, G, update;
+  std::vector<int> findex, u_rows, e_rows, first, envelope, span;
+  std::vector<std::uint8_t> guess0, guess1;
+};
+
+namespace {
+
+using Work = ConstraintSolverData::Work;
+
 int Find(std::vector<int>& parent, int i) {
   while (parent[i] != i) i = parent[i] = parent[parent[i]];
   return i;
@@ -119,7 +201,7 @@ void SolveLowerColumns(const double* L, int n, int ld, const int* first, double*
 // cfm), so the answer is unique: the one ODE's solver finds, to roundoff.
 class BoxSolve {
  public:
-  BoxSolve(int n, ConstraintSolverData* d) : n_(n), d_(*d) { d_.mu = d_.hi; }
+  BoxSolve(int n, Work* d) : n_(n), d_(*d) { d_.mu = d_.hi; }
 
   // The answer from a guess of each row's state: the free rows' forces solved with the
   // others at their bounds, over the first `count` rows (the rest at zero); true when every
@@ -209,12 +291,12 @@ class BoxSolve {
       FixFrictionBounds(nf);
       if (nf == n_ || Guess(n_, d_.guess1)) {
         for (int i = 0; i < n_; ++i) d_.guess1[i] = ToGuess(d_.state[i]);
-        ++d_.guessed;
-        if (amended_) ++d_.amended;
+        ++d_.stats.guessed;
+        if (amended_) ++d_.stats.amended;
         return;
       }
     }
-    ++d_.pivoted;
+    ++d_.stats.pivoted;
     Run();
   }
 
@@ -333,8 +415,8 @@ class BoxSolve {
         }
       }
     }
-    d_.pivots += pivots;
-    if (pivots > limit) ++d_.unsolved;
+    d_.stats.pivots += pivots;
+    if (pivots > limit) ++d_.stats.unsolved;
     if (!friction_bounds_set) {
       for (int k = 0; k < n_; ++k) d_.guess0[k] = ToGuess(d_.state[k]);
     }
@@ -410,13 +492,13 @@ class BoxSolve {
   }
 
   const int n_;
-  ConstraintSolverData& d_;
+  Work& d_;
   bool amended_ = false;  // a guess was amended before it held
 };
 
 // Sorts `items` stably by group(item), a number in [0, groups) (a counting sort).
 template <typename Group>
-void GroupBy(std::vector<int>* items, const Group& group, int groups, ConstraintSolverData* d) {
+void GroupBy(std::vector<int>* items, const Group& group, int groups, Work* d) {
   d->count.assign(static_cast<size_t>(groups) + 1, 0);
   for (int i : *items) ++d->count[group(i) + 1];
   for (int g = 0; g < groups; ++g) d->count[g + 1] += d->count[g];
@@ -446,7 +528,7 @@ int RootOf(const ConstraintRow& r, const std::vector<int>& set) {
 // blocks (bodies joined by equality rows); v / h + M^-1 f per body; the rows grouped by
 // island, each island's in their given order.
 void PrepareRows(const std::vector<ConstraintRow>& rows, const std::vector<SolverBody>& B,
-                 double inv_h, ConstraintSolverData* d) {
+                 double inv_h, Work* d) {
   const int nb = static_cast<int>(B.size());
   const int nr = static_cast<int>(rows.size());
   d->im0.resize(nr);
@@ -491,7 +573,7 @@ void PrepareRows(const std::vector<ConstraintRow>& rows, const std::vector<Solve
 // An island's rows [begin, end) of d->order: its bounded rows (friction rows last, ODE's
 // order) and its equality rows by block; S = A_uu and b_u of the bounded rows.
 void FormBounded(const std::vector<ConstraintRow>& rows, size_t begin, size_t end, double inv_h,
-                 ConstraintSolverData* d) {
+                 Work* d) {
   d->u_rows.clear();
   d->e_rows.clear();
   for (size_t k = begin; k < end; ++k) {
@@ -510,7 +592,7 @@ void FormBounded(const std::vector<ConstraintRow>& rows, size_t begin, size_t en
       static_cast<int>(d->block.size()), d);
   const int nu = static_cast<int>(d->u_rows.size());
   for (int a = 0; a < nu; ++a) d->local[d->u_rows[a]] = a;
-  d->max_bounded_rows = std::max(d->max_bounded_rows, nu);
+  d->stats.max_bounded_rows = std::max(d->stats.max_bounded_rows, nu);
   d->S.assign(static_cast<size_t>(nu) * nu, 0.0);
   d->b.resize(nu);
   for (int a = 0; a < nu; ++a) {
@@ -529,10 +611,10 @@ void FormBounded(const std::vector<ConstraintRow>& rows, size_t begin, size_t en
 // rows. With A_ee = L L^T and [W z] = L^-1 [A_eu b_e]: S -= W^T W, b_u -= W^T z (the lower
 // triangle of S). Keeps L and [W z] for RecoverEquality.
 void EliminateBlock(const std::vector<ConstraintRow>& rows, int e0, int ne, int root, double inv_h,
-                    ConstraintSolverData* d) {
+                    Work* d) {
   const int nu = static_cast<int>(d->u_rows.size());
   const int* er = &d->e_rows[e0];
-  ConstraintSolverData::Block blk;
+  Work::Block blk;
   blk.e0 = e0;
   blk.ne = ne;
   blk.c0 = static_cast<int>(d->cols.size());
@@ -600,7 +682,7 @@ void EliminateBlock(const std::vector<ConstraintRow>& rows, int e0, int ne, int 
 
 // The bounded rows' forces: bounds, the keyed rows' guesses from the last solve, the box
 // solve, and the states kept for the next solve.
-void SolveBounded(const std::vector<ConstraintRow>& rows, ConstraintSolverData* d) {
+void SolveBounded(const std::vector<ConstraintRow>& rows, Work* d) {
   const int nu = static_cast<int>(d->u_rows.size());
   d->lo.resize(nu);
   d->hi.resize(nu);
@@ -613,7 +695,7 @@ void SolveBounded(const std::vector<ConstraintRow>& rows, ConstraintSolverData* 
     d->hi[a] = r.hi;
     if (r.findex >= 0) d->findex[a] = d->local[r.findex];
     if (r.key == 0) continue;
-    if (const ConstraintSolverData::RowStates::Slot* last = d->last_states.Find(r.key)) {
+    if (const RowStates::Slot* last = d->last_states.Find(r.key)) {
       d->guess0[a] = last->frictionless;
       d->guess1[a] = last->final;
     }
@@ -628,8 +710,8 @@ void SolveBounded(const std::vector<ConstraintRow>& rows, ConstraintSolverData* 
 }
 
 // The equality rows' forces: A_ee^-1 (b_e - A_eu x_u) = L^-T (z - W x_u), block by block.
-void RecoverEquality(ConstraintSolverData* d) {
-  for (const ConstraintSolverData::Block& blk : d->blocks) {
+void RecoverEquality(Work* d) {
+  for (const Work::Block& blk : d->blocks) {
     const int m = blk.nc + 1;
     d->update.resize(blk.ne);
     double* le = d->update.data();
@@ -645,7 +727,7 @@ void RecoverEquality(ConstraintSolverData* d) {
 
 // One island, the rows [begin, end) of d->order.
 void SolveIsland(const std::vector<ConstraintRow>& rows, size_t begin, size_t end, double inv_h,
-                 ConstraintSolverData* d) {
+                 Work* d) {
   FormBounded(rows, begin, end, inv_h, d);
   d->blocks.clear();
   d->cols.clear();
@@ -669,45 +751,18 @@ void SolveIsland(const std::vector<ConstraintRow>& rows, size_t begin, size_t en
 
 }  // namespace
 
-void ConstraintSolverData::RowStates::Clear() {
-  std::fill(slots_.begin(), slots_.end(), Slot{});
-  size_ = 0;
-}
+ConstraintSolverData::ConstraintSolverData() : work_(std::make_unique<Work>()) {}
+ConstraintSolverData::~ConstraintSolverData() = default;
+ConstraintSolverData::ConstraintSolverData(ConstraintSolverData&&) noexcept = default;
+ConstraintSolverData& ConstraintSolverData::operator=(ConstraintSolverData&&) noexcept = default;
 
-size_t ConstraintSolverData::RowStates::Home(std::uint64_t key) const {
-  // Fibonacci hashing: the high bits of key times 2^64 / golden ratio.
-  return static_cast<size_t>((key * 0x9E3779B97F4A7C15ull) >> 32) & (slots_.size() - 1);
-}
+const std::vector<double>& ConstraintSolverData::lambda() const { return work_->lambda; }
 
-void ConstraintSolverData::RowStates::Set(const Slot& slot) {
-  if (2 * (size_ + 1) > slots_.size()) {  // at most half full
-    std::vector<Slot> old(std::max<size_t>(64, 2 * slots_.size()));
-    old.swap(slots_);
-    size_ = 0;
-    for (const Slot& s : old) {
-      if (s.key != 0) Set(s);
-    }
-  }
-  for (size_t i = Home(slot.key);; i = (i + 1) & (slots_.size() - 1)) {
-    if (slots_[i].key == 0) ++size_;
-    if (slots_[i].key == 0 || slots_[i].key == slot.key) {
-      slots_[i] = slot;
-      return;
-    }
-  }
-}
-
-const ConstraintSolverData::RowStates::Slot* ConstraintSolverData::RowStates::Find(
-    std::uint64_t key) const {
-  if (slots_.empty() || key == 0) return nullptr;
-  for (size_t i = Home(key);; i = (i + 1) & (slots_.size() - 1)) {
-    if (slots_[i].key == key) return &slots_[i];
-    if (slots_[i].key == 0) return nullptr;
-  }
-}
+const ConstraintSolverStatistics& ConstraintSolverData::statistics() const { return work_->stats; }
 
 void SolveConstraints(double h, const std::vector<ConstraintRow>& rows,
-                      std::vector<SolverBody>* bodies, ConstraintSolverData* d) {
+                      std::vector<SolverBody>* bodies, ConstraintSolverData* data) {
+  Work* d = data->work_.get();
   const int nb = static_cast<int>(bodies->size());
   const int nr = static_cast<int>(rows.size());
   std::vector<SolverBody>& B = *bodies;

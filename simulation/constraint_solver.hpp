@@ -25,6 +25,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
@@ -58,55 +59,44 @@ struct ConstraintRow {
   std::uint64_t key = 0;
 };
 
-/// Work memory of SolveConstraints, reused between calls (one per thread).
-struct ConstraintSolverData {
-  std::vector<double> lambda;  ///< the rows' forces after the last solve (N or N m)
-  int max_bounded_rows = 0;    ///< most bounded rows in one island so far (statistics)
-  long pivots = 0;             ///< pivots of the bounded solves so far (statistics)
-  long guessed = 0;            ///< islands solved at the first guess (statistics)
-  long amended = 0;            ///< of those, solved only after the guess was amended (statistics)
-  long pivoted = 0;            ///< islands that needed the pivoting solve (statistics)
-  long unsolved = 0;  ///< pivoting solves stopped at their pivot limit (never seen; statistics)
+/// What the solves of a ConstraintSolverData have needed so far.
+struct ConstraintSolverStatistics {
+  int max_bounded_rows = 0;  ///< most bounded rows in one island
+  long pivots = 0;           ///< pivots of the bounded solves
+  long guessed = 0;          ///< islands solved at the first guess of their rows' states
+  long amended = 0;          ///< of those, solved only after the guess was amended
+  long pivoted = 0;          ///< islands that needed the pivoting (Dantzig) solve
+  long unsolved = 0;         ///< pivoting solves stopped at their pivot limit (never seen)
+};
 
-  /// Where each keyed row ended in a solve, without the friction rows and with them (0 free,
-  /// 1 at its lower bound, 2 at its upper bound): an open-addressing table of its keys (key 0
-  /// marks an empty slot), kept from call to call so that a step allocates nothing.
-  class RowStates {
-   public:
-    struct Slot {
-      std::uint64_t key = 0;
-      std::uint8_t frictionless = 0, final = 0;
-    };
-    void Clear();
-    void Set(const Slot& slot);                 ///< replaces the slot of the same key
-    const Slot* Find(std::uint64_t key) const;  ///< nullptr when absent
+/// Work memory of SolveConstraints, reused between calls (one per thread): the forces of the
+/// last solve, the states its keyed rows ended at (the next solve's first guess), statistics,
+/// and the solver's own buffers, which no other code can reach.
+class ConstraintSolverData {
+ public:
+  ConstraintSolverData();
+  ~ConstraintSolverData();
+  ConstraintSolverData(ConstraintSolverData&&) noexcept;
+  ConstraintSolverData& operator=(ConstraintSolverData&&) noexcept;
+  ConstraintSolverData(const ConstraintSolverData&) = delete;
+  ConstraintSolverData& operator=(const ConstraintSolverData&) = delete;
 
-   private:
-    size_t Home(std::uint64_t key) const;
-    std::vector<Slot> slots_;
-    size_t size_ = 0;
-  };
-  RowStates last_states, next_states;  ///< the last solve's, the one being solved
+  /// The rows' forces after the last solve (N or N m), in the rows' order.
+  const std::vector<double>& lambda() const;
+  /// What the solves so far have needed.
+  const ConstraintSolverStatistics& statistics() const;
 
-  // buffers (the solver's own)
-  struct Block {         // an eliminated equality block of the island being solved
-    int e0 = 0, ne = 0;  // its rows: e_rows[e0, e0 + ne)
-    int c0 = 0, nc = 0;  // the bounded rows it touches: cols[c0, c0 + nc)
-    size_t g0 = 0;       // its [W z] = L^-1 [A_eu b_e] from G[g0], ne rows of nc + 1
-    size_t l0 = 0;       // its A_ee = L L^T from Aee[l0], ne x ne (envelope[e0...])
-  };
-  std::vector<Block> blocks;
-  std::vector<int> island, block, row_root, order, local, cols, C, state, count, grouped;
-  std::vector<Eigen::Matrix<double, 6, 1>> im0, im1, tmp, f;
-  // update: a block's row of W^T [W z] while it is eliminated, its equality forces after
-  std::vector<double> S, b, x, w, dx, dw, L, y, lo, hi, mu, Aee, G, update;
-  std::vector<int> findex, u_rows, e_rows, first, envelope, span;
-  std::vector<std::uint8_t> guess0, guess1;
+  struct Work;  ///< the buffers (constraint_solver.cpp)
+
+ private:
+  friend void SolveConstraints(double h, const std::vector<ConstraintRow>& rows,
+                               std::vector<SolverBody>* bodies, ConstraintSolverData* data);
+  std::unique_ptr<Work> work_;
 };
 
 /// Solves the rows' forces for one step of h seconds and adds their impulse and the external
 /// forces' to the bodies' velocities. Rows of different islands (bodies that no row joins)
-/// are solved apart. data->lambda holds the forces afterwards, in the rows' order.
+/// are solved apart. data->lambda() holds the forces afterwards, in the rows' order.
 void SolveConstraints(double h, const std::vector<ConstraintRow>& rows,
                       std::vector<SolverBody>* bodies, ConstraintSolverData* data);
 

@@ -80,9 +80,6 @@ struct WorldOptions {
   double theta = 0.0;  ///< object orientation, rad (SceneModel::ObjectPose)
   /// The object centre on the table, world, m; empty: the scene's object centre.
   std::optional<Eigen::Vector2d> object_xy;
-  /// Free-space test (HandNearObject): how far from the object hand and arm geometry count as
-  /// "near", m.
-  double proximity_margin = 0.02;
   /// Changes of the physics for this world (friction, contact stiffness and damping, the
   /// object's mass and centre of mass, the finger servos' force caps).
   PhysicsVariation physics;
@@ -153,6 +150,32 @@ struct StepStatistics {
   int max_contacts = 0;      ///< most contact joints in one step
 };
 
+/// The constraint forces and velocities of one step (SimulationData::StepBothWays), world
+/// frame.
+struct StepForces {
+  using Vector6d = Eigen::Matrix<double, 6, 1>;
+  /// Per finger hinge (HandJointVector order): the force (N) and torque (N m) of its rows on
+  /// its child link, then on its parent link (zero when the parent is a kinematic body), as
+  /// dJointFeedback's f1, t1, f2, t2 (a motor's push at its stop, an external torque, is not
+  /// in them).
+  std::vector<Eigen::Matrix<double, 12, 1>> hinges;
+  /// Per contact of the step's collision pass, in its order: the force and torque of its rows
+  /// on its first body (dJointFeedback's f1, t1; never a kinematic body).
+  std::vector<Vector6d> contacts;
+  /// Per moving body (the finger links in HandJointVector order, then the object): its linear
+  /// (m/s) and angular (rad/s) velocity after the step.
+  std::vector<Vector6d> velocities;
+};
+
+/// One step taken from the same state by the structured step and by dWorldStep.
+struct StepComparison {
+  StepForces structured;  ///< SolveConstraints' answer
+  StepForces ode;         ///< dWorldStep's
+  /// The structured solve's islands in this step: solved at the first guess of their rows'
+  /// states, of those after amending it, and solved by pivoting (ConstraintSolverStatistics).
+  long guessed = 0, amended = 0, pivoted = 0;
+};
+
 /// One ODE world. Not copyable; movable. Use from one thread at a time (each thread that uses
 /// one must be a thread ODE knows about: the constructor registers the calling thread).
 class SimulationData {
@@ -183,12 +206,15 @@ class SimulationData {
   /// One step without dynamics, for free space: the controller model moves arm and fingers
   /// exactly as their servos would without load, bodies are placed at their poses (velocities
   /// set), collisions are detected and reported but not resolved; the object is not moved.
-  /// Use only while nothing touches (see HandNearObject and contacts()).
+  /// Use only while nothing touches (see contacts()).
   void StepKinematically();
-  /// True when some arm or hand geometry lies within options.proximity_margin of the object
-  /// (tested against inflated copies of the object's shapes). Known defect: the proxies have
-  /// no category or collide bits, so ODE drops every pair and this returns false.
-  bool HandNearObject();
+  /// Step() with the structured step (WorldOptions::structured_solver, ArmMode::kKinematic)
+  /// checked against ODE's dWorldStep: after the controller and the collision pass, dWorldStep
+  /// steps the world with feedback on every finger hinge and contact joint, the state is put
+  /// back (quaternions normalised again: the same state to roundoff), and the structured step
+  /// steps it as Step() does; the world goes on from there. For tests: slower than Step().
+  /// Throws what Step() throws; aborts (GS_DEMAND) without the structured step.
+  StepComparison StepBothWays();
 
   /// Simulated time since construction, s.
   double time() const;

@@ -33,9 +33,6 @@ bool TrialOptions::IsValid(std::string* why) const {
   }
   if (!(std::isfinite(hold) && hold >= 0.0)) return fail("hold (s)", hold);
   if (!TrialJudgeOptions::IsValid(why)) return false;
-  if (!(std::isfinite(proximity_margin) && proximity_margin >= 0.0 && proximity_margin < 0.5)) {
-    return fail("proximity_margin (m)", proximity_margin);
-  }
   if (!(std::isfinite(record_interval) && record_interval >= 0.0)) {
     return fail("record_interval (s)", record_interval);
   }
@@ -67,7 +64,6 @@ SimulationData MakeTrialWorld(const SimulationModel& model, const JointTrajector
                                                                  : ArmMode::kWristDynamic;
   world_options.theta = Radians(trajectory.theta_deg);
   world_options.object_xy = trajectory.object_xy;
-  world_options.proximity_margin = options.proximity_margin;
   world_options.physics = options.physics;
   world_options.finger_mounts = options.finger_mounts;
   world_options.structured_solver = options.structured_solver;

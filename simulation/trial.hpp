@@ -15,11 +15,8 @@
 ///   10-15 N m can, which kFastWristDynamic models: README.md, "Robustness under the contact
 ///   model", measures what that changes), steps of 4 ms, free space is not
 ///   simulated in contact detail (the controller model moves arm and fingers and collisions
-///   are checked until anything touches), and the trial stops as soon as its outcome is
-///   decided. Known defect: the 2 cm proximity test (SimulationData::HandNearObject) never
-///   fires, since its proxy geometries have no collide bits; free space therefore ends at the
-///   first contact, which is resolved from the next step on. Fixing it changes trial bytes, so
-///   it is left to the speed work, which re-measures the two fidelities' agreement.
+///   are checked until anything touches: free space ends at the first contact, which is
+///   resolved from the next step on), and the trial stops as soon as its outcome is decided.
 
 #include <functional>
 #include <string>
@@ -48,8 +45,6 @@ struct TrialOptions : TrialJudgeOptions {
   double time_step = 0.0;
   /// Time the last command is held after the trajectory ends, s (DESIGN.md: >= 1 s).
   double hold = 1.0;
-  /// kFast only: free-space test margin, m (WorldOptions::proximity_margin).
-  double proximity_margin = 0.02;
   /// Record the state every this many seconds (0: no record).
   double record_interval = 0.0;
   /// Changes of the physics in this trial's world (WorldOptions::physics; none by default).

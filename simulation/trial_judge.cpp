@@ -194,7 +194,6 @@ HoldQuality MeasureHold(const SimulationData& data, const TrialWatch& watch) {
 }
 
 void StepTrialWorld(SimulationData* data, bool* free_space) {
-  if (*free_space && data->HandNearObject()) *free_space = false;
   if (*free_space) {
     data->StepKinematically();
     const ContactReport& c = data->contacts();

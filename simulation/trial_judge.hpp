@@ -135,9 +135,8 @@ HoldQuality MeasureHold(const SimulationData& data, const TrialWatch& watch);
 
 /// One physics step of a trial whose arm follows its controller kinematically: while
 /// `*free_space`, a kinematic step without contact detail (SimulationData::StepKinematically),
-/// until some robot geometry comes near the object (SimulationData::HandNearObject, which never
-/// fires today: see simulation/trial.hpp) or anything touches; from then on (`*free_space` turns
-/// false) full steps. Throws what the steps throw (OdeError).
+/// until anything touches; from then on (`*free_space` turns false) full steps. Throws what the
+/// steps throw (OdeError).
 void StepTrialWorld(SimulationData* data, bool* free_space);
 
 }  // namespace graspsynth

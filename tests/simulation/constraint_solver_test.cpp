@@ -150,13 +150,13 @@ TEST(SolveConstraints, EveryRowMeetsItsConditionOnRandomGraspLikeProblems) {
     std::vector<SolverBody> scratch = before;
     SolveConstraints(kH, frictionless, &scratch, &frictionless_data);
 
-    const std::vector<double>& x = data.lambda;
+    const std::vector<double>& x = data.lambda();
     const std::vector<double> w = Residual(p.rows, before, x);
     for (size_t i = 0; i < p.rows.size(); ++i) {
       const ConstraintRow& r = p.rows[i];
       double lo = r.lo, hi = r.hi;
       if (r.findex >= 0) {
-        hi = std::fabs(r.hi * frictionless_data.lambda[index[r.findex]]);
+        hi = std::fabs(r.hi * frictionless_data.lambda()[index[r.findex]]);
         lo = -hi;
       }
       const double scale = 1e-6 * (1.0 + std::fabs(x[i]));
@@ -218,18 +218,18 @@ TEST(SolveConstraints, AKeyedRowsGuessGivesTheSameAnswer) {
     std::vector<SolverBody> a = before, b = before;
     SolveConstraints(kH, p.rows, &a, &cold);
     SolveConstraints(kH, p.rows, &b, &warm);  // learns the states
-    const long before_guessed = warm.guessed;
+    const long before_guessed = warm.statistics().guessed;
     b = before;
     SolveConstraints(kH, p.rows, &b, &warm);  // starts from them
-    guessed += warm.guessed > before_guessed;
+    guessed += warm.statistics().guessed > before_guessed;
     std::vector<SolverBody> c = before;
     SolveConstraints(kH, p.rows, &c, &stale);
     for (size_t i = 0; i < p.rows.size(); ++i) {
-      EXPECT_NEAR(stale.lambda[i], cold.lambda[i], 1e-6 * (1.0 + std::fabs(cold.lambda[i])))
+      EXPECT_NEAR(stale.lambda()[i], cold.lambda()[i], 1e-6 * (1.0 + std::fabs(cold.lambda()[i])))
           << "trial " << trial << " row " << i << " (stale guess)";
     }
     for (size_t i = 0; i < p.rows.size(); ++i) {
-      EXPECT_NEAR(warm.lambda[i], cold.lambda[i], 1e-6 * (1.0 + std::fabs(cold.lambda[i])))
+      EXPECT_NEAR(warm.lambda()[i], cold.lambda()[i], 1e-6 * (1.0 + std::fabs(cold.lambda()[i])))
           << "trial " << trial << " row " << i;
     }
     for (size_t k = 0; k < a.size(); ++k) {
@@ -237,8 +237,8 @@ TEST(SolveConstraints, AKeyedRowsGuessGivesTheSameAnswer) {
     }
   }
   EXPECT_EQ(guessed, 50);
-  EXPECT_GT(stale.amended, 0);  // stale guesses were amended
-  EXPECT_GT(stale.pivoted, 0);  // or rejected
+  EXPECT_GT(stale.statistics().amended, 0);  // stale guesses were amended
+  EXPECT_GT(stale.statistics().pivoted, 0);  // or rejected
 }
 
 // A body resting on the ground through one contact: the normal force carries its weight and
@@ -263,8 +263,8 @@ TEST(SolveConstraints, AContactCarriesTheWeightOfABodyAtRest) {
   }
   ConstraintSolverData data;
   SolveConstraints(kH, rows, &bodies, &data);
-  EXPECT_NEAR(data.lambda[0], 9.81 * 0.3, 1e-6);
-  EXPECT_NEAR(data.lambda[1], 0.0, 1e-9);
+  EXPECT_NEAR(data.lambda()[0], 9.81 * 0.3, 1e-6);
+  EXPECT_NEAR(data.lambda()[1], 0.0, 1e-9);
   EXPECT_LT(bodies[0].v.norm(), 1e-8);
 }
 
@@ -287,12 +287,12 @@ TEST(SolveConstraints, FrictionStopsAtMuTimesTheNormalForce) {
     rows[1].findex = 0;
     ConstraintSolverData data;
     SolveConstraints(kH, rows, &bodies, &data);
-    EXPECT_NEAR(data.lambda[0], 10.0, 1e-9);
+    EXPECT_NEAR(data.lambda()[0], 10.0, 1e-9);
     if (push < 1.5) {
-      EXPECT_NEAR(data.lambda[1], -push, 1e-9);  // sticks
+      EXPECT_NEAR(data.lambda()[1], -push, 1e-9);  // sticks
       EXPECT_NEAR(bodies[0].v.x(), 0.0, 1e-12);
     } else {
-      EXPECT_NEAR(data.lambda[1], -1.5, 1e-9);  // slides
+      EXPECT_NEAR(data.lambda()[1], -1.5, 1e-9);  // slides
       EXPECT_NEAR(bodies[0].v.x(), kH * 0.5, 1e-12);
     }
   }

@@ -1,6 +1,7 @@
 graspsynth_test(simulation/constraint_solver_test.cpp LIBS graspsynth::simulation)
 graspsynth_test(simulation/simulation_model_test.cpp LIBS graspsynth::simulation)
 graspsynth_test(simulation/simulation_data_test.cpp LIBS graspsynth::simulation)
+graspsynth_test(simulation/structured_step_test.cpp LIBS graspsynth::simulation)
 graspsynth_test(simulation/trial_test.cpp LIBS graspsynth::simulation)
 graspsynth_test(simulation/trial_judge_test.cpp LIBS graspsynth::simulation)
 graspsynth_test(simulation/scripted_grasp_test.cpp LIBS graspsynth::simulation)
