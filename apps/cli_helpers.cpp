@@ -11,52 +11,17 @@
 #include "common/errors.hpp"
 #include "common/format.hpp"
 #include "kinematics/robot_description.hpp"
+#include "request/physics_options.hpp"
 #include "scene/object_model.hpp"
 
 namespace graspsynth::apps {
 
-void AddPhysicsPerturbationFlags(CLI::App* app, PhysicsPerturbationOptions* o) {
-  const std::string group = "Physics perturbation (each perturbed replay draws its physics)";
-  app->add_option_function<std::string>(
-         "--physics",
-         [o](const std::string& v) {
-           if (v != "on" && v != "off") {
-             throw CLI::ValidationError("--physics", "'" + v + "' is neither on nor off");
-           }
-           o->enabled = v == "on";
-         },
-         "on: every perturbed replay also draws friction, contact stiffness and damping, the "
-         "object's mass and centre of mass, the finger servos' force and the step; off: the "
-         "modelled physics only")
-      ->default_str(o->enabled ? "on" : "off")
-      ->group(group);
-  const auto add_number = [&](const char* flag, double* value, const char* help) {
-    app->add_option(flag, *value, help)->capture_default_str()->group(group);
-  };
-  const auto add_range = [&](const char* flag, double* lo, double* hi, const char* what) {
-    app->add_option_function<std::vector<double>>(
-           flag,
-           [lo, hi](const std::vector<double>& v) {
-             *lo = v[0];
-             *hi = v[1];
-           },
-           std::string("Factor range of the contact ") + what + " (log-uniform), MIN MAX")
-        ->expected(2)
-        ->default_str(Format("%g %g", *lo, *hi))
-        ->group(group);
-  };
-  add_number("--friction-spread", &o->friction,
-             "Relative half-range of the object-hand and object-table friction");
-  add_range("--stiffness-range", &o->stiffness_min, &o->stiffness_max, "stiffness");
-  add_range("--damping-range", &o->damping_min, &o->damping_max, "damping");
-  add_number("--mass-spread", &o->mass, "Relative half-range of the object's mass");
-  add_number("--com-offset", &o->com_offset,
-             "Half-range of the object's centre of mass per axis, m");
-  add_number("--servo-force-spread", &o->servo_force,
-             "Relative half-range of the finger servos' force caps");
-  add_number("--fine-step", &o->fine_step, "The alternative physics step, s");
-  add_number("--fine-step-probability", &o->fine_step_probability,
-             "Chance that a replay runs at --fine-step instead of the trial's step");
+std::shared_ptr<const RequestFlags<PhysicsPerturbationOptions>> AddPhysicsPerturbationFlags(
+    CLI::App* app) {
+  using P = PhysicsPerturbationOptions;
+  static const request::OptionList<P> options =
+      request::PhysicsOptions<P>([](P& p) -> P& { return p; });
+  return std::make_shared<const RequestFlags<P>>(app, options, false);
 }
 
 CLI::Validator PositiveValue() {
@@ -154,37 +119,6 @@ SceneModel LoadScene(const std::string& scene, const std::string& object,
       scene.empty() ? DefaultSceneModelPath() : std::filesystem::path(scene), object);
   if (!needs_handle.empty()) out.object.Handle(needs_handle);
   return out;
-}
-
-void CheckPhysicsFlags(const PhysicsPerturbationOptions& options) {
-  // each flag's fields alone on the defaults, so that the error names the flag.
-  using O = PhysicsPerturbationOptions;
-  const std::vector<std::pair<const char*, void (*)(const O&, O*)>> flags = {
-      {"--friction-spread", [](const O& from, O* to) { to->friction = from.friction; }},
-      {"--stiffness-range",
-       [](const O& from, O* to) {
-         to->stiffness_min = from.stiffness_min;
-         to->stiffness_max = from.stiffness_max;
-       }},
-      {"--damping-range",
-       [](const O& from, O* to) {
-         to->damping_min = from.damping_min;
-         to->damping_max = from.damping_max;
-       }},
-      {"--mass-spread", [](const O& from, O* to) { to->mass = from.mass; }},
-      {"--com-offset", [](const O& from, O* to) { to->com_offset = from.com_offset; }},
-      {"--servo-force-spread", [](const O& from, O* to) { to->servo_force = from.servo_force; }},
-      {"--fine-step", [](const O& from, O* to) { to->fine_step = from.fine_step; }},
-      {"--fine-step-probability",
-       [](const O& from, O* to) { to->fine_step_probability = from.fine_step_probability; }},
-  };
-  std::string why;
-  for (const auto& [flag, copy] : flags) {
-    O alone;
-    copy(options, &alone);
-    if (!alone.IsValid(&why)) throw InputError(std::string(flag) + ": " + why);
-  }
-  if (!options.IsValid(&why)) throw InputError("bad physics perturbation flag: " + why);
 }
 
 namespace {

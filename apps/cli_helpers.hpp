@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "apps/request_flags.hpp"
 #include "common/job_runner.hpp"
 #include "common/orientation_list.hpp"
 #include "motion/joint_trajectory.hpp"
@@ -29,12 +30,11 @@ namespace graspsynth::apps {
 
 /// The flags of the physics perturbation (--physics, --friction-spread, --stiffness-range,
 /// --damping-range, --mass-spread, --com-offset, --servo-force-spread, --fine-step,
-/// --fine-step-probability), read into `options`; their defaults are those in `options`.
-/// Call CheckPhysicsFlags after parsing.
-void AddPhysicsPerturbationFlags(CLI::App* app, PhysicsPerturbationOptions* options);
-
-/// Throws InputError naming the flag when the physics perturbation's flags are not valid.
-void CheckPhysicsFlags(const PhysicsPerturbationOptions& options);
+/// --fine-step-probability: request/physics_options.hpp, the description Python's keyword
+/// arguments share) on `app`. After parsing, Build() gives the options: the defaults with the
+/// flags given over them, or InputError naming the flag.
+std::shared_ptr<const RequestFlags<PhysicsPerturbationOptions>> AddPhysicsPerturbationFlags(
+    CLI::App* app);
 
 /// Adds --object NAME|FILE to a command that takes --scene: the object to use in place of the
 /// scene's (a shipped object's name, models/objects/NAME.json, or an object file).

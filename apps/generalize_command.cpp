@@ -13,10 +13,12 @@
 #include <vector>
 
 #include "apps/cli_helpers.hpp"
+#include "apps/request_flags.hpp"
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
 #include "kinematics/robot_description.hpp"
 #include "learning_data/grasp_library.hpp"
+#include "request/generalize_request.hpp"
 #include "scene/scene_model.hpp"
 #include "simulation/simulation_model.hpp"
 #include "study/study.hpp"
@@ -27,54 +29,24 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The command's own options; the table's are the request's (request/generalize_request.hpp).
 struct GeneralizeOptions {
   std::string library;
-  std::string orientations = "20:100:1";
-  std::string x, y;  // --x, --y: a grid of object positions (both or neither)
-  std::string methods = "nearest,interp,interp+refine,line+refine";
-  bool leave_one_out = false;
-  int perturb = kStudyGatePerturbations;
-  int sensitivity = 0;
-  double noise_scale = 1.0;
-  uint64_t seed = 1;
-  int threads = 0;
   std::string name = "generalization";
   std::string out;
   std::string robot;
   std::string scene;
   std::string object;  // --object: a shipped object's name or an object file
-  PhysicsPerturbationOptions physics = SynthesisTableOptions{}.perturbation.physics;
-  bool no_physics_fallback = false;
   bool resume = false;
 };
 
-std::vector<StudyMethod> ParseMethods(const std::string& text) {
-  std::vector<StudyMethod> methods;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    try {
-      methods.push_back(ParseStudyMethod(item));
-    } catch (const InputError& e) {
-      throw InputError(std::string("--methods: ") + e.what());
-    }
-    for (size_t k = 0; k + 1 < methods.size(); ++k) {
-      if (methods[k].Label() == methods.back().Label()) {
-        throw InputError("--methods: '" + item + "' is given twice");
-      }
-    }
-  }
-  if (methods.empty()) throw InputError("--methods: no method in '" + text + "'");
-  return methods;
-}
-
-int RunGeneralize(const GeneralizeOptions& o, const CLI::App& command) {
+int RunGeneralize(const GeneralizeOptions& o, const request::GeneralizeRequest& r,
+                  const CLI::App& command) {
+  SynthesisTableOptions table = request::ToSynthesisTableOptions(r);
   if (o.out.empty()) throw InputError("--out is required");
   if (fs::exists(o.out) && !fs::is_directory(o.out)) {
     throw InputError("--out '" + o.out + "' exists and is not a folder");
   }
-  if (o.perturb < 0) throw InputError("--perturb must be >= 0");
-  if (!(o.noise_scale >= 0.0)) throw InputError("--noise-scale must be >= 0");
   if (o.name.empty() || o.name.find('/') != std::string::npos) {
     throw InputError("--name '" + o.name + "' must be a plain file name stem");
   }
@@ -87,21 +59,9 @@ int RunGeneralize(const GeneralizeOptions& o, const CLI::App& command) {
   const fs::path robot_path = o.robot.empty() ? DefaultRobotDescriptionPath() : fs::path(o.robot);
   const SimulationModel model(LoadRobotModel(robot_path), std::move(scene));
 
-  SynthesisTableOptions table;
-  table.methods = ParseMethods(o.methods);
-  table.gate_perturbations = o.perturb;
-  table.sensitivity_trials = o.sensitivity;
-  table.seed = o.seed;
-  table.threads = o.threads;
-  table.physics_fallback = !o.no_physics_fallback;
-  table.perturbation.ScaleMotionNoise(o.noise_scale);
-  CheckPhysicsFlags(o.physics);
-  table.perturbation.physics = o.physics;
-  std::string why;
-  if (!table.perturbation.IsValid(&why)) throw InputError("--noise-scale: " + why);
-
   table.runner = &ProcessRunner();
   RunIdentity identity = CommandIdentity(command);
+  AddRequestIdentity(request::GeneralizeOptions(), r, &identity);
   identity.AddFile("library file", library_path);
   AddModelFiles(o.robot, o.scene, o.object, &identity);
   RunCheckpoint checkpoint(fs::path(o.out) / ("." + o.name + ".resume"), identity, o.resume);
@@ -109,12 +69,7 @@ int RunGeneralize(const GeneralizeOptions& o, const CLI::App& command) {
   ProgressBar bar;
   std::vector<StudyRow> rows;
   std::ostringstream what;
-  if (o.leave_one_out) {
-    if (!o.x.empty() || !o.y.empty()) {
-      throw InputError(
-          "--leave-one-out works over the library's orientations at its own "
-          "positions: it takes no --x or --y");
-    }
+  if (r.leave_one_out) {
     if (library.entries.size() < 3) {
       throw InputError("--leave-one-out needs a library with at least 3 orientations ('" +
                        library_path.string() + "' has " + std::to_string(library.entries.size()) +
@@ -126,11 +81,9 @@ int RunGeneralize(const GeneralizeOptions& o, const CLI::App& command) {
                             [&](const std::string& stage, int done, int total,
                                 const std::string& w) { bar.Update(stage, done, total, w); });
   } else {
-    table.orientations = ParseOrientationList(o.orientations, "--orientations");
-    table.positions = ParsePositionGrid(o.x, o.y);
-    what << "Library: " << library_name << ", orientations " << o.orientations << " deg";
+    what << "Library: " << library_name << ", orientations " << r.orientations << " deg";
     if (!table.positions.empty()) {
-      what << " at " << table.positions.size() << " object positions (x " << o.x << " m, y " << o.y
+      what << " at " << table.positions.size() << " object positions (x " << r.x << " m, y " << r.y
            << " m)";
     }
     what << ".";
@@ -143,8 +96,8 @@ int RunGeneralize(const GeneralizeOptions& o, const CLI::App& command) {
 
   std::ostringstream md;
   md << "# " << o.name << "\n\n"
-     << what.str() << " Seed " << o.seed << ", " << o.perturb
-     << " perturbed replays per grasp (noise x" << o.noise_scale
+     << what.str() << " Seed " << r.seed << ", " << r.perturb
+     << " perturbed replays per grasp (noise x" << r.noise_scale
      << "; gate: nominal success and robustness >= 0.80).\n\n"
      << "## Summary\n\n"
      << SummaryMarkdown(rows) << "\n## Where a method falls short\n\n"
@@ -195,45 +148,19 @@ void AddGeneralizeCommand(CLI::App& app, int* exit_code) {
       "placements study (experiments/placements.sh) run it.\n"
       "Example:\n"
       "  graspsynth generalize --orientations 20:100:1 --out results");
+  auto flags =
+      std::make_shared<RequestFlags<request::GeneralizeRequest>>(cmd, request::GeneralizeOptions());
   cmd->add_option(
       "--library", opts->library,
       "Grasp library (graspsynth-library/1, or /2 over placements; default: the shipped one)");
-  cmd->add_option("--orientations", opts->orientations,
-                  "Orientations, deg: numbers and ranges FROM:TO:STEP, comma-separated")
-      ->capture_default_str();
-  cmd->add_option("--x", opts->x,
-                  "Object positions: x of the object centre on the table, m, numbers and ranges "
-                  "FROM:TO:STEP (with --y: every orientation at every x at every y); default: "
-                  "the scene's object centre");
-  cmd->add_option("--y", opts->y, "Object positions: y of the object centre, m (see --x)");
-  cmd->add_option("--methods", opts->methods, "Comma-separated methods")->capture_default_str();
-  cmd->add_flag("--leave-one-out", opts->leave_one_out,
-                "Synthesize each inner library orientation from the library without it "
-                "(--orientations is not used)");
-  cmd->add_option("--perturb", opts->perturb, "Perturbed replays per grasp (0: nominal only)")
-      ->capture_default_str();
-  cmd->add_option("--sensitivity", opts->sensitivity,
-                  "Replays per end of each physics factor's range in each grasp's sensitivity "
-                  "table (0: none)")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--noise-scale", opts->noise_scale,
-                  "Factor on the replays' wrist position, orientation and finger noise "
-                  "(5 mm, 2 deg, 2 deg)")
-      ->capture_default_str();
-  cmd->add_option("--seed", opts->seed, "Seed of the perturbed replays")->capture_default_str();
-  cmd->add_option("--threads", opts->threads, "Worker threads (0: all cores); changes no result")
-      ->capture_default_str()
-      ->check(CLI::Range(0, 1024));
   cmd->add_option("--name", opts->name, "Stem of the output files")->capture_default_str();
   cmd->add_option("--out", opts->out, "Output folder")->required();
-  AddPhysicsFallbackFlag(cmd, &opts->no_physics_fallback);
   AddResumeFlag(cmd, &opts->resume);
-  AddPhysicsPerturbationFlags(cmd, &opts->physics);
   cmd->add_option("--robot", opts->robot, "Robot description (URDF); default: the shipped one");
   cmd->add_option("--scene", opts->scene, "Scene description (JSON); default: models/scene.json");
   AddObjectFlag(cmd, &opts->object);
-  cmd->callback([opts, exit_code, cmd] { *exit_code = RunGeneralize(*opts, *cmd); });
+  cmd->callback(
+      [opts, flags, exit_code, cmd] { *exit_code = RunGeneralize(*opts, flags->Build(), *cmd); });
 }
 
 }  // namespace graspsynth::apps

@@ -60,7 +60,6 @@ StudyOptions StudyOptionsOf(const RunOptions& o, const SceneModel& scene) {
   options.threads = o.threads;
   options.analysis.segmentation.region = scene.grasp_region;
   options.paper_object = scene.object.paper_object;
-  CheckPhysicsFlags(o.physics);
   options.perturbation.physics = o.physics;
   options.physics_fallback = !o.no_physics_fallback;
   options.selection_early_stop = !o.all_replays;
@@ -239,9 +238,12 @@ void AddRunCommand(CLI::App& app, int* exit_code) {
   AddObjectFlag(run, &opts->object);
   AddPhysicsFallbackFlag(run, &opts->no_physics_fallback);
   AddAllReplaysFlag(run, &opts->all_replays);
-  AddPhysicsPerturbationFlags(run, &opts->physics);
+  const auto physics = AddPhysicsPerturbationFlags(run);
   AddResumeFlag(run, &opts->resume);
-  run->callback([opts, exit_code, run] { *exit_code = RunStudyCommand(*opts, *run); });
+  run->callback([opts, physics, exit_code, run] {
+    opts->physics = physics->Build();
+    *exit_code = RunStudyCommand(*opts, *run);
+  });
 }
 
 }  // namespace graspsynth::apps

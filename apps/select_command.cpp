@@ -47,7 +47,6 @@ int RunSelect(const SelectCommandOptions& o, const CLI::App& command) {
   options.threads = o.threads;
   options.early_stop = !o.all_replays;
   options.segmentation.region = scene.grasp_region;
-  CheckPhysicsFlags(o.physics);
   options.perturbation.physics = o.physics;
   std::string why;
   if (!options.IsValid(&why)) throw InputError("select: " + why);
@@ -187,12 +186,15 @@ void AddSelectCommand(CLI::App& app, int* exit_code) {
       ->check(CLI::Range(0, 1024));
   select->add_option("--robot", opts->robot, "Robot description (URDF); default: the shipped one");
   AddAllReplaysFlag(select, &opts->all_replays);
-  AddPhysicsPerturbationFlags(select, &opts->physics);
+  const auto physics = AddPhysicsPerturbationFlags(select);
   select->add_option("--scene", opts->scene,
                      "Scene description (JSON); default: models/scene.json");
   AddObjectFlag(select, &opts->object);
   AddResumeFlag(select, &opts->resume);
-  select->callback([opts, exit_code, select] { *exit_code = RunSelect(*opts, *select); });
+  select->callback([opts, physics, exit_code, select] {
+    opts->physics = physics->Build();
+    *exit_code = RunSelect(*opts, *select);
+  });
 }
 
 }  // namespace graspsynth::apps

@@ -118,7 +118,6 @@ RobustnessOptions RobustnessOptionsOf(const SimulateOptions& o, const TrialOptio
   ro.perturbation.position_sigma = o.position_noise;
   ro.perturbation.orientation_sigma = o.orientation_noise_deg * kDeg;
   ro.perturbation.finger_sigma = o.finger_noise_deg * kDeg;
-  CheckPhysicsFlags(o.physics);
   ro.perturbation.physics = o.physics;
   std::string why;
   if (!ro.IsValid(&why)) throw InputError("bad perturbation option: " + why);
@@ -334,8 +333,11 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
   sim->add_option("--robot", opts->robot, "Robot description (URDF); default: the shipped one");
   sim->add_option("--scene", opts->scene, "Scene description (JSON); default: models/scene.json");
   AddObjectFlag(sim, &opts->object);
-  AddPhysicsPerturbationFlags(sim, &opts->physics);
-  sim->callback([opts, exit_code] { *exit_code = RunSimulate(*opts); });
+  const auto physics = AddPhysicsPerturbationFlags(sim);
+  sim->callback([opts, physics, exit_code] {
+    opts->physics = physics->Build();
+    *exit_code = RunSimulate(*opts);
+  });
 
   auto sopts = std::make_shared<ScriptedOptions>();
   CLI::App* scripted = app.add_subcommand(

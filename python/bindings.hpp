@@ -107,5 +107,6 @@ void BindDemos(py::module_& m);
 void BindLibrary(py::module_& m);
 void BindSimulation(py::module_& m);
 void BindStudy(py::module_& m);
+void BindRequests(py::module_& m);
 
 }  // namespace graspsynth::python

@@ -16,6 +16,8 @@
 #include "learning_data/grasp_library.hpp"
 #include "learning_data/representative_selection.hpp"
 #include "python/bindings.hpp"
+#include "python/request_bindings.hpp"
+#include "request/synthesize_request.hpp"
 #include "scene/scene_model.hpp"
 #include "simulation/simulation_model.hpp"
 #include "solver/grasp_file.hpp"
@@ -62,36 +64,11 @@ std::shared_ptr<Synthesizer> MakeSynthesizer(const py::object& library,
   return std::make_shared<Synthesizer>(*RobotOrDefault(robot), *scene, *lib);
 }
 
-std::shared_ptr<Grasp> Synthesize(const Synthesizer& s, double theta_deg, const std::string& method,
-                                  bool refine, const std::string& reach,
-                                  const std::optional<DoubleArray>& start, double clearance_margin,
-                                  bool strict_thresholds, int perturb, uint64_t seed, int threads,
-                                  double min_robustness, bool physics, bool physics_fallback,
-                                  const py::object& at) {
-  if (!std::isfinite(theta_deg)) throw InputError("theta must be a finite number of degrees");
-  const SynthesisTask task = MakeSynthesisTask(s.model.scene(), theta_deg, AtArgument(at));
-  ValidatedSynthesisOptions vo;
-  SynthesisOptions& so = vo.synthesis;
-  so.generation.method = ParseSynthesisMethod(method);
-  if (!refine) so.refinement_stages.clear();
-  so.reach.method = ParseReachMethod(reach);
-  so.refinement.clearance_margin = clearance_margin;
-  if (strict_thresholds) so.source_thresholds.reset();
-  if (start) {
-    const Batch b = ReadBatch(*start, {kArmDof}, "start");
-    if (!b.single) throw InputError("start must have shape (7,)");
-    so.start = Eigen::Map<const Vector7d>(b.data);
-  }
-  CheckThreads(threads);
-  vo.physics_fallback = physics_fallback;
-  vo.gate.perturbations = perturb;
-  vo.gate.seed = seed;
-  vo.gate.threads = threads;
-  vo.gate.min_robustness = min_robustness;
-  vo.gate.perturbation.physics.enabled = physics;
-  std::string why;
-  if (!so.IsValid(&why)) throw InputError("bad synthesis option: " + why);
-  if (!vo.gate.IsValid(&why)) throw InputError("bad physics gate option: " + why);
+std::shared_ptr<Grasp> Synthesize(const Synthesizer& s, const py::dict& options) {
+  const request::SynthesizeRequest q = RequestFromPython(request::SynthesizeOptions(), options);
+  const ValidatedSynthesisOptions vo = request::ToValidatedSynthesisOptions(q);
+  const SynthesisOptions& so = vo.synthesis;
+  const SynthesisTask task = MakeSynthesisTask(s.model.scene(), q.theta, q.at);
   auto grasp = std::make_shared<Grasp>();
   grasp->requested = so.generation.method;
   {
@@ -283,23 +260,9 @@ threads at once, and releases the GIL.)doc")
                                return py::make_tuple(s.model.theta_min_deg(),
                                                      s.model.theta_max_deg());
                              })
-      .def("synthesize", &Synthesize, py::arg("theta"), py::arg("method") = "interp",
-           py::arg("refine") = true, py::arg("reach") = "auto", py::arg("start") = py::none(),
-           py::arg("clearance_margin") = 0.005, py::arg("strict_thresholds") = false,
-           py::arg("perturb") = PhysicsGateOptions{}.perturbations,
-           py::arg("seed") = PhysicsGateOptions{}.seed, py::arg("threads") = 0,
-           py::arg("min_robustness") = PhysicsGateOptions{}.min_robustness,
-           py::arg("physics") = true, py::arg("physics_fallback") = true,
-           py::arg("at") = py::none(), R"doc(
-A grasp for object orientation theta (deg), checked in physics: `graspsynth synthesize`.
-at: (x, y), the object centre on the table (m, world; default: the scene's object centre);
-a library over placements interpolates between its demonstrated placements.
-
-method: "interp" (the paper's blend of the two nearest demonstrations), "line" (the line
-principle) or "nearest"; refine: the Ceres and NLopt refinement; reach: "auto", "spline" or
-"joint"; start: the start configuration (7,) rad (default: the rest pose); perturb, seed,
-threads, min_robustness, physics: the gate's perturbed replays. Returns a Grasp; raises
-InputError for an orientation outside the library (interp) or a bad start.)doc");
+      .def("_synthesize", &Synthesize, py::arg("options"), R"doc(
+Synthesizer.synthesize's work (graspsynth/__init__.py gives it its signature): the options of
+request_options("synthesize") as a dict, theta among them.)doc");
 
   py::class_<Grasp, std::shared_ptr<Grasp>>(m, "Grasp", R"doc(
 A synthesized grasp and its physics validation.

@@ -20,4 +20,5 @@ PYBIND11_MODULE(_core, m) {
   graspsynth::python::BindSimulation(m);
   graspsynth::python::BindLibrary(m);
   graspsynth::python::BindStudy(m);
+  graspsynth::python::BindRequests(m);
 }

@@ -18,6 +18,8 @@
 #include "learning_data/demo_directory.hpp"
 #include "learning_data/grasp_library.hpp"
 #include "python/bindings.hpp"
+#include "python/request_bindings.hpp"
+#include "request/generalize_request.hpp"
 #include "scene/scene_model.hpp"
 #include "simulation/simulation_model.hpp"
 #include "solver/synthesis_model.hpp"
@@ -88,45 +90,16 @@ py::dict Run(const std::optional<std::filesystem::path>& demos, bool quick,
   return d;
 }
 
-std::vector<StudyMethod> MethodsOf(const std::vector<std::string>& labels) {
-  std::vector<StudyMethod> methods;
-  for (const std::string& label : labels) {
-    methods.push_back(ParseStudyMethod(label));
-    for (size_t k = 0; k + 1 < methods.size(); ++k) {
-      if (methods[k].Label() == methods.back().Label()) {
-        throw InputError("methods: '" + label + "' is given twice");
-      }
-    }
-  }
-  if (methods.empty()) throw InputError("methods: no method given");
-  return methods;
-}
-
-py::object Generalize(const py::object& library_arg, const Orientations& orientations,
-                      const std::vector<std::string>& methods, bool leave_one_out, int perturb,
-                      int sensitivity, double noise_scale, uint64_t seed, int threads, bool physics,
-                      bool physics_fallback, const std::shared_ptr<RobotModel>& robot,
+py::object Generalize(const py::object& library_arg, const py::dict& options,
+                      const std::shared_ptr<RobotModel>& robot,
                       const std::shared_ptr<SceneModel>& scene_arg) {
+  const request::GeneralizeRequest r = RequestFromPython(request::GeneralizeOptions(), options);
+  const SynthesisTableOptions table = request::ToSynthesisTableOptions(r);
+  const bool leave_one_out = r.leave_one_out;
   const SceneModel& scene = *SynthesisScene(scene_arg);
   const std::shared_ptr<const GraspLibrary> shared =
       LibraryArgument(library_arg, scene.object.name);
   const GraspLibrary& library = *shared;
-  SynthesisTableOptions table;
-  table.methods = MethodsOf(methods);
-  if (perturb < 0) throw InputError("perturb must be >= 0");
-  if (sensitivity < 0) throw InputError("sensitivity must be >= 0");
-  if (!(noise_scale >= 0.0)) throw InputError("noise_scale must be >= 0");
-  table.gate_perturbations = perturb;
-  table.sensitivity_trials = sensitivity;
-  table.seed = seed;
-  table.threads = threads;
-  table.physics_fallback = physics_fallback;
-  table.perturbation.ScaleMotionNoise(noise_scale);
-  table.perturbation.physics.enabled = physics;
-  CheckThreads(threads);
-  std::string why;
-  if (!table.perturbation.IsValid(&why)) throw InputError("noise_scale: " + why);
-  if (!leave_one_out) table.orientations = OrientationsOf(orientations);
   if (leave_one_out && library.entries.size() < 3) {
     throw InputError("leave_one_out needs a library with at least 3 orientations ('" +
                      library.source + "' has " + std::to_string(library.entries.size()) + ")");
@@ -158,18 +131,11 @@ analysis, library and synthesis as the command line, whatever `threads` is.
 Returns a dict: analysis (analysis.json), library (a GraspLibrary), synthesis
 (synthesis.json: summary and rows), timing (timing.json).)doc");
 
-  m.def("generalize", &Generalize, py::arg("library") = py::none(),
-        py::arg("orientations") = std::string("20:100:1"),
-        py::arg("methods") =
-            std::vector<std::string>{"nearest", "interp", "interp+refine", "line+refine"},
-        py::arg("leave_one_out") = false, py::arg("perturb") = 20, py::arg("sensitivity") = 0,
-        py::arg("noise_scale") = 1.0, py::arg("seed") = 1, py::arg("threads") = 0,
-        py::arg("physics") = true, py::arg("physics_fallback") = true,
-        py::arg("robot") = py::none(), py::arg("scene") = py::none(), R"doc(
-Grasps for many orientations from a library by several methods, each validated in physics
-(`graspsynth generalize`); with leave_one_out, each inner demonstrated orientation from the
-library without it. orientations: a list of degrees or the command line's text
-("20:100:1,33"). Returns a dict: summary (per method) and rows (per orientation and method).)doc");
+  m.def("_generalize", &Generalize, py::arg("library"), py::arg("options"), py::arg("robot"),
+        py::arg("scene"), R"doc(
+generalize's work (graspsynth/__init__.py gives it its signature): the options of
+request_options("generalize") as a dict. Returns a dict: summary (per method) and rows (per
+orientation and method).)doc");
 }
 
 }  // namespace graspsynth::python

@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import enum
 import functools
+import inspect
 import os
 import threading
 from typing import Any, Iterable, Optional, Sequence, Union
@@ -61,7 +62,7 @@ __all__ = [
     "default_robot", "default_scene", "fk", "ik", "feasible_arm_angles", "arm_angle",
     "branch_of", "read_demo_log", "read_demo_directory", "segment", "analyze_demonstrations",
     "fit_wrist_line", "select_representatives", "synthesize", "simulate", "robustness", "run",
-    "generalize",
+    "generalize", "request_options",
 ]
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -122,19 +123,80 @@ def arm_angle(q: Any, robot: Optional[Robot] = None) -> Any:
     return (robot or default_robot()).arm_angle(q)
 
 
-def synthesize(library: Union[GraspLibrary, PathLike, None], theta: float, *,
-               robot: Optional[Robot] = None, scene: Optional[Scene] = None,
-               **options: Any) -> Grasp:
-    """A grasp for object orientation ``theta`` (deg) from ``library`` (a :class:`GraspLibrary`,
-    a file, or None for the shipped one), checked in physics: ``graspsynth synthesize``.
+# The Python type of each kind of option (C++ request::OptionKind, in its order).
+_OPTION_TYPES = ["bool", "int", "int", "float", "str", "Sequence[str]",
+                 "Optional[Sequence[float]]", "tuple[float, float]"]
 
-    ``options`` are those of :meth:`Synthesizer.synthesize`: method ("interp", "line",
-    "nearest"), refine, reach, start, clearance_margin, strict_thresholds, perturb, seed,
-    threads, min_robustness, physics, physics_fallback, and at=(x, y): the object centre on the
-    table (m; default the scene's object centre). For many grasps from one library,
-    build a :class:`Synthesizer` once."""
+
+def _with_options(request: str):
+    """Gives the decorated function the options of ``request`` (``"synthesize"``,
+    ``"generalize"``) as explicit keyword arguments: their names, defaults and help come from the
+    one description the command's flags and ``--config`` files are made from (C++
+    request/option.hpp, :func:`request_options`). A required option (``theta``) is a
+    positional argument after the function's own. The function gets the options its caller
+    gave as one dict, ``options``; the extension checks them."""
+    described = _core.request_options(request)
+    names = {o["name"] for o in described}
+
+    def wrap(function):
+        own = [p for p in inspect.signature(function).parameters.values() if p.name != "options"]
+        leading = [p for p in own if p.kind is inspect.Parameter.POSITIONAL_OR_KEYWORD]
+        trailing = [p for p in own if p.kind is not inspect.Parameter.POSITIONAL_OR_KEYWORD]
+        required = [inspect.Parameter(o["name"], inspect.Parameter.POSITIONAL_OR_KEYWORD,
+                                      annotation=_OPTION_TYPES[o["kind"]])
+                    for o in described if o["required"]]
+        optional = [inspect.Parameter(o["name"], inspect.Parameter.KEYWORD_ONLY,
+                                      default=o["default"], annotation=_OPTION_TYPES[o["kind"]])
+                    for o in described if not o["required"]]
+        signature = inspect.Signature(leading + required + trailing + optional,
+                                      return_annotation=inspect.signature(function)
+                                      .return_annotation)
+
+        @functools.wraps(function)
+        def call(*args: Any, **kwargs: Any) -> Any:
+            bound = signature.bind(*args, **kwargs)
+            given = {k: v for k, v in bound.arguments.items() if k in names}
+            rest = {k: v for k, v in bound.arguments.items() if k not in names}
+            return function(**rest, options=given)
+
+        call.__signature__ = signature  # type: ignore[attr-defined]
+        lines = [f"    {o['name']}: {o['help']}" + (f" (one of {', '.join(o['choices'])})"
+                                                     if o["choices"] else "")
+                 for o in described]
+        call.__doc__ = (function.__doc__ or "") + "\n\nOptions:\n" + "\n".join(lines)
+        return call
+
+    return wrap
+
+
+def request_options(request: str) -> list[dict]:
+    """The options of a request (``"synthesize"``, ``"generalize"``): name, kind, default,
+    help, choices and required, as the command's flags and the keyword arguments of
+    :meth:`Synthesizer.synthesize`, :func:`synthesize` and :func:`generalize` show them."""
+    return _core.request_options(request)
+
+
+@_with_options("synthesize")
+def _synthesizer_synthesize(self: Synthesizer, options: dict) -> Grasp:
+    """A grasp for object orientation ``theta`` (deg), checked in physics: ``graspsynth
+    synthesize``. ``at=(x, y)`` puts the object centre elsewhere on the table (m, world); a
+    library over placements interpolates between its demonstrated placements. Returns a
+    :class:`Grasp`; raises :class:`InputError` for an orientation outside the library (interp),
+    a bad start or an option out of its range."""
+    return self._synthesize(options)
+
+
+Synthesizer.synthesize = _synthesizer_synthesize
+
+
+@_with_options("synthesize")
+def synthesize(library: Union[GraspLibrary, PathLike, None], *, robot: Optional[Robot] = None,
+               scene: Optional[Scene] = None, options: dict) -> Grasp:
+    """A grasp for object orientation ``theta`` (deg) from ``library`` (a :class:`GraspLibrary`,
+    a file, or None for the shipped one), checked in physics: ``graspsynth synthesize``. For
+    many grasps from one library, build a :class:`Synthesizer` once."""
     synthesizer = Synthesizer(library, robot or default_robot(), scene or default_scene())
-    return synthesizer.synthesize(theta, **options)
+    return synthesizer._synthesize(options)
 
 
 def _trajectory(trajectory: Union[Trajectory, Grasp, PathLike],
@@ -223,26 +285,16 @@ def run(demos: Optional[PathLike] = None, *, quick: bool = False,
     return StudyResult(parts)
 
 
+@_with_options("generalize")
 def generalize(library: Union[GraspLibrary, PathLike, None] = None, *,
-               orientations: Union[str, Sequence[float]] = "20:100:1",
-               methods: Union[str, Iterable[str]] = ("nearest", "interp", "interp+refine",
-                                                     "line+refine"),
-               leave_one_out: bool = False, perturb: int = 20, sensitivity: int = 0,
-               noise_scale: float = 1.0, seed: int = 1, threads: int = 0, physics: bool = True,
-               physics_fallback: bool = True, robot: Optional[Robot] = None,
-               scene: Optional[Scene] = None) -> tuple[Table, Table]:
+               robot: Optional[Robot] = None, scene: Optional[Scene] = None,
+               options: dict) -> tuple[Table, Table]:
     """Grasps for many orientations from a library by several methods, each validated in
-    physics (``graspsynth generalize``). Returns ``(rows, summary)`` as :class:`Table` objects:
-    one row per orientation and method (the keys of synthesis.json's rows), one summary row
-    per method."""
-    if isinstance(methods, str):
-        methods = methods.split(",")
-    if not isinstance(orientations, str):
-        orientations = [float(t) for t in orientations]
+    physics (``graspsynth generalize``). ``orientations``, ``x`` and ``y`` take a list of
+    numbers or the command line's text (``"20:100:1,33"``); ``methods`` a list or ``"a,b"``.
+    Returns ``(rows, summary)`` as :class:`Table` objects: one row per orientation and method
+    (the keys of synthesis.json's rows), one summary row per method."""
     if library is not None and not isinstance(library, GraspLibrary):
         library = os.fspath(library)
-    result = _core.generalize(library, orientations, list(methods), leave_one_out, perturb,
-                              sensitivity, noise_scale, seed, threads, physics,
-                              physics_fallback, robot, scene)
+    result = _core._generalize(library, options, robot, scene)
     return Table(result["rows"]), Table(result["summary"])
-

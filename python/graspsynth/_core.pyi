@@ -238,13 +238,20 @@ class Synthesizer:
                  robot: Optional[Robot] = None, scene: Optional[Scene] = None) -> None: ...
     @property
     def theta_range(self) -> tuple[float, float]: ...
-    def synthesize(self, theta: float, method: str = "interp", refine: bool = True,
-                   reach: str = "auto", start: Optional[ArrayLike] = None,
+    # Added by graspsynth/__init__.py from request_options("synthesize"), which this stub must
+    # match (tests/python/test_package.py checks it).
+    def synthesize(self, theta: float, *, at: Optional[Sequence[float]] = None,
+                   method: str = "interp", refine: bool = True, reach: str = "auto",
                    clearance_margin: float = 0.005, strict_thresholds: bool = False,
-                   perturb: int = 30, seed: int = 1, threads: int = 0,
-                   min_robustness: float = 0.8, physics: bool = True,
-                   physics_fallback: bool = True,
-                   at: Optional[ArrayLike] = None) -> Grasp: ...
+                   grip_slide: bool = False, start: Optional[Sequence[float]] = None,
+                   seed: int = 1, perturb: int = 30, threads: int = 0, min_robustness: float = 0.8,
+                   physics_fallback: bool = True, physics: bool = True,
+                   friction_spread: float = 0.25,
+                   stiffness_range: tuple[float, float] = (0.5, 2.0),
+                   damping_range: tuple[float, float] = (0.5, 2.0), mass_spread: float = 0.2,
+                   com_offset: float = 0.01, servo_force_spread: float = 0.2,
+                   fine_step: float = 0.001, fine_step_probability: float = 0.5) -> Grasp: ...
+    def _synthesize(self, options: dict[str, Any]) -> Grasp: ...
 
 # --- studies -------------------------------------------------------------------------------
 
@@ -254,9 +261,9 @@ def run(demos: Optional[PathLike] = None, quick: bool = False,
         sensitivity: Optional[int] = None, physics: bool = True, physics_fallback: bool = True,
         all_replays: bool = False, robot: Optional[Robot] = None,
         scene: Optional[Scene] = None) -> dict[str, Any]: ...
-def generalize(library: Union[GraspLibrary, PathLike, None] = None,
-               orientations: Union[str, Sequence[float]] = "20:100:1",
-               methods: Sequence[str] = ..., leave_one_out: bool = False, perturb: int = 20,
-               sensitivity: int = 0, noise_scale: float = 1.0, seed: int = 1, threads: int = 0,
-               physics: bool = True, physics_fallback: bool = True,
-               robot: Optional[Robot] = None, scene: Optional[Scene] = None) -> dict[str, Any]: ...
+def _generalize(library: Union[GraspLibrary, str, None], options: dict[str, Any],
+                robot: Optional[Robot], scene: Optional[Scene]) -> dict[str, Any]: ...
+
+# --- requests ------------------------------------------------------------------------------
+
+def request_options(request: str) -> list[dict[str, Any]]: ...

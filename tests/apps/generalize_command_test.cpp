@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "tests/utils/run_command.hpp"
@@ -51,6 +52,34 @@ TEST_F(GeneralizeCommand, WritesOneRowPerOrientationAndMethod) {
   EXPECT_NE(md.find("| interp | 2 | 2 |"), std::string::npos) << md;
   EXPECT_NE(md.find("## Where a method falls short"), std::string::npos);
   EXPECT_NE(r.out.find("interp: "), std::string::npos) << r.out;
+}
+
+TEST_F(GeneralizeCommand, AConfigFileGivesWhatItsFlagsGiveAndTheFlagsOverrideIt) {
+  fs::create_directories(dir_);
+  const fs::path config = dir_ / "options.json";
+  std::ofstream(config) << R"({"orientations": [60], "methods": ["nearest"], "perturb": 2,
+                              "seed": 5, "physics": false, "noise_scale": 0.5})";
+  const std::string out = " --out " + dir_.string();
+  testing::CommandOutput r = RunGraspsynth(
+      "generalize --orientations 60 --methods nearest --perturb 2 --seed 5 --physics off "
+      "--noise-scale 0.5 --name flags" +
+      out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = RunGraspsynth("generalize --config " + config.string() + " --name config" + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(CsvLines("config"), CsvLines("flags"));
+  // a flag after the file wins: another seed gives other replays
+  r = RunGraspsynth("generalize --config " + config.string() + " --seed 6 --name seed6" + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(ReadFileText(dir_ / "seed6.md").find("Seed 6,"), std::string::npos);
+  std::ofstream(config) << R"({"pertrub": 2})";
+  r = RunGraspsynth("generalize --config " + config.string() + " --name bad" + out);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("field 'pertrub' is not an option of this command (did you mean "
+                       "'perturb'?)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "bad.csv"));
 }
 
 TEST_F(GeneralizeCommand, ABlendThatFailsInPhysicsFallsBackUnlessTold) {
@@ -123,11 +152,11 @@ TEST_F(GeneralizeCommand, BadOptionsAreNamedAndWriteNothing) {
            {"--methods interp,interp", "given twice"},
            {"--orientations 30:20:1", "needs FROM <= TO"},
            {"--orientations 20,abc", "'abc' is not a finite number"},
-           {"--noise-scale -1", "--noise-scale must be >= 0"},
-           {"--x -0.3", "--x and --y go together"},
+           {"--noise-scale -1", "--noise-scale: must be >= 0 (got -1)"},
+           {"--x -0.3", "x and y go together"},
            {"--x a --y 0.8", "--x: 'a' is not a finite number of metres"},
            {"--x -0.3 --y 5", "(-0.3, 5) m is not on the table"},
-           {"--x -0.3 --y 0.8 --leave-one-out", "it takes no --x or --y"},
+           {"--x -0.3 --y 0.8 --leave-one-out", "it takes no x or y"},
        }) {
     const testing::CommandOutput r = RunGraspsynth("generalize " + args + out);
     EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;

@@ -95,8 +95,8 @@ TEST_F(SynthesizeCommand, AtPutsTheObjectElsewhereAndRefusesAPlaceOffTheTable) {
   fs::remove(out_);
   for (const auto& [at, expected] : std::vector<std::pair<std::string, std::string>>{
            {"5,5", "(5, 5) m is not on the table"},
-           {"-0.27", "--at needs X,Y"},
-           {"-0.27,nan", "--at needs X,Y"},
+           {"-0.27", "--at: '-0.27' needs X,Y (2 numbers), got 1"},
+           {"-0.27,nan", "--at: 'nan' in '-0.27,nan' is not a finite number"},
        }) {
     const testing::CommandOutput bad = RunGraspsynth(Args("--theta 50 --at " + at));
     EXPECT_EQ(bad.exit_code, 2) << at << ": " << bad.err;
@@ -153,7 +153,7 @@ TEST_F(SynthesizeCommand, GripSlideMovesAGripAtTheHandlesEndInward) {
       RunGraspsynth("synthesize --library " + library +
                     " --at -0.25,0.85 --theta 28 --grip-slide --no-refine --out " + out_ + "x");
   EXPECT_EQ(bad.exit_code, 2) << bad.err;
-  EXPECT_THAT(bad.err, ::testing::HasSubstr("--grip-slide needs the refinement"));
+  EXPECT_THAT(bad.err, ::testing::HasSubstr("grip_slide needs the refinement"));
 }
 
 TEST_F(SynthesizeCommand, LineMethodGoesBeyondTheRange) {

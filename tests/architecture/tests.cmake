@@ -15,9 +15,11 @@ set(graspsynth_include_cases
   "forbidden solver study/study.hpp"
   "forbidden viewer teleop/protocol.hpp"
   "forbidden study viewer/viewer_scene.hpp"
+  "forbidden study request/option.hpp"
   "allowed study kinematics/arm_model.hpp"
   "allowed solver analysis/wrist_line.hpp"
-  "allowed teleop viewer/viewer_scene.hpp")
+  "allowed teleop viewer/viewer_scene.hpp"
+  "allowed request study/study.hpp")
 set(case_targets)
 foreach(case ${graspsynth_include_cases})
   string(REPLACE " " ";" fields "${case}")

@@ -1,0 +1,177 @@
+#pragma once
+
+/// @file
+/// One description of each option of a request, the work of a command of `graspsynth` and of
+/// the Python function that does the same: its name, kind, range, default and help. Every front
+/// end is made from it: the command's flags (apps/request_flags.hpp), the Python function's
+/// keyword arguments (python/request_bindings.cpp, graspsynth/__init__.py) and a JSON file of
+/// options (`--config FILE`, ApplyConfig). The checks are made here, once, for every front end:
+/// a value out of its range or not one of its choices is refused with an InputError that names
+/// the option as the front end spells it ("--perturb", "perturb", "run.json: field 'perturb'").
+///
+/// A request type (say SynthesizeRequest, request/synthesize_request.hpp) is a plain struct
+/// whose defaults are the options' defaults; its OptionList says how each option reads and
+/// writes it, through nested library options where they exist (the request holds a
+/// PhysicsGateOptions, not copies of its fields).
+
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "common/errors.hpp"
+#include "common/json_reader.hpp"
+
+namespace graspsynth::request {
+
+/// `format` of a file of options (`--config FILE`); the tag is optional in the file.
+inline constexpr std::string_view kOptionsFormat = "graspsynth-options/1";
+
+/// What an option holds, and how each front end writes it.
+enum class OptionKind {
+  kBool,        ///< flag --NAME (default false) or --no-NAME (default true); Python bool
+  kInt,         ///< an integer in [lo, hi] (and in the range of an int)
+  kUnsigned,    ///< an integer >= 0 (seeds)
+  kNumber,      ///< a finite number in its range
+  kText,        ///< a text, one of `choices` when it has them
+  kTextList,    ///< texts: command line "a,b"; Python and JSON a list of texts
+  kNumbers,     ///< `count` finite numbers, or none: command line "x,y"; Python and JSON a list
+  kNumberPair,  ///< two numbers MIN MAX (0 < MIN <= MAX): command line two values
+};
+
+/// The value of an option, by kind: bool; int64_t (kInt); uint64_t (kUnsigned); double
+/// (kNumber); std::string (kText); texts (kTextList); numbers (kNumbers, kNumberPair).
+using Value = std::variant<bool, int64_t, uint64_t, double, std::string, std::vector<std::string>,
+                           std::vector<double>>;
+
+/// What the front ends show of an option and check of its values.
+struct OptionInfo {
+  std::string name;  ///< snake_case: the Python keyword and the config key; the flag --kebab-case
+  OptionKind kind = OptionKind::kBool;
+  std::string help;                       ///< one sentence or two, with the unit
+  double lo = -INFINITY, hi = INFINITY;   ///< kInt, kNumber: the range
+  bool lo_open = false, hi_open = false;  ///< kNumber: the range excludes lo, hi
+  std::vector<std::string> choices;       ///< kText, kTextList: the allowed texts (empty: any)
+  int count = 0;                          ///< kNumbers: how many numbers
+  bool required = false;                  ///< no default: the front end must give it
+  bool on_off = false;       ///< kBool: the command line spells it --NAME on|off, not a flag
+  bool number_list = false;  ///< kText: also a list of numbers (Python, JSON), written "a,b"
+  std::string group;         ///< the help's heading for it (empty: the command's options)
+  std::string placeholder;   ///< what the help shows for its value ("X,Y"); empty: by kind
+
+  /// The placeholder, or the kind's: NUMBER, INT, TEXT, a|b|c, on|off, MIN MAX, N1,...,N7.
+  std::string Placeholder() const;
+
+  /// The command-line flag: "--" and the name with '-' for '_' ("--min-robustness"), or
+  /// "--no-..." for a bool that is true by default (given `default_value`).
+  std::string Flag(const Value& default_value) const;
+};
+
+/// Why `value` is not a value of `info` (its kind, range or choices), or "" when it is.
+std::string CheckValue(const OptionInfo& info, const Value& value);
+
+/// `value` as the help and the Python signature show it: "20", "0.8", "on", "interp",
+/// "nearest,interp", "0.5 2", "" for no numbers.
+std::string ShowValue(const OptionInfo& info, const Value& value);
+
+/// The value of a command-line text for `info` (a number, a text, "a,b" lists, "on"/"off").
+/// Throws InputError "<where>: <why>" when it does not parse or is out of range.
+Value ParseText(const OptionInfo& info, const std::string& text, const std::string& where);
+
+/// The value of a JSON field for `info`; throws InputError naming the file and the field.
+Value ValueFromJson(const OptionInfo& info, const JsonReader& field);
+
+/// One option of request type R: what it is, and how it reads and writes R.
+template <class R>
+struct Option {
+  OptionInfo info;
+  std::function<Value(const R&)> get;
+  std::function<void(R&, const Value&)> set;
+  /// A further check of a value that passed CheckValue: throws InputError naming `where`.
+  std::function<void(const Value& value, const std::string& where)> check;
+};
+
+/// The options of a request type, in the order the front ends list them.
+template <class R>
+using OptionList = std::vector<Option<R>>;
+
+/// Sets `option` of `request` to `value` after checking it; throws InputError "<where>: <why>"
+/// when it is not a value of the option.
+template <class R>
+void Apply(const Option<R>& option, const Value& value, const std::string& where, R* request) {
+  if (const std::string why = CheckValue(option.info, value); !why.empty()) {
+    throw InputError(where + ": " + why);
+  }
+  if (option.check) option.check(value, where);
+  option.set(*request, value);
+}
+
+/// The option named `name`, or nullptr.
+template <class R>
+const Option<R>* FindOption(const OptionList<R>& options, std::string_view name) {
+  for (const Option<R>& o : options) {
+    if (o.info.name == name) return &o;
+  }
+  return nullptr;
+}
+
+/// The name of `names` nearest to a mistyped `name` (by edit distance, at most a third of its
+/// length), or "" when none is that near.
+std::string NearestName(const std::vector<std::string>& names, std::string_view name);
+
+namespace detail {
+/// The fields of the JSON object of options in `file`, each with the option it sets (an index
+/// in `names`); checks the format tag when the file has one. Throws InputError as ApplyConfig
+/// says.
+std::vector<std::pair<size_t, JsonReader>> ConfigFields(const std::filesystem::path& file,
+                                                        const std::vector<std::string>& names);
+}  // namespace detail
+
+/// Reads a JSON object of options (`--config FILE`: {"perturb": 5, "method": "line"}, and
+/// optionally "format": "graspsynth-options/1") into `request`, over what it holds. Throws
+/// InputError naming the file and the field for a file that cannot be read, a key that is not
+/// an option (with the nearest option's name) or a value that is not one of the option's.
+template <class R>
+void ApplyConfig(const OptionList<R>& options, const std::filesystem::path& file, R* request) {
+  std::vector<std::string> names;
+  for (const Option<R>& o : options) names.push_back(o.info.name);
+  for (const auto& [k, field] : detail::ConfigFields(file, names)) {
+    Apply(options[k], ValueFromJson(options[k].info, field),
+          field.source() + ": field '" + field.path() + "'", request);
+  }
+}
+
+/// Makes an option that reads and writes the field `ref` returns, a lambda
+/// `[](R& r) -> T& { return r.gate.seed; }` (through nested options where they are); T is
+/// bool, int, uint64_t, double, std::string or std::vector<std::string>.
+template <class R, class F>
+Option<R> FieldOption(OptionInfo info, F ref) {
+  using T = std::remove_reference_t<std::invoke_result_t<F, R&>>;
+  Option<R> o;
+  o.info = std::move(info);
+  o.get = [ref](const R& r) -> Value {
+    const T& v = ref(const_cast<R&>(r));
+    if constexpr (std::is_same_v<T, int>) {
+      return static_cast<int64_t>(v);
+    } else {
+      return v;
+    }
+  };
+  o.set = [ref](R& r, const Value& v) {
+    if constexpr (std::is_same_v<T, int>) {
+      ref(r) = static_cast<int>(std::get<int64_t>(v));
+    } else {
+      ref(r) = std::get<T>(v);
+    }
+  };
+  return o;
+}
+
+}  // namespace graspsynth::request

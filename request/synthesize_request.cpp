@@ -1,0 +1,151 @@
+#include "request/synthesize_request.hpp"
+
+#include <utility>
+
+#include "request/physics_options.hpp"
+#include "solver/reach_planning.hpp"
+
+namespace graspsynth::request {
+namespace {
+
+using R = SynthesizeRequest;
+
+OptionInfo Info(const char* name, OptionKind kind, std::string help) {
+  return {.name = name, .kind = kind, .help = std::move(help)};
+}
+
+OptionInfo Placeholder(OptionInfo info, const char* placeholder) {
+  info.placeholder = placeholder;
+  return info;
+}
+
+// `count` numbers held as an optional fixed-size vector (at, start).
+template <int N, class F>
+Option<R> OptionalVectorOption(OptionInfo info, F ref) {
+  info.count = N;
+  Option<R> o;
+  o.info = std::move(info);
+  o.get = [ref](const R& r) -> Value {
+    const auto& v = ref(const_cast<R&>(r));
+    return v ? std::vector<double>(v->data(), v->data() + N) : std::vector<double>();
+  };
+  o.set = [ref](R& r, const Value& value) {
+    const auto& v = std::get<std::vector<double>>(value);
+    auto& field = ref(r);
+    if (v.empty()) {
+      field.reset();
+    } else {
+      field.emplace();
+      for (int i = 0; i < N; ++i) (*field)[i] = v[static_cast<size_t>(i)];
+    }
+  };
+  return o;
+}
+
+OptionList<R> MakeOptions() {
+  OptionList<R> list;
+  OptionInfo theta = Info("theta", OptionKind::kNumber, "Object orientation, degrees");
+  theta.required = true;
+  list.push_back(FieldOption<R>(theta, [](R& r) -> double& { return r.theta; }));
+  list.push_back(OptionalVectorOption<2>(
+      Placeholder(
+          Info("at", OptionKind::kNumbers,
+               "X,Y: the object centre on the table, world frame, metres (e.g. -0.30,0.90); "
+               "default: the scene's object centre (the paper's fixed position)"),
+          "X,Y"),
+      [](R& r) -> std::optional<Eigen::Vector2d>& { return r.at; }));
+  OptionInfo method = Info("method", OptionKind::kText, "interp, line or nearest");
+  method.choices = {"interp", "line", "nearest"};
+  list.push_back(FieldOption<R>(method, [](R& r) -> std::string& { return r.method; }));
+  list.push_back(FieldOption<R>(
+      Info("refine", OptionKind::kBool, "The Ceres and NLopt refinement of the motion"),
+      [](R& r) -> bool& { return r.refine; }));
+  OptionInfo reach = Info("reach", OptionKind::kText,
+                          "spline (the paper's Cartesian spline), joint (minimum-jerk joint move "
+                          "to the pre-grasp configuration) or auto (the spline unless it passes "
+                          "within 1 cm of the workspace's edge)");
+  reach.choices = {"spline", "joint", "auto"};
+  list.push_back(FieldOption<R>(reach, [](R& r) -> std::string& { return r.reach; }));
+  list.push_back(FieldOption<R>(
+      Info("clearance_margin", OptionKind::kNumber,
+           "The refinement's clearance of hand and arm from object and table along the "
+           "approach, m"),
+      [](R& r) -> double& { return r.clearance_margin; }));
+  list.push_back(FieldOption<R>(
+      Info("strict_thresholds", OptionKind::kBool,
+           "Refine to the default clearance, penetration and contact thresholds even where the "
+           "source demonstrations, which held the object in physics, break them"),
+      [](R& r) -> bool& { return r.strict_thresholds; }));
+  list.push_back(FieldOption<R>(
+      Info("grip_slide", OptionKind::kBool,
+           "After the refinement, slide a grasp that holds the handle within 4 cm of its end in "
+           "toward the object's centre (by up to 5 cm, then half and a quarter of it; the first "
+           "that keeps the refinement's constraints and 2 cm between arm and object is kept; a "
+           "slid grip whose nominal trial fails gives way to the unslid one)"),
+      [](R& r) -> bool& { return r.grip_slide; }));
+  list.push_back(OptionalVectorOption<kArmDof>(
+      Placeholder(Info("start", OptionKind::kNumbers,
+                       "Start arm configuration q1,...,q7, radians (default: the rest pose for "
+                       "the grasp orientation)"),
+                  "Q1,...,Q7"),
+      [](R& r) -> std::optional<Vector7d>& { return r.start; }));
+  list.push_back(FieldOption<R>(Info("seed", OptionKind::kUnsigned, "Seed of the perturbed trials"),
+                                [](R& r) -> uint64_t& { return r.gate.seed; }));
+  OptionInfo perturb =
+      Info("perturb", OptionKind::kInt, "Perturbed trials of the physics gate (0: nominal only)");
+  perturb.lo = 0;
+  list.push_back(FieldOption<R>(perturb, [](R& r) -> int& { return r.gate.perturbations; }));
+  OptionInfo threads =
+      Info("threads", OptionKind::kInt, "Worker threads of the gate (0: all cores)");
+  threads.lo = 0;
+  threads.hi = 1024;
+  list.push_back(FieldOption<R>(threads, [](R& r) -> int& { return r.gate.threads; }));
+  OptionInfo robustness = Info("min_robustness", OptionKind::kNumber,
+                               "Success fraction the gate needs under perturbation");
+  robustness.lo = 0.0;
+  robustness.hi = 1.0;
+  list.push_back(FieldOption<R>(robustness, [](R& r) -> double& { return r.gate.min_robustness; }));
+  list.push_back(FieldOption<R>(
+      Info("physics_fallback", OptionKind::kBool,
+           "An interp blend whose nominal trial fails in physics gives way to the fallbacks of a "
+           "bracket that cannot be blended, the nearer demonstration turned with the object "
+           "first"),
+      [](R& r) -> bool& { return r.physics_fallback; }));
+  for (Option<R>& o : PhysicsOptions<R>(
+           [](R& r) -> PhysicsPerturbationOptions& { return r.gate.perturbation.physics; })) {
+    list.push_back(std::move(o));
+  }
+  return list;
+}
+
+}  // namespace
+
+const OptionList<SynthesizeRequest>& SynthesizeOptions() {
+  static const OptionList<SynthesizeRequest> options = MakeOptions();
+  return options;
+}
+
+ValidatedSynthesisOptions ToValidatedSynthesisOptions(const SynthesizeRequest& request) {
+  ValidatedSynthesisOptions vo;
+  SynthesisOptions& so = vo.synthesis;
+  so.generation.method = ParseSynthesisMethod(request.method);
+  if (!request.refine) so.refinement_stages.clear();
+  so.reach.method = ParseReachMethod(request.reach);
+  so.refinement.clearance_margin = request.clearance_margin;
+  if (request.strict_thresholds) so.source_thresholds.reset();
+  if (request.grip_slide) {
+    if (!request.refine)
+      throw InputError(
+          "grip_slide needs the refinement (refine on; on the command line, drop --no-refine)");
+    so.grip_slide = GripSlideOptions{};
+  }
+  so.start = request.start;
+  vo.physics_fallback = request.physics_fallback;
+  vo.gate = request.gate;
+  std::string why;
+  if (!so.IsValid(&why)) throw InputError("bad synthesis option: " + why);
+  if (!vo.gate.IsValid(&why)) throw InputError("bad physics gate option: " + why);
+  return vo;
+}
+
+}  // namespace graspsynth::request

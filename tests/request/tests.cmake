@@ -1,0 +1,4 @@
+# Tests of the requests (request/): the one description of each option, its checks, the config
+# file, and the mapping onto the library's options.
+graspsynth_test(request/option_test.cpp LIBS graspsynth::request)
+graspsynth_test(request/requests_test.cpp LIBS graspsynth::request)
