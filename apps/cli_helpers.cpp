@@ -91,17 +91,6 @@ std::optional<Eigen::Vector2d> ParseAt(const std::string& text) {
   return xy;
 }
 
-std::vector<Eigen::Vector2d> ParsePositionGrid(const std::string& x, const std::string& y) {
-  if (x.empty() != y.empty()) throw InputError("--x and --y go together (a grid of positions)");
-  std::vector<Eigen::Vector2d> grid;
-  if (x.empty()) return grid;
-  const std::vector<double> xs = ParseNumberList(x, "--x", "metres");
-  for (double yv : ParseNumberList(y, "--y", "metres")) {
-    for (double xv : xs) grid.emplace_back(xv, yv);
-  }
-  return grid;
-}
-
 void PlaceTrajectoryObject(const SceneModel& scene, const std::optional<Eigen::Vector2d>& at,
                            const std::string& file, JointTrajectory* trajectory) {
   if (at) trajectory->object_xy = at;

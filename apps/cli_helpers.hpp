@@ -48,11 +48,6 @@ void AddAtFlag(CLI::App* app, std::string* at);
 /// Throws InputError naming the flag and the text otherwise.
 std::optional<Eigen::Vector2d> ParseAt(const std::string& text);
 
-/// The object positions of --x and --y (each a list in the orientation-list grammar, metres):
-/// every x at every y, y outermost; none when both are empty. Throws InputError when only one
-/// is given or a list is malformed.
-std::vector<Eigen::Vector2d> ParsePositionGrid(const std::string& x, const std::string& y);
-
 /// Puts `trajectory`'s object at `at` (--at) when given, and checks that the object then
 /// stands on the scene's table (SceneModel::CheckOnTable); throws InputError naming --at or
 /// `file` (where the trajectory's "object_xy" came from) otherwise.

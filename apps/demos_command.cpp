@@ -56,7 +56,7 @@ OperatorOptions LoadOperator(const DemosOptions& o, const SceneModel& scene) {
     for (OrientationPlan& plan : options.plans) plan.trials = 0;
   }
   if (!o.x.empty() || !o.y.empty()) {
-    options.positions = ParsePositionGrid(o.x, o.y);
+    options.positions = ParsePositionGrid(o.x, o.y, "--x", "--y");
     std::string why;
     if (!options.IsValid(&why)) throw InputError("--x/--y: " + why);
   }

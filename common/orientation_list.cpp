@@ -68,4 +68,19 @@ std::vector<double> ParseNumberList(const std::string& text, const std::string& 
   return thetas;
 }
 
+std::vector<Eigen::Vector2d> ParsePositionGrid(const std::string& x, const std::string& y,
+                                               const std::string& x_option,
+                                               const std::string& y_option) {
+  if (x.empty() != y.empty()) {
+    throw InputError(x_option + " and " + y_option + " go together (a grid of positions)");
+  }
+  std::vector<Eigen::Vector2d> grid;
+  if (x.empty()) return grid;
+  const std::vector<double> xs = ParseNumberList(x, x_option, "metres");
+  for (double yv : ParseNumberList(y, y_option, "metres")) {
+    for (double xv : xs) grid.emplace_back(xv, yv);
+  }
+  return grid;
+}
+
 }  // namespace graspsynth

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
 namespace graspsynth {
 
 /// Parses a comma-separated list of orientations (deg); each item is a finite number or a
@@ -19,5 +21,12 @@ std::vector<double> ParseOrientationList(const std::string& text, const std::str
 /// The same grammar for other quantities: `unit` names them in the messages ("metres").
 std::vector<double> ParseNumberList(const std::string& text, const std::string& option,
                                     const std::string& unit);
+
+/// The object positions of two lists of metres in this grammar, `x` (option `x_option`) and `y`
+/// (`y_option`): every x at every y, y outermost; none when both are empty. Throws InputError
+/// when only one is given or a list is malformed.
+std::vector<Eigen::Vector2d> ParsePositionGrid(const std::string& x, const std::string& y,
+                                               const std::string& x_option,
+                                               const std::string& y_option);
 
 }  // namespace graspsynth

@@ -11,10 +11,6 @@ namespace {
 
 using R = GeneralizeRequest;
 
-OptionInfo Info(const char* name, OptionKind kind, std::string help) {
-  return {.name = name, .kind = kind, .help = std::move(help)};
-}
-
 // Throws InputError naming `where` unless every label names a study method, once.
 void CheckMethods(const Value& value, const std::string& where) {
   std::vector<std::string> seen;
@@ -41,80 +37,61 @@ std::function<void(const Value&, const std::string&)> NumberListCheck(const char
 OptionList<R> MakeOptions() {
   OptionList<R> list;
   OptionInfo orientations =
-      Info("orientations", OptionKind::kText,
-           "Orientations, deg: numbers and ranges FROM:TO:STEP, comma-separated");
+      MakeInfo("orientations", OptionKind::kText,
+               "Orientations, deg: numbers and ranges FROM:TO:STEP, comma-separated");
   orientations.number_list = true;
   Option<R> o = FieldOption<R>(orientations, [](R& r) -> std::string& { return r.orientations; });
   o.check = NumberListCheck("degrees");
   list.push_back(std::move(o));
-  OptionInfo x = Info("x", OptionKind::kText,
-                      "Object positions: x of the object centre on the table, m, numbers and "
-                      "ranges FROM:TO:STEP (with y: every orientation at every x at every y); "
-                      "default: the scene's object centre");
+  OptionInfo x = MakeInfo("x", OptionKind::kText,
+                          "Object positions: x of the object centre on the table, m, numbers and "
+                          "ranges FROM:TO:STEP (with y: every orientation at every x at every y); "
+                          "default: the scene's object centre");
   x.number_list = true;
   o = FieldOption<R>(x, [](R& r) -> std::string& { return r.x; });
   o.check = NumberListCheck("metres");
   list.push_back(std::move(o));
   OptionInfo y =
-      Info("y", OptionKind::kText, "Object positions: y of the object centre, m (see x)");
+      MakeInfo("y", OptionKind::kText, "Object positions: y of the object centre, m (see x)");
   y.number_list = true;
   o = FieldOption<R>(y, [](R& r) -> std::string& { return r.y; });
   o.check = NumberListCheck("metres");
   list.push_back(std::move(o));
-  o = FieldOption<R>(Info("methods", OptionKind::kTextList, "Comma-separated methods"),
+  o = FieldOption<R>(MakeInfo("methods", OptionKind::kTextList, "Comma-separated methods"),
                      [](R& r) -> std::vector<std::string>& { return r.methods; });
   o.check = CheckMethods;
   list.push_back(std::move(o));
-  list.push_back(
-      FieldOption<R>(Info("leave_one_out", OptionKind::kBool,
-                          "Synthesize each inner library orientation from the library without it "
-                          "(orientations is not used)"),
-                     [](R& r) -> bool& { return r.leave_one_out; }));
+  list.push_back(FieldOption<R>(
+      MakeInfo("leave_one_out", OptionKind::kBool,
+               "Synthesize each inner library orientation from the library without it "
+               "(orientations is not used)"),
+      [](R& r) -> bool& { return r.leave_one_out; }));
   OptionInfo perturb =
-      Info("perturb", OptionKind::kInt, "Perturbed replays per grasp (0: nominal only)");
+      MakeInfo("perturb", OptionKind::kInt, "Perturbed replays per grasp (0: nominal only)");
   perturb.lo = 0;
   list.push_back(FieldOption<R>(perturb, [](R& r) -> int& { return r.perturb; }));
-  OptionInfo sensitivity = Info("sensitivity", OptionKind::kInt,
-                                "Replays per end of each physics factor's range in each grasp's "
-                                "sensitivity table (0: none)");
+  OptionInfo sensitivity =
+      MakeInfo("sensitivity", OptionKind::kInt,
+               "Replays per end of each physics factor's range in each grasp's "
+               "sensitivity table (0: none)");
   sensitivity.lo = 0;
   list.push_back(FieldOption<R>(sensitivity, [](R& r) -> int& { return r.sensitivity; }));
-  OptionInfo noise = Info("noise_scale", OptionKind::kNumber,
-                          "Factor on the replays' wrist position, orientation and finger noise "
-                          "(5 mm, 2 deg, 2 deg)");
+  OptionInfo noise = MakeInfo("noise_scale", OptionKind::kNumber,
+                              "Factor on the replays' wrist position, orientation and finger noise "
+                              "(5 mm, 2 deg, 2 deg)");
   noise.lo = 0.0;
   list.push_back(FieldOption<R>(noise, [](R& r) -> double& { return r.noise_scale; }));
   list.push_back(
-      FieldOption<R>(Info("seed", OptionKind::kUnsigned, "Seed of the perturbed replays"),
+      FieldOption<R>(MakeInfo("seed", OptionKind::kUnsigned, "Seed of the perturbed replays"),
                      [](R& r) -> uint64_t& { return r.seed; }));
   OptionInfo threads =
-      Info("threads", OptionKind::kInt, "Worker threads (0: all cores); changes no result");
+      MakeInfo("threads", OptionKind::kInt, "Worker threads (0: all cores); changes no result");
   threads.lo = 0;
   threads.hi = 1024;
   list.push_back(FieldOption<R>(threads, [](R& r) -> int& { return r.threads; }));
-  list.push_back(FieldOption<R>(
-      Info("physics_fallback", OptionKind::kBool,
-           "An interp blend whose nominal trial fails in physics gives way to the fallbacks of a "
-           "bracket that cannot be blended, the nearer demonstration turned with the object "
-           "first"),
-      [](R& r) -> bool& { return r.physics_fallback; }));
-  for (Option<R>& p :
-       PhysicsOptions<R>([](R& r) -> PhysicsPerturbationOptions& { return r.physics; })) {
-    list.push_back(std::move(p));
-  }
+  list.push_back(PhysicsFallbackOption<R>([](R& r) -> bool& { return r.physics_fallback; }));
+  AppendPhysicsOptions<R>([](R& r) -> PhysicsPerturbationOptions& { return r.physics; }, &list);
   return list;
-}
-
-std::vector<Eigen::Vector2d> PositionGrid(const std::string& x, const std::string& y) {
-  if (x.empty() != y.empty())
-    throw InputError("x and y go together (a grid of positions; --x and --y on the command line)");
-  std::vector<Eigen::Vector2d> grid;
-  if (x.empty()) return grid;
-  const std::vector<double> xs = ParseNumberList(x, "x", "metres");
-  for (double yv : ParseNumberList(y, "y", "metres")) {
-    for (double xv : xs) grid.emplace_back(xv, yv);
-  }
-  return grid;
 }
 
 }  // namespace
@@ -144,7 +121,7 @@ SynthesisTableOptions ToSynthesisTableOptions(const GeneralizeRequest& request) 
     }
   } else {
     table.orientations = ParseOrientationList(request.orientations, "orientations");
-    table.positions = PositionGrid(request.x, request.y);
+    table.positions = ParsePositionGrid(request.x, request.y, "x", "y");
   }
   return table;
 }

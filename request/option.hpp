@@ -148,6 +148,15 @@ void ApplyConfig(const OptionList<R>& options, const std::filesystem::path& file
   }
 }
 
+/// The description of an option `name` of `kind` with `help`; the rest at their defaults.
+inline OptionInfo MakeInfo(std::string name, OptionKind kind, std::string help) {
+  OptionInfo info;
+  info.name = std::move(name);
+  info.kind = kind;
+  info.help = std::move(help);
+  return info;
+}
+
 /// Makes an option that reads and writes the field `ref` returns, a lambda
 /// `[](R& r) -> T& { return r.gate.seed; }` (through nested options where they are); T is
 /// bool, int, uint64_t, double, std::string or std::vector<std::string>.

@@ -1,8 +1,9 @@
 #pragma once
 
 /// @file
-/// The options of the physics perturbation (simulation/physics_perturbation.hpp), for every
-/// request whose replays draw their physics: physics on|off, the friction, mass and servo
+/// The options of the physics: the fallback of a blend that fails in physics, and the options
+/// of the physics perturbation (simulation/physics_perturbation.hpp), for every request whose
+/// replays draw their physics: physics on|off, the friction, mass and servo
 /// force spreads, the contact stiffness and damping ranges, the centre-of-mass offset and the
 /// fine step. Their ranges are PhysicsPerturbationOptions::IsValid's.
 
@@ -26,7 +27,7 @@ OptionList<R> PhysicsOptions(F ref) {
   OptionList<R> list;
   const auto number = [&](const char* name, double P::*field, double lo, bool lo_open, double hi,
                           bool hi_open, const char* help) {
-    OptionInfo info{.name = name, .kind = OptionKind::kNumber, .help = help};
+    OptionInfo info = MakeInfo(name, OptionKind::kNumber, help);
     info.lo = lo;
     info.lo_open = lo_open;
     info.hi = hi;
@@ -36,10 +37,9 @@ OptionList<R> PhysicsOptions(F ref) {
   };
   const auto range = [&](const char* name, double P::*lo, double P::*hi, const char* what) {
     Option<R> o;
-    o.info = {
-        .name = name,
-        .kind = OptionKind::kNumberPair,
-        .help = std::string("Factor range of the contact ") + what + " (log-uniform), MIN MAX"};
+    o.info =
+        MakeInfo(name, OptionKind::kNumberPair,
+                 std::string("Factor range of the contact ") + what + " (log-uniform), MIN MAX");
     o.info.group = kPhysicsGroup;
     o.get = [ref, lo, hi](const R& r) -> Value {
       const P& p = ref(const_cast<R&>(r));
@@ -52,12 +52,11 @@ OptionList<R> PhysicsOptions(F ref) {
     };
     list.push_back(std::move(o));
   };
-  OptionInfo physics{.name = "physics",
-                     .kind = OptionKind::kBool,
-                     .help =
-                         "on: every perturbed replay also draws friction, contact stiffness "
-                         "and damping, the object's mass and centre of mass, the finger "
-                         "servos' force and the step; off: the modelled physics only"};
+  OptionInfo physics =
+      MakeInfo("physics", OptionKind::kBool,
+               "on: every perturbed replay also draws friction, contact stiffness and damping, the "
+               "object's mass and centre of mass, the finger servos' force and the step; off: the "
+               "modelled physics only");
   physics.on_off = true;
   physics.group = kPhysicsGroup;
   list.push_back(FieldOption<R>(physics, [ref](R& r) -> bool& { return ref(r).enabled; }));
@@ -75,6 +74,24 @@ OptionList<R> PhysicsOptions(F ref) {
   number("fine_step_probability", &P::fine_step_probability, 0.0, false, 1.0, false,
          "Chance that a replay runs at fine_step instead of the trial's step");
   return list;
+}
+
+/// Appends PhysicsOptions<R>(ref) to `list`.
+template <class R, class F>
+void AppendPhysicsOptions(F ref, OptionList<R>* list) {
+  for (Option<R>& o : PhysicsOptions<R>(ref)) list->push_back(std::move(o));
+}
+
+/// The option physics_fallback (ValidatedSynthesisOptions::physics_fallback) of request type
+/// R, reading and writing the bool that `ref` returns.
+template <class R, class F>
+Option<R> PhysicsFallbackOption(F ref) {
+  return FieldOption<R>(
+      MakeInfo("physics_fallback", OptionKind::kBool,
+               "An interp blend whose nominal trial fails in physics gives way to the fallbacks "
+               "of a bracket that cannot be blended, the nearer demonstration turned with the "
+               "object first"),
+      ref);
 }
 
 }  // namespace graspsynth::request

@@ -10,10 +10,6 @@ namespace {
 
 using R = SynthesizeRequest;
 
-OptionInfo Info(const char* name, OptionKind kind, std::string help) {
-  return {.name = name, .kind = kind, .help = std::move(help)};
-}
-
 OptionInfo Placeholder(OptionInfo info, const char* placeholder) {
   info.placeholder = placeholder;
   return info;
@@ -44,77 +40,73 @@ Option<R> OptionalVectorOption(OptionInfo info, F ref) {
 
 OptionList<R> MakeOptions() {
   OptionList<R> list;
-  OptionInfo theta = Info("theta", OptionKind::kNumber, "Object orientation, degrees");
+  OptionInfo theta = MakeInfo("theta", OptionKind::kNumber, "Object orientation, degrees");
   theta.required = true;
   list.push_back(FieldOption<R>(theta, [](R& r) -> double& { return r.theta; }));
   list.push_back(OptionalVectorOption<2>(
       Placeholder(
-          Info("at", OptionKind::kNumbers,
-               "X,Y: the object centre on the table, world frame, metres (e.g. -0.30,0.90); "
-               "default: the scene's object centre (the paper's fixed position)"),
+          MakeInfo("at", OptionKind::kNumbers,
+                   "X,Y: the object centre on the table, world frame, metres (e.g. -0.30,0.90); "
+                   "default: the scene's object centre (the paper's fixed position)"),
           "X,Y"),
       [](R& r) -> std::optional<Eigen::Vector2d>& { return r.at; }));
-  OptionInfo method = Info("method", OptionKind::kText, "interp, line or nearest");
+  OptionInfo method = MakeInfo("method", OptionKind::kText, "interp, line or nearest");
   method.choices = {"interp", "line", "nearest"};
   list.push_back(FieldOption<R>(method, [](R& r) -> std::string& { return r.method; }));
   list.push_back(FieldOption<R>(
-      Info("refine", OptionKind::kBool, "The Ceres and NLopt refinement of the motion"),
+      MakeInfo("refine", OptionKind::kBool, "The Ceres and NLopt refinement of the motion"),
       [](R& r) -> bool& { return r.refine; }));
-  OptionInfo reach = Info("reach", OptionKind::kText,
-                          "spline (the paper's Cartesian spline), joint (minimum-jerk joint move "
-                          "to the pre-grasp configuration) or auto (the spline unless it passes "
-                          "within 1 cm of the workspace's edge)");
+  OptionInfo reach =
+      MakeInfo("reach", OptionKind::kText,
+               "spline (the paper's Cartesian spline), joint (minimum-jerk joint move "
+               "to the pre-grasp configuration) or auto (the spline unless it passes "
+               "within 1 cm of the workspace's edge)");
   reach.choices = {"spline", "joint", "auto"};
   list.push_back(FieldOption<R>(reach, [](R& r) -> std::string& { return r.reach; }));
   list.push_back(FieldOption<R>(
-      Info("clearance_margin", OptionKind::kNumber,
-           "The refinement's clearance of hand and arm from object and table along the "
-           "approach, m"),
+      MakeInfo("clearance_margin", OptionKind::kNumber,
+               "The refinement's clearance of hand and arm from object and table along the "
+               "approach, m"),
       [](R& r) -> double& { return r.clearance_margin; }));
   list.push_back(FieldOption<R>(
-      Info("strict_thresholds", OptionKind::kBool,
-           "Refine to the default clearance, penetration and contact thresholds even where the "
-           "source demonstrations, which held the object in physics, break them"),
+      MakeInfo("strict_thresholds", OptionKind::kBool,
+               "Refine to the default clearance, penetration and contact thresholds even where the "
+               "source demonstrations, which held the object in physics, break them"),
       [](R& r) -> bool& { return r.strict_thresholds; }));
   list.push_back(FieldOption<R>(
-      Info("grip_slide", OptionKind::kBool,
-           "After the refinement, slide a grasp that holds the handle within 4 cm of its end in "
-           "toward the object's centre (by up to 5 cm, then half and a quarter of it; the first "
-           "that keeps the refinement's constraints and 2 cm between arm and object is kept; a "
-           "slid grip whose nominal trial fails gives way to the unslid one)"),
+      MakeInfo(
+          "grip_slide", OptionKind::kBool,
+          "After the refinement, slide a grasp that holds the handle within 4 cm of its end in "
+          "toward the object's centre (by up to 5 cm, then half and a quarter of it; the first "
+          "that keeps the refinement's constraints and 2 cm between arm and object is kept; a "
+          "slid grip whose nominal trial fails gives way to the unslid one)"),
       [](R& r) -> bool& { return r.grip_slide; }));
   list.push_back(OptionalVectorOption<kArmDof>(
-      Placeholder(Info("start", OptionKind::kNumbers,
-                       "Start arm configuration q1,...,q7, radians (default: the rest pose for "
-                       "the grasp orientation)"),
+      Placeholder(MakeInfo("start", OptionKind::kNumbers,
+                           "Start arm configuration q1,...,q7, radians (default: the rest pose for "
+                           "the grasp orientation)"),
                   "Q1,...,Q7"),
       [](R& r) -> std::optional<Vector7d>& { return r.start; }));
-  list.push_back(FieldOption<R>(Info("seed", OptionKind::kUnsigned, "Seed of the perturbed trials"),
-                                [](R& r) -> uint64_t& { return r.gate.seed; }));
-  OptionInfo perturb =
-      Info("perturb", OptionKind::kInt, "Perturbed trials of the physics gate (0: nominal only)");
+  list.push_back(
+      FieldOption<R>(MakeInfo("seed", OptionKind::kUnsigned, "Seed of the perturbed trials"),
+                     [](R& r) -> uint64_t& { return r.gate.seed; }));
+  OptionInfo perturb = MakeInfo("perturb", OptionKind::kInt,
+                                "Perturbed trials of the physics gate (0: nominal only)");
   perturb.lo = 0;
   list.push_back(FieldOption<R>(perturb, [](R& r) -> int& { return r.gate.perturbations; }));
   OptionInfo threads =
-      Info("threads", OptionKind::kInt, "Worker threads of the gate (0: all cores)");
+      MakeInfo("threads", OptionKind::kInt, "Worker threads of the gate (0: all cores)");
   threads.lo = 0;
   threads.hi = 1024;
   list.push_back(FieldOption<R>(threads, [](R& r) -> int& { return r.gate.threads; }));
-  OptionInfo robustness = Info("min_robustness", OptionKind::kNumber,
-                               "Success fraction the gate needs under perturbation");
+  OptionInfo robustness = MakeInfo("min_robustness", OptionKind::kNumber,
+                                   "Success fraction the gate needs under perturbation");
   robustness.lo = 0.0;
   robustness.hi = 1.0;
   list.push_back(FieldOption<R>(robustness, [](R& r) -> double& { return r.gate.min_robustness; }));
-  list.push_back(FieldOption<R>(
-      Info("physics_fallback", OptionKind::kBool,
-           "An interp blend whose nominal trial fails in physics gives way to the fallbacks of a "
-           "bracket that cannot be blended, the nearer demonstration turned with the object "
-           "first"),
-      [](R& r) -> bool& { return r.physics_fallback; }));
-  for (Option<R>& o : PhysicsOptions<R>(
-           [](R& r) -> PhysicsPerturbationOptions& { return r.gate.perturbation.physics; })) {
-    list.push_back(std::move(o));
-  }
+  list.push_back(PhysicsFallbackOption<R>([](R& r) -> bool& { return r.physics_fallback; }));
+  AppendPhysicsOptions<R>(
+      [](R& r) -> PhysicsPerturbationOptions& { return r.gate.perturbation.physics; }, &list);
   return list;
 }
 

@@ -31,7 +31,7 @@ struct Toy {
   Inner inner;
 };
 
-OptionInfo Info(const char* name, OptionKind kind) { return {.name = name, .kind = kind}; }
+OptionInfo Info(const char* name, OptionKind kind) { return MakeInfo(name, kind, ""); }
 
 const OptionList<Toy>& ToyOptions() {
   static const OptionList<Toy> options = [] {
