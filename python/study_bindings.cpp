@@ -85,6 +85,8 @@ py::dict Run(const std::optional<std::filesystem::path>& demos, bool quick,
   d["library"] = std::make_shared<GraspLibrary>(result.selection.library);
   d["synthesis"] = JsonTextToPython(synthesis);
   d["timing"] = JsonTextToPython(timing);
+  d["rows"] = py::cast(result.rows);
+  d["summary"] = py::cast(SummarizeStudy(result.rows));
   return d;
 }
 
@@ -131,15 +133,14 @@ py::object Generalize(const py::object& library_arg, const Orientations& orienta
     throw InputError("leave_one_out needs a library with at least 3 orientations ('" +
                      library.source + "' has " + std::to_string(library.entries.size()) + ")");
   }
-  std::string text;
+  std::vector<StudyRow> rows;
   {
     py::gil_scoped_release release;
     const SimulationModel model(*RobotOrDefault(robot), scene);
-    const std::vector<StudyRow> rows = leave_one_out ? LeaveOneOutTable(model, library, table)
-                                                     : SynthesisTable(model, library, table);
-    text = StudyRowsJson(rows);
+    rows = leave_one_out ? LeaveOneOutTable(model, library, table)
+                         : SynthesisTable(model, library, table);
   }
-  return JsonTextToPython(text);
+  return py::make_tuple(rows, SummarizeStudy(rows));
 }
 
 }  // namespace
@@ -156,7 +157,8 @@ The end-to-end study of `graspsynth run`: Table I, the representative selection,
 for every orientation by each method, validated in physics. The same options give the same
 analysis, library and synthesis as the command line, whatever `threads` is.
 Returns a dict: analysis (analysis.json), library (a GraspLibrary), synthesis
-(synthesis.json: summary and rows), timing (timing.json).)doc");
+(synthesis.json: summary and rows), timing (timing.json), rows (StudyRow objects) and summary
+(StudyMethodSummary objects).)doc");
 
   m.def("generalize", &Generalize, py::arg("library") = py::none(),
         py::arg("orientations") = std::string("20:100:1"),
@@ -169,7 +171,8 @@ Returns a dict: analysis (analysis.json), library (a GraspLibrary), synthesis
 Grasps for many orientations from a library by several methods, each validated in physics
 (`graspsynth generalize`); with leave_one_out, each inner demonstrated orientation from the
 library without it. orientations: a list of degrees or the command line's text
-("20:100:1,33"). Returns a dict: summary (per method) and rows (per orientation and method).)doc");
+("20:100:1,33"). Returns (rows, summary): StudyRow objects (per orientation and method) and
+StudyMethodSummary objects (per method).)doc");
 }
 
 }  // namespace graspsynth::python
