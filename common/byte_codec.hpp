@@ -59,6 +59,8 @@ class ByteReader {
     return static_cast<Enum>(IntIn(0, static_cast<int64_t>(last)));
   }
   std::vector<double> Doubles();
+  /// Bytes not read yet.
+  size_t left() const { return bytes_.size() - at_; }
 
   /// Throws InputError unless every byte was read.
   void Finish() const;

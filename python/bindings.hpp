@@ -102,6 +102,8 @@ std::shared_ptr<const GraspLibrary> LibraryArgument(const py::object& library,
                                                     const std::string& object_name);
 
 /// The registration of each part of the module (one source file each).
+/// The result classes and enums made from the field lists (python/result_bindings.cpp).
+void BindResults(py::module_& m);
 void BindKinematics(py::module_& m);
 void BindDemos(py::module_& m);
 void BindLibrary(py::module_& m);

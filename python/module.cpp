@@ -15,6 +15,7 @@ PYBIND11_MODULE(_core, m) {
   input_error.attr("__doc__") =
       "Bad input (a file, an argument): the message names the file, line, field and value at "
       "fault. A ValueError.";
+  graspsynth::python::BindResults(m);  // the classes and enums the others return
   graspsynth::python::BindKinematics(m);
   graspsynth::python::BindDemos(m);
   graspsynth::python::BindSimulation(m);

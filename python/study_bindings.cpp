@@ -87,6 +87,8 @@ py::dict Run(const std::optional<std::filesystem::path>& demos, bool quick,
   d["library"] = std::make_shared<GraspLibrary>(result.selection.library);
   d["synthesis"] = JsonTextToPython(synthesis);
   d["timing"] = JsonTextToPython(timing);
+  d["rows"] = py::cast(result.rows);
+  d["summary"] = py::cast(SummarizeStudy(result.rows));
   return d;
 }
 
@@ -104,15 +106,14 @@ py::object Generalize(const py::object& library_arg, const py::dict& options,
     throw InputError("leave_one_out needs a library with at least 3 orientations ('" +
                      library.source + "' has " + std::to_string(library.entries.size()) + ")");
   }
-  std::string text;
+  std::vector<StudyRow> rows;
   {
     py::gil_scoped_release release;
     const SimulationModel model(*RobotOrDefault(robot), scene);
-    const std::vector<StudyRow> rows = leave_one_out ? LeaveOneOutTable(model, library, table)
-                                                     : SynthesisTable(model, library, table);
-    text = StudyRowsJson(rows);
+    rows = leave_one_out ? LeaveOneOutTable(model, library, table)
+                         : SynthesisTable(model, library, table);
   }
-  return JsonTextToPython(text);
+  return py::make_tuple(rows, SummarizeStudy(rows));
 }
 
 }  // namespace
@@ -129,13 +130,14 @@ The end-to-end study of `graspsynth run`: Table I, the representative selection,
 for every orientation by each method, validated in physics. The same options give the same
 analysis, library and synthesis as the command line, whatever `threads` is.
 Returns a dict: analysis (analysis.json), library (a GraspLibrary), synthesis
-(synthesis.json: summary and rows), timing (timing.json).)doc");
+(synthesis.json: summary and rows), timing (timing.json), rows (StudyRow objects) and summary
+(StudyMethodSummary objects).)doc");
 
   m.def("_generalize", &Generalize, py::arg("library"), py::arg("options"), py::arg("robot"),
         py::arg("scene"), R"doc(
 generalize's work (graspsynth/__init__.py gives it its signature): the options of
-request_options("generalize") as a dict. Returns a dict: summary (per method) and rows (per
-orientation and method).)doc");
+request_options("generalize") as a dict. Returns (rows, summary): StudyRow objects (per
+orientation and method) and StudyMethodSummary objects (per method).)doc");
 }
 
 }  // namespace graspsynth::python

@@ -133,6 +133,24 @@ const char* ToString(SynthesisMethod method) {
   return "?";
 }
 
+const char* ToString(FallbackKind kind) {
+  switch (kind) {
+    case FallbackKind::kNone:
+      return "none";
+    case FallbackKind::kRobustNeighbour:
+      return "robust_neighbour";
+    case FallbackKind::kTurnedDemo:
+      return "turned_demo";
+    case FallbackKind::kLinePrinciple:
+      return "line_principle";
+    case FallbackKind::kPlainBlend:
+      return "plain_blend";
+    case FallbackKind::kPartialBlend:
+      return "partial_blend";
+  }
+  return "?";
+}
+
 SynthesisMethod ParseSynthesisMethod(const std::string& text) {
   if (text == "interp") return SynthesisMethod::kInterp;
   if (text == "line") return SynthesisMethod::kLine;

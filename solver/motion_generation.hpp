@@ -58,6 +58,10 @@ enum class FallbackKind {
   kPartialBlend,     ///< unblendable cell: the blend of its vertices that can be blended
 };
 
+/// "none", "robust_neighbour", "turned_demo", "line_principle", "plain_blend" or
+/// "partial_blend".
+const char* ToString(FallbackKind kind);
+
 /// Why a method other than the requested one was used, and the figures of what was tried.
 struct FallbackReason {
   FallbackKind kind = FallbackKind::kNone;

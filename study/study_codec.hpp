@@ -12,7 +12,7 @@
 
 namespace graspsynth {
 
-/// The bytes of `row` (common/byte_codec.hpp).
+/// The bytes of `row`: its field list (study/study_fields.hpp) through common/field_codec.hpp.
 std::string EncodeStudyRow(const StudyRow& row);
 
 /// The layout of EncodeStudyRow's bytes, kept with them in resume folders; change it with the

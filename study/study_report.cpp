@@ -6,6 +6,8 @@
 #include <sstream>
 
 #include "analysis/analysis_report.hpp"
+#include "common/field_text.hpp"
+#include "study/study_fields.hpp"
 #include "study/trial_json.hpp"
 
 namespace graspsynth {
@@ -32,15 +34,7 @@ std::string Cell(const std::string& text) {
   return out;
 }
 
-std::string CsvField(const std::string& text) {
-  if (text.find_first_of(",\"\n") == std::string::npos) return text;
-  std::string out = "\"";
-  for (char c : text) {
-    if (c == '"') out += '"';
-    out += c;
-  }
-  return out + "\"";
-}
+std::string CsvField(const std::string& text) { return CsvText(text); }
 
 }  // namespace study_text
 
@@ -48,53 +42,27 @@ namespace {
 
 using nlohmann::json;
 using study_text::Cell;
-using study_text::CsvField;
 using study_text::Where;
 
-json RowJson(const StudyRow& r) {
-  json j;
-  j["theta_deg"] = r.theta_deg;
-  if (r.at) j["at"] = {r.at->x(), r.at->y()};
-  j["method"] = r.method;
-  j["status"] = StatusName(r);
-  j["message"] = r.message;
-  j["used"] = UsedName(r);
-  j["fallback"] = r.fallback;
-  j["fallback_reason"] = r.fallback_reason.Text();
-  j["refined"] = r.refined;
-  j["gate_run"] = r.gate_run;
-  j["nominal"] = {{"success", r.nominal_success},
-                  {"outcome", NominalOutcomeName(r)},
-                  {"reason", r.nominal_reason}};
-  j["robustness"] = {{"trials", r.trials},     {"successes", r.successes},
-                     {"score", r.robustness},  {"ci95", {r.ci_low, r.ci_high}},
-                     {"failures", r.failures}, {"seed", r.seed}};
-  j["passed"] = r.passed;
-  j["gate_reason"] = r.gate_reason;
-  j["quality"] = {{"epsilon", r.epsilon}, {"force_closure", r.force_closure}};
-  j["hold"] = r.gate_run ? HoldQualityJson<json>(r.nominal_hold) : json();
-  j["sensitivity"] =
-      r.sensitivity ? SensitivityJson<json>(*r.sensitivity, TrialOptions{}.step()) : json();
-  return j;
-}
+// The JSON forms the reports share for the row's nested results (study/trial_json.hpp), and a
+// fallback's reason in words.
+struct RowJsonForms {
+  json operator()(const FallbackReason& f) const { return f.Text(); }
+  json operator()(const HoldQuality& h) const { return HoldQualityJson<json>(h); }
+  json operator()(const SensitivityResult& s) const {
+    return SensitivityJson<json>(s, TrialOptions{}.step());
+  }
+};
 
 json RowsJson(const std::vector<StudyRow>& rows) {
   json out = json::array();
-  for (const StudyRow& r : rows) out.push_back(RowJson(r));
+  for (const StudyRow& r : rows) out.push_back(FieldsJson<json>(r, RowJsonForms{}));
   return out;
 }
 
 json SummaryJson(const std::vector<StudyRow>& rows) {
   json summary = json::array();
-  for (const StudyMethodSummary& s : SummarizeStudy(rows)) {
-    summary.push_back({{"method", s.method},
-                       {"rows", s.rows},
-                       {"synthesized", s.synthesized},
-                       {"nominal_successes", s.nominal_successes},
-                       {"passed", s.passed},
-                       {"fallbacks", s.fallbacks},
-                       {"mean_robustness", s.mean_robustness}});
-  }
+  for (const StudyMethodSummary& s : SummarizeStudy(rows)) summary.push_back(FieldsJson<json>(s));
   return summary;
 }
 
@@ -128,41 +96,7 @@ std::string NominalOutcomeName(const StudyRow& row) {
   return row.nominal_outcome ? std::string(ToString(*row.nominal_outcome)) : std::string();
 }
 
-std::string StudySynthesisCsv(const std::vector<StudyRow>& rows) {
-  bool positions = false;
-  for (const StudyRow& r : rows) positions |= r.at.has_value();
-  std::string csv = (positions ? std::string("x,y,") : std::string()) +
-                    std::string(kStudySynthesisCsvHeader) + "\n";
-  for (const StudyRow& r : rows) {
-    if (positions) {
-      const Eigen::Vector2d at = r.at.value_or(Eigen::Vector2d::Constant(NAN));
-      csv += ShortestNumber(at.x()) + "," + ShortestNumber(at.y()) + ",";
-    }
-    const std::vector<std::string> fields = {StreamNumber(r.theta_deg, 17),
-                                             r.method,
-                                             StatusName(r),
-                                             UsedName(r),
-                                             r.fallback ? "1" : "0",
-                                             r.refined ? "1" : "0",
-                                             r.nominal_success ? "1" : "0",
-                                             NominalOutcomeName(r),
-                                             std::to_string(r.trials),
-                                             std::to_string(r.successes),
-                                             StreamNumber(r.robustness, 17),
-                                             StreamNumber(r.ci_low, 17),
-                                             StreamNumber(r.ci_high, 17),
-                                             r.passed ? "1" : "0",
-                                             StreamNumber(r.epsilon, 17),
-                                             r.force_closure ? "1" : "0",
-                                             r.failures};
-    for (size_t i = 0; i < fields.size(); ++i) {
-      if (i > 0) csv += ',';
-      csv += CsvField(fields[i]);
-    }
-    csv += "\n";
-  }
-  return csv;
-}
+std::string StudySynthesisCsv(const std::vector<StudyRow>& rows) { return FieldsCsv(rows); }
 
 std::string StudySynthesisJson(const StudyResult& result) {
   const StudyOptions& o = result.options;

@@ -13,7 +13,9 @@ The same C++ library as the ``graspsynth`` command, with numpy arrays in and out
 - simulation: :func:`simulate` (one trial), :func:`robustness` (perturbed replays), or a
   :class:`Simulation`; both release the GIL, so Python threads run trials in parallel;
 - studies: :func:`run` and :func:`generalize`, whose tables are :class:`Table` objects (lists
-  of dicts, ``to_frame()`` for a pandas DataFrame).
+  of :class:`StudyRow` or :class:`StudyMethodSummary`, ``to_frame()`` for a pandas DataFrame);
+  their outcomes, methods and statuses are enums (:class:`TrialOutcome`,
+  :class:`SynthesisMethod`, :class:`SynthesisStatus`, ...).
 
 Units: SI, radians, except object orientations (``theta``, deg). Poses are 4 x 4 homogeneous
 matrices in the world frame (the arm's base, z up). Bad input raises :class:`InputError` (a
@@ -35,14 +37,28 @@ from ._core import (
     IK_STATUS_CODES,
     __version__,
     DemoLog,
+    FallbackKind,
+    FallbackReason,
     Grasp,
     GraspLibrary,
+    HoldQuality,
     InputError,
+    PhysicsDraw,
+    PhysicsFactor,
+    PhysicsVariation,
     Robot,
     Scene,
+    SensitivityCell,
+    SensitivityResult,
+    SensitivityRow,
     Simulation,
+    StudyMethodSummary,
+    StudyRow,
+    SynthesisMethod,
+    SynthesisStatus,
     Synthesizer,
     Trajectory,
+    TrialOutcome,
     TrialResult,
     analyze_demonstrations,
     branch_of,
@@ -59,6 +75,9 @@ from . import _core
 __all__ = [
     "InputError", "IkStatus", "Robot", "Scene", "DemoLog", "Trajectory", "TrialResult",
     "Simulation", "GraspLibrary", "Synthesizer", "Grasp", "Table", "StudyResult",
+    "StudyRow", "StudyMethodSummary", "HoldQuality", "FallbackReason", "PhysicsVariation",
+    "PhysicsDraw", "SensitivityCell", "SensitivityRow", "SensitivityResult", "TrialOutcome",
+    "SynthesisMethod", "SynthesisStatus", "FallbackKind", "PhysicsFactor",
     "default_robot", "default_scene", "fk", "ik", "feasible_arm_angles", "arm_angle",
     "branch_of", "read_demo_log", "read_demo_directory", "segment", "analyze_demonstrations",
     "fit_wrist_line", "select_representatives", "synthesize", "simulate", "robustness", "run",
@@ -234,35 +253,37 @@ def robustness(trajectory: Union[Trajectory, Grasp, PathLike], *,
 
 
 class Table(list):
-    """Rows of a table as a list of dicts (one dict per row, the keys of the JSON files)."""
+    """Rows of a table: :class:`StudyRow` or :class:`StudyMethodSummary` objects (or dicts)."""
 
     def to_frame(self) -> Any:
-        """The rows as a pandas DataFrame, nested dicts flattened to dotted columns
-        (``robustness.score``). Needs pandas (Debian's python3-pandas)."""
+        """The rows as a pandas DataFrame: each row's ``to_dict()`` (every field; enums as their
+        labels), nested results flattened to dotted columns (``nominal_hold.end_tilt``). Needs
+        pandas (Debian's python3-pandas)."""
         try:
             import pandas
         except ImportError as e:  # pragma: no cover - depends on the machine
             raise ImportError("Table.to_frame() needs pandas (Debian: python3-pandas)") from e
-        return pandas.json_normalize(list(self))
+        return pandas.json_normalize(
+            [r.to_dict() if hasattr(r, "to_dict") else r for r in self])
 
 
 class StudyResult:
     """What :func:`run` found: ``analysis`` (the dict of analysis.json: Table I, the wrist
     line), ``library`` (the selected :class:`GraspLibrary`), ``synthesis`` (the dict of
-    synthesis.json), ``rows`` and ``summary`` (its tables as :class:`Table`), ``timing``."""
+    synthesis.json), ``rows`` (:class:`StudyRow`) and ``summary`` (:class:`StudyMethodSummary`)
+    as :class:`Table`, ``timing``."""
 
     def __init__(self, parts: dict):
         self.analysis: dict = parts["analysis"]
         self.library: GraspLibrary = parts["library"]
         self.synthesis: dict = parts["synthesis"]
         self.timing: dict = parts["timing"]
-        self.rows = Table(self.synthesis["rows"])
-        self.summary = Table(self.synthesis["summary"])
+        self.rows = Table(parts["rows"])
+        self.summary = Table(parts["summary"])
         self.table_i = Table(self.analysis["orientations"])
 
     def __repr__(self) -> str:
-        methods = ", ".join(f"{s['method']} {s['nominal_successes']}/{s['rows']}"
-                            for s in self.summary)
+        methods = ", ".join(f"{s.method} {s.nominal_successes}/{s.rows}" for s in self.summary)
         return f"<StudyResult: {len(self.library)} library entries; {methods}>"
 
 
@@ -292,9 +313,10 @@ def generalize(library: Union[GraspLibrary, PathLike, None] = None, *,
     """Grasps for many orientations from a library by several methods, each validated in
     physics (``graspsynth generalize``). ``orientations``, ``x`` and ``y`` take a list of
     numbers or the command line's text (``"20:100:1,33"``); ``methods`` a list or ``"a,b"``.
-    Returns ``(rows, summary)`` as :class:`Table` objects: one row per orientation and method
-    (the keys of synthesis.json's rows), one summary row per method."""
+    Returns ``(rows, summary)`` as :class:`Table` objects: a :class:`StudyRow` per orientation
+    and method, a :class:`StudyMethodSummary` per method."""
     if library is not None and not isinstance(library, GraspLibrary):
         library = os.fspath(library)
-    result = _core._generalize(library, options, robot, scene)
-    return Table(result["rows"]), Table(result["summary"])
+    rows, summary = _core._generalize(library, options, robot, scene)
+    return Table(rows), Table(summary)
+

@@ -3,6 +3,7 @@
 The docstrings of the compiled module (help(graspsynth.Robot.ik), ...) say more; these stubs
 give editors and type checkers the signatures."""
 
+import enum
 import os
 from typing import Any, Optional, Sequence, Union
 
@@ -253,6 +254,172 @@ class Synthesizer:
                    fine_step: float = 0.001, fine_step_probability: float = 0.5) -> Grasp: ...
     def _synthesize(self, options: dict[str, Any]) -> Grasp: ...
 
+# --- results and their enums (made from the C++ field lists; read-only) --------------------
+
+# Results: read-only properties (the C++ field lists); to_dict() for pandas.
+
+class TrialOutcome(enum.Enum):
+    SUCCESS = 0
+    NOT_LIFTED = 1
+    DROPPED = 2
+    KNOCKED_OVER = 3
+    TOUCHES_OTHER = 4
+    TILTED = 5
+    COLLISION = 6
+    JOINT_LIMIT = 7
+    UNSTABLE = 8
+    @property
+    def label(self) -> str: ...
+
+class SynthesisMethod(enum.Enum):
+    INTERP = 0
+    LINE = 1
+    NEAREST = 2
+    @property
+    def label(self) -> str: ...
+
+class SynthesisStatus(enum.Enum):
+    OK = 0
+    OUT_OF_RANGE = 1
+    BAD_START = 2
+    NO_MODEL = 3
+    UNREACHABLE = 4
+    @property
+    def label(self) -> str: ...
+
+class FallbackKind(enum.Enum):
+    NONE = 0
+    ROBUST_NEIGHBOUR = 1
+    TURNED_DEMO = 2
+    LINE_PRINCIPLE = 3
+    PLAIN_BLEND = 4
+    PARTIAL_BLEND = 5
+    @property
+    def label(self) -> str: ...
+
+class PhysicsFactor(enum.Enum):
+    HAND_FRICTION = 0
+    TABLE_FRICTION = 1
+    CONTACT_STIFFNESS = 2
+    CONTACT_DAMPING = 3
+    OBJECT_MASS = 4
+    CENTER_OF_MASS = 5
+    SERVO_FORCE = 6
+    STEP = 7
+    @property
+    def label(self) -> str: ...
+
+class HoldQuality:
+    end_tilt: float  # rad
+    max_tilt: float  # rad
+    slip: float  # m
+    slip_angle: float  # rad
+    contacts: int
+    load_share: tuple[float, ...]  # the fingers, then the palm
+    def to_dict(self) -> dict[str, Any]:
+        """every field; enums as their labels, nested results as dicts"""
+
+class PhysicsVariation:
+    object_hand_friction: float
+    object_table_friction: float
+    contact_stiffness: float
+    contact_damping: float
+    object_mass: float
+    object_com_offset: tuple[float, float, float]  # object frame, m
+    hand_effort: float
+    def to_dict(self) -> dict[str, Any]:
+        """every field; enums as their labels, nested results as dicts"""
+
+class PhysicsDraw:
+    variation: PhysicsVariation
+    time_step: float  # s; 0: the trial's own
+    def to_dict(self) -> dict[str, Any]:
+        """every field; enums as their labels, nested results as dicts"""
+
+class SensitivityCell:
+    physics: PhysicsDraw
+    trials: int
+    successes: int
+    failures: str
+    def to_dict(self) -> dict[str, Any]:
+        """every field; enums as their labels, nested results as dicts"""
+
+class SensitivityRow:
+    factor: PhysicsFactor
+    low: SensitivityCell
+    high: SensitivityCell
+    def to_dict(self) -> dict[str, Any]:
+        """every field; enums as their labels, nested results as dicts"""
+
+class SensitivityResult:
+    trials_per_cell: int
+    rows: list[SensitivityRow]
+    wall_time: float  # s
+    def to_dict(self) -> dict[str, Any]:
+        """every field; enums as their labels, nested results as dicts"""
+
+class FallbackReason:
+    kind: FallbackKind
+    bracket_reason: str
+    lower_deg: float
+    upper_deg: float
+    used_deg: float
+    robust: bool
+    min_psi_width: float  # rad
+    line_unreachable: bool
+    side: int
+    blend_failed: bool
+    cell: str
+    used_placement: str
+    def text(self) -> str: ...
+    def to_dict(self) -> dict[str, Any]:
+        """every field; enums as their labels, nested results as dicts"""
+
+class StudyRow:
+    theta_deg: float
+    at: Optional[tuple[float, float]]  # world, m
+    method: str
+    message: str
+    used: Optional[SynthesisMethod]
+    fallback: bool
+    fallback_reason: FallbackReason
+    refined: bool
+    gate_run: bool
+    status: Optional[SynthesisStatus]  # None: no library
+    nominal_success: bool
+    nominal_outcome: Optional[TrialOutcome]
+    nominal_reason: str
+    trials: int
+    successes: int
+    robustness: float
+    ci_low: float
+    ci_high: float
+    passed: bool
+    gate_reason: str
+    epsilon: float
+    force_closure: bool
+    failures: str
+    nominal_hold: HoldQuality
+    sensitivity: Optional[SensitivityResult]
+    seed: int
+    synthesis_s: float
+    gate_s: float
+    source_thetas_deg: list[float]
+    def to_dict(self) -> dict[str, Any]:
+        """every field; enums as their labels, nested results as dicts"""
+
+class StudyMethodSummary:
+    method: str
+    rows: int
+    synthesized: int
+    nominal_successes: int
+    passed: int
+    fallbacks: int
+    mean_robustness: float
+    mean_robustness_all: float
+    def to_dict(self) -> dict[str, Any]:
+        """every field; enums as their labels, nested results as dicts"""
+
 # --- studies -------------------------------------------------------------------------------
 
 def run(demos: Optional[PathLike] = None, quick: bool = False,
@@ -260,9 +427,12 @@ def run(demos: Optional[PathLike] = None, quick: bool = False,
         perturb: Optional[int] = None, select_perturb: Optional[int] = None,
         sensitivity: Optional[int] = None, physics: bool = True, physics_fallback: bool = True,
         all_replays: bool = False, robot: Optional[Robot] = None,
-        scene: Optional[Scene] = None) -> dict[str, Any]: ...
+        scene: Optional[Scene] = None) -> dict[str, Any]:
+    """-> analysis, library, synthesis, timing, rows (list[StudyRow]), summary
+    (list[StudyMethodSummary])"""
 def _generalize(library: Union[GraspLibrary, str, None], options: dict[str, Any],
-                robot: Optional[Robot], scene: Optional[Scene]) -> dict[str, Any]: ...
+                robot: Optional[Robot],
+                scene: Optional[Scene]) -> tuple[list[StudyRow], list[StudyMethodSummary]]: ...
 
 # --- requests ------------------------------------------------------------------------------
 

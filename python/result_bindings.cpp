@@ -1,0 +1,43 @@
+// graspsynth._core: the study's results as typed classes and its outcomes, methods and statuses
+// as enums, all made from the field lists (common/field_list.hpp, study/study_fields.hpp) by
+// python/field_class.hpp.
+
+#include "python/bindings.hpp"
+#include "python/field_class.hpp"
+#include "study/study_fields.hpp"
+
+namespace graspsynth::python {
+
+void BindResults(py::module_& m) {
+  BindEnum<TrialOutcome>(m, "TrialOutcome", "How a grasp-and-lift trial ended.");
+  BindEnum<SynthesisMethod>(m, "SynthesisMethod", "How a grasp is made from the library.");
+  BindEnum<SynthesisStatus>(m, "SynthesisStatus", "How a synthesis ended.");
+  BindEnum<FallbackKind>(m, "FallbackKind", "Which fallback replaced the requested method.");
+  BindEnum<PhysicsFactor>(m, "PhysicsFactor", "A factor of the physics perturbation.");
+
+  BindFieldClass<HoldQuality>(
+      m, "HoldQuality",
+      "How the object sat in the hand at the end of a trial: tilts (rad), slip (m, rad), "
+      "contacts, load_share (the fingers, then the palm).");
+  BindFieldClass<PhysicsVariation>(m, "PhysicsVariation",
+                                   "A replay's physics: factors on the modelled values, the "
+                                   "centre of mass offset (object frame, m).");
+  BindFieldClass<PhysicsDraw>(m, "PhysicsDraw", "A replay's physics and its step (s; 0: own).");
+  BindFieldClass<SensitivityCell>(m, "SensitivityCell",
+                                  "Replays at one end of a physics factor's range.");
+  BindFieldClass<SensitivityRow>(m, "SensitivityRow",
+                                 "One factor of a sensitivity table: its low and high end.");
+  BindFieldClass<SensitivityResult>(m, "SensitivityResult",
+                                    "What a grasp depends on: one row per physics factor.");
+  BindFieldClass<FallbackReason>(m, "FallbackReason",
+                                 "Why a method other than the requested one was used.")
+      .def("text", &FallbackReason::Text, "the reason in words, as synthesis.json writes it");
+  BindFieldClass<StudyRow>(
+      m, "StudyRow",
+      "One row of a synthesis table: one orientation (deg), one method, its physics gate. "
+      "to_dict() gives every field; synthesis.json's rows are the files' form.");
+  BindFieldClass<StudyMethodSummary>(m, "StudyMethodSummary",
+                                     "Per-method totals of a synthesis table.");
+}
+
+}  // namespace graspsynth::python
