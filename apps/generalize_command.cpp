@@ -1,5 +1,5 @@
 // graspsynth generalize: grasps for many orientations from a grasp library by several methods,
-// each validated in physics (study/study.hpp's SynthesisTable), as CSV and markdown; with
+// each validated in physics (studies/study.hpp's SynthesisTable), as CSV and markdown; with
 // --leave-one-out, each inner demonstrated orientation synthesized from the library without it.
 
 #include "apps/generalize_command.hpp"
@@ -21,8 +21,8 @@
 #include "request/generalize_request.hpp"
 #include "scene/scene_model.hpp"
 #include "simulation/simulation_model.hpp"
-#include "study/study.hpp"
-#include "study/study_report.hpp"
+#include "studies/study.hpp"
+#include "studies/study_report.hpp"
 
 namespace graspsynth::apps {
 namespace {

@@ -1,7 +1,7 @@
 // graspsynth run: the main job. The end-to-end study on a folder of demonstrations (by default
 // the shipped ones): Table I against the paper, Fig. 8, the representative selection, the
 // synthesis of a grasp for every study orientation by each method and its physics validation,
-// written into one output folder (study/study.hpp computes, study/study_report.hpp
+// written into one output folder (studies/study.hpp computes, studies/study_report.hpp
 // renders; this file shows and writes).
 
 #include "apps/run_command.hpp"
@@ -24,8 +24,8 @@
 #include "learning_data/grasp_library.hpp"
 #include "scene/scene_model.hpp"
 #include "simulation/simulation_model.hpp"
-#include "study/study.hpp"
-#include "study/study_report.hpp"
+#include "studies/study.hpp"
+#include "studies/study_report.hpp"
 
 namespace graspsynth::apps {
 namespace {

@@ -25,7 +25,7 @@ endif()
 # include folder that holds its own folder only (<build>/module_include/NAME/NAME, a link to
 # NAME/ in the sources), never the repository root. A source sees the headers of its own module
 # and of the modules it links (PUBLIC_DEPS, PRIVATE_DEPS, and theirs), so an include in the wrong
-# direction, say kinematics including "study/study.hpp", fails to compile
+# direction, say kinematics including "studies/study.hpp", fails to compile
 # (tests/architecture/).
 function(graspsynth_module name)
   cmake_parse_arguments(ARG "" "" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})

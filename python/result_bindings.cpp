@@ -1,10 +1,10 @@
 // graspsynth._core: the study's results as typed classes and its outcomes, methods and statuses
-// as enums, all made from the field lists (common/field_list.hpp, study/study_fields.hpp) by
+// as enums, all made from the field lists (common/field_list.hpp, studies/study_fields.hpp) by
 // python/field_class.hpp.
 
 #include "python/bindings.hpp"
 #include "python/field_class.hpp"
-#include "study/study_fields.hpp"
+#include "studies/study_fields.hpp"
 
 namespace graspsynth::python {
 

@@ -21,7 +21,7 @@
 #include "simulation/robustness.hpp"
 #include "simulation/trial.hpp"
 #include "solver/grasp_file.hpp"
-#include "study/trial_json.hpp"
+#include "studies/trial_json.hpp"
 
 namespace graspsynth::python {
 namespace {

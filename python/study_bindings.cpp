@@ -23,9 +23,9 @@
 #include "scene/scene_model.hpp"
 #include "simulation/simulation_model.hpp"
 #include "solver/synthesis_model.hpp"
-#include "study/study.hpp"
-#include "study/study_method.hpp"
-#include "study/study_report.hpp"
+#include "studies/study.hpp"
+#include "studies/study_method.hpp"
+#include "studies/study_report.hpp"
 
 namespace graspsynth::python {
 namespace {

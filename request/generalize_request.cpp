@@ -4,7 +4,7 @@
 
 #include "common/orientation_list.hpp"
 #include "request/physics_options.hpp"
-#include "study/study_method.hpp"
+#include "studies/study_method.hpp"
 
 namespace graspsynth::request {
 namespace {

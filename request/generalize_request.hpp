@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "request/option.hpp"
-#include "study/study.hpp"
+#include "studies/study.hpp"
 
 namespace graspsynth::request {
 

@@ -4,7 +4,7 @@
 /// The field lists (common/field_list.hpp) of the simulation's results that the study's rows
 /// carry: a trial's hold quality, a replay's physics, the sensitivity table; and the ranges of
 /// its enums (trial outcomes, physics factors). They drive the job bytes and the Python classes;
-/// the reports write these types in their own JSON form (study/trial_json.hpp: degrees, rounded
+/// the reports write these types in their own JSON form (studies/trial_json.hpp: degrees, rounded
 /// figures, the load bearers).
 
 #include "common/field_list.hpp"

@@ -17,7 +17,7 @@
 /// 5. AssembleTrajectory: the robot's trajectory and its waypoints.
 /// SynthesizeGrasp runs them in that order on one SynthesisTask, the object's placement
 /// entered once and its pose X_WO computed once, which every stage reads; SynthesisOptions
-/// says which optional stages run (study/study_method.hpp builds it from a method's label).
+/// says which optional stages run (studies/study_method.hpp builds it from a method's label).
 
 #include <limits>
 #include <optional>

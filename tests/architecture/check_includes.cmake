@@ -10,8 +10,8 @@ foreach(case ${CASES})
   list(GET fields 2 header)
   execute_process(COMMAND ${CMAKE_COMMAND} --build ${BUILD_DIR} --target ${target}
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
-  # gcc: "fatal error: study/study.hpp: No such file or directory";
-  # clang: "fatal error: 'study/study.hpp' file not found".
+  # gcc: "fatal error: studies/study.hpp: No such file or directory";
+  # clang: "fatal error: 'studies/study.hpp' file not found".
   string(REGEX MATCH "${header}'?:? (No such file or directory|file not found)" not_found "${out}")
   if(verdict STREQUAL "allowed" AND rc EQUAL 0)
     message(STATUS "ok: ${target} compiles (${header} may be included)")

@@ -6,20 +6,20 @@
 # pass the test. The cases are built, outside the default build, by one test
 # (check_includes.cmake) that runs them one after the other.
 set(graspsynth_include_cases
-  "forbidden kinematics study/study.hpp"
+  "forbidden kinematics studies/study.hpp"
   "forbidden kinematics scene/scene_model.hpp"
   "forbidden scene simulation/trial.hpp"
   "forbidden simulation learning_data/demo_log.hpp"
   "forbidden learning_data analysis/wrist_line.hpp"
   "forbidden analysis solver/synthesis.hpp"
-  "forbidden solver study/study.hpp"
+  "forbidden solver studies/study.hpp"
   "forbidden viewer teleop/protocol.hpp"
-  "forbidden study viewer/viewer_scene.hpp"
-  "forbidden study request/option.hpp"
-  "allowed study kinematics/arm_model.hpp"
+  "forbidden studies viewer/viewer_scene.hpp"
+  "forbidden studies request/option.hpp"
+  "allowed studies kinematics/arm_model.hpp"
   "allowed solver analysis/wrist_line.hpp"
   "allowed teleop viewer/viewer_scene.hpp"
-  "allowed request study/study.hpp")
+  "allowed request studies/study.hpp")
 set(case_targets)
 foreach(case ${graspsynth_include_cases})
   string(REPLACE " " ";" fields "${case}")

@@ -3,7 +3,7 @@
 // A synthesis table's row with every field away from its default (the study's tests of its
 // codec and of its field list).
 
-#include "study/study.hpp"
+#include "studies/study.hpp"
 
 namespace graspsynth::testing {
 

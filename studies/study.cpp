@@ -1,4 +1,4 @@
-#include "study/study.hpp"
+#include "studies/study.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -13,8 +13,8 @@
 #include "kinematics/arm_ik.hpp"
 #include "kinematics/pose_math.hpp"
 #include "solver/validated_synthesis.hpp"
-#include "study/study_codec.hpp"
-#include "study/study_report.hpp"
+#include "studies/study_codec.hpp"
+#include "studies/study_report.hpp"
 
 namespace graspsynth {
 namespace {

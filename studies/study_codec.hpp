@@ -8,11 +8,11 @@
 #include <string>
 #include <string_view>
 
-#include "study/study.hpp"
+#include "studies/study.hpp"
 
 namespace graspsynth {
 
-/// The bytes of `row`: its field list (study/study_fields.hpp) through common/field_codec.hpp.
+/// The bytes of `row`: its field list (studies/study_fields.hpp) through common/field_codec.hpp.
 std::string EncodeStudyRow(const StudyRow& row);
 
 /// The layout of EncodeStudyRow's bytes, kept with them in resume folders; change it with the

@@ -4,13 +4,13 @@
 /// The field lists (common/field_list.hpp) of the study's results: a synthesis table's row
 /// (StudyRow) and a method's totals (StudyMethodSummary). Each field is listed once, with its
 /// place in synthesis.json (a JSON pointer) and synthesis.csv (a column) where those files carry
-/// it; the list drives the job bytes (study/study_codec.hpp, layout study-row/1), the JSON and
-/// CSV writers (study/study_report.hpp) and the Python classes (graspsynth.StudyRow).
+/// it; the list drives the job bytes (studies/study_codec.hpp, layout study-row/1), the JSON and
+/// CSV writers (studies/study_report.hpp) and the Python classes (graspsynth.StudyRow).
 
 #include "common/field_list.hpp"
 #include "simulation/simulation_fields.hpp"
 #include "solver/solver_fields.hpp"
-#include "study/study.hpp"
+#include "studies/study.hpp"
 
 namespace graspsynth {
 

@@ -1,4 +1,4 @@
-#include "study/study_report.hpp"
+#include "studies/study_report.hpp"
 
 #include <cmath>
 #include <map>
@@ -7,8 +7,8 @@
 
 #include "analysis/analysis_report.hpp"
 #include "common/field_text.hpp"
-#include "study/study_fields.hpp"
-#include "study/trial_json.hpp"
+#include "studies/study_fields.hpp"
+#include "studies/trial_json.hpp"
 
 namespace graspsynth {
 
@@ -44,7 +44,7 @@ using nlohmann::json;
 using study_text::Cell;
 using study_text::Where;
 
-// The JSON forms the reports share for the row's nested results (study/trial_json.hpp), and a
+// The JSON forms the reports share for the row's nested results (studies/trial_json.hpp), and a
 // fallback's reason in words.
 struct RowJsonForms {
   json operator()(const FallbackReason& f) const { return f.Text(); }

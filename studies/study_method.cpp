@@ -1,4 +1,4 @@
-#include "study/study_method.hpp"
+#include "studies/study_method.hpp"
 
 #include "common/errors.hpp"
 

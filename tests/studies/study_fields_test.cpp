@@ -1,8 +1,8 @@
-// Tests of study/study_fields.hpp: StudyRow's field list is the one description of the row. A
+// Tests of studies/study_fields.hpp: StudyRow's field list is the one description of the row. A
 // field listed with a JSON pointer is in synthesis.json's rows, one with a column is in
 // synthesis.csv's header (which is kStudySynthesisCsvHeader), and every field is in the bytes.
 
-#include "study/study_fields.hpp"
+#include "studies/study_fields.hpp"
 
 #include <gtest/gtest.h>
 
@@ -12,8 +12,8 @@
 
 #include "common/field_codec.hpp"
 #include "common/field_text.hpp"
-#include "study/study_codec.hpp"
-#include "study/study_report.hpp"
+#include "studies/study_codec.hpp"
+#include "studies/study_report.hpp"
 #include "tests/utils/study_rows.hpp"
 
 namespace graspsynth {

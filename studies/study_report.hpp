@@ -1,7 +1,7 @@
 #pragma once
 
 /// @file
-/// The reports of the study (study/study.hpp): the synthesis table as CSV, JSON and markdown,
+/// The reports of the study (studies/study.hpp): the synthesis table as CSV, JSON and markdown,
 /// the wall times as JSON, and the study's markdown report. Each builder is a pure function of
 /// the study's results; the command decides where the text goes.
 
@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "common/format.hpp"
-#include "study/study.hpp"
+#include "studies/study.hpp"
 
 namespace graspsynth {
 

@@ -1,7 +1,7 @@
-// Tests of the study's options and report builders (study/study.hpp) on hand-made results;
+// Tests of the study's options and report builders (studies/study.hpp) on hand-made results;
 // the study itself runs end to end in tests/apps/run_command_test.cpp.
 
-#include "study/study.hpp"
+#include "studies/study.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -15,7 +15,7 @@
 #include "kinematics/robot_description.hpp"
 #include "learning_data/grasp_library.hpp"
 #include "scene/scene_model.hpp"
-#include "study/study_report.hpp"
+#include "studies/study_report.hpp"
 
 namespace graspsynth {
 namespace {

@@ -6,7 +6,7 @@
 /// library), the synthesis of a grasp for every study orientation by each study method, and
 /// the physics validation of every synthesized grasp (nominal and perturbed replays).
 ///
-/// RunStudy() computes; the report builders (study/study_report.hpp) are pure functions of its
+/// RunStudy() computes; the report builders (studies/study_report.hpp) are pure functions of its
 /// result, so the command decides where they go (the library never prints or writes files).
 ///
 /// Determinism: the selection seeds each demonstration from (seed, file name) and the physics
@@ -32,7 +32,7 @@
 #include "simulation/simulation_model.hpp"
 #include "simulation/trial.hpp"
 #include "solver/synthesis.hpp"
-#include "study/study_method.hpp"
+#include "studies/study_method.hpp"
 
 namespace graspsynth {
 

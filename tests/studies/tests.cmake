@@ -1,7 +1,7 @@
-# Tests of the end-to-end study (study/study.hpp) and of `graspsynth run`.
-graspsynth_test(study/study_test.cpp LIBS graspsynth::study nlohmann_json::nlohmann_json)
-graspsynth_test(study/study_codec_test.cpp LIBS graspsynth::study)
-graspsynth_test(study/study_fields_test.cpp LIBS graspsynth::study nlohmann_json::nlohmann_json)
+# Tests of the end-to-end study (studies/study.hpp) and of `graspsynth run`.
+graspsynth_test(studies/study_test.cpp LIBS graspsynth::studies nlohmann_json::nlohmann_json)
+graspsynth_test(studies/study_codec_test.cpp LIBS graspsynth::studies)
+graspsynth_test(studies/study_fields_test.cpp LIBS graspsynth::studies nlohmann_json::nlohmann_json)
 graspsynth_test(apps/generalize_command_test.cpp)
 add_dependencies(apps_generalize_command_test graspsynth)
 graspsynth_test(apps/run_command_test.cpp LIBS nlohmann_json::nlohmann_json)

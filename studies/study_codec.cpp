@@ -1,7 +1,7 @@
-#include "study/study_codec.hpp"
+#include "studies/study_codec.hpp"
 
 #include "common/field_codec.hpp"
-#include "study/study_fields.hpp"
+#include "studies/study_fields.hpp"
 
 namespace graspsynth {
 

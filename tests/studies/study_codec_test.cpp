@@ -1,8 +1,8 @@
-// Tests of study/study_codec.hpp: a synthesis table's row comes back from its bytes with every
+// Tests of studies/study_codec.hpp: a synthesis table's row comes back from its bytes with every
 // field, so that the study's files are the same bytes whichever process made the row; and bytes
 // cut anywhere are an InputError.
 
-#include "study/study_codec.hpp"
+#include "studies/study_codec.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -11,7 +11,7 @@
 
 #include "common/byte_codec.hpp"
 #include "common/errors.hpp"
-#include "study/study_report.hpp"
+#include "studies/study_report.hpp"
 #include "tests/utils/study_rows.hpp"
 
 namespace graspsynth {
