@@ -1,6 +1,6 @@
 // graspsynth simulate: a joint trajectory through the ODE world (nominal trial + perturbed
 // replays), written as a graspsynth-simulation/1 report. graspsynth scripted-grasp: the
-// hand-made grasp trajectory of simulation/scripted_grasp.hpp.
+// hand-made grasp trajectory of motion/scripted_grasp.hpp.
 
 #include "apps/simulate_command.hpp"
 
@@ -18,7 +18,7 @@
 #include "kinematics/pose_math.hpp"
 #include "motion/joint_trajectory.hpp"
 #include "simulation/robustness.hpp"
-#include "simulation/scripted_grasp.hpp"
+#include "motion/scripted_grasp.hpp"
 #include "simulation/trial.hpp"
 #include "solver/grasp_file.hpp"
 #include "studies/trial_json.hpp"

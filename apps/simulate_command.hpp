@@ -10,7 +10,7 @@ namespace graspsynth::apps {
 /// trial fails (the report is written all the same).
 ///
 /// Also registers `graspsynth scripted-grasp --theta DEG --out FILE`: writes the scripted
-/// (hand-made) grasp trajectory of simulation/scripted_grasp.hpp; examples/grasp_60deg.json is
+/// (hand-made) grasp trajectory of motion/scripted_grasp.hpp; examples/grasp_60deg.json is
 /// its output for 60 deg.
 void AddSimulateCommand(CLI::App& app, int* exit_code);
 

@@ -1,7 +1,7 @@
 // The teleoperation loop's cost per control tick (packet in -> state out) and the control rate
 // it holds under a packet flood. Figures: benchmarks/README.md, "Teleoperation".
 //
-// The operator stream is the scripted grasp at theta = 60 deg (simulation/scripted_grasp.hpp)
+// The operator stream is the scripted grasp at theta = 60 deg (motion/scripted_grasp.hpp)
 // as 60 Hz commands: reach, approach, close, lift, with the grasp and end-of-trial buttons, so
 // that the ticks cover free space, contact and a held object; the stream restarts after each
 // trial (the session judges it and resets the world).
@@ -15,7 +15,7 @@
 #include <thread>
 
 #include "kinematics/arm_model.hpp"
-#include "simulation/scripted_grasp.hpp"
+#include "motion/scripted_grasp.hpp"
 #include "teleop/teleop_session.hpp"
 #include "teleop/udp_link.hpp"
 

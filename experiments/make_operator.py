@@ -76,7 +76,7 @@ def main():
 
     if a.grip == "pinch":
         # models/README.md's pinch (HandFk.ThumbAndFingertipsPinchABar) with the spread of
-        # simulation/scripted_grasp.cpp's shapes.
+        # motion/scripted_grasp.cpp's shapes.
         op["hook_reach"] = 0.103
         op["wrist_above_handle"] = 0.086
         op["open_hand_deg"] = [90, 0, 15, 0, -20, 0, 0, 0, 0, 0, 20, 0, 0, 20, 0, 0]

@@ -7,7 +7,7 @@
 #include "common/demand.hpp"
 #include "common/errors.hpp"
 #include "common/format.hpp"
-#include "simulation/scripted_grasp.hpp"
+#include "motion/scripted_grasp.hpp"
 
 namespace graspsynth {
 

@@ -12,7 +12,7 @@
 #include "kinematics/pose_math.hpp"
 #include "motion/joint_space.hpp"
 #include "scene/rest_pose.hpp"
-#include "simulation/scripted_grasp.hpp"
+#include "motion/scripted_grasp.hpp"
 #include "simulation/simulation_data.hpp"
 #include "simulation/trial_judge.hpp"
 

@@ -190,7 +190,7 @@ class TeleopSession {
   const HandVector& hand_command() const;
   /// The rest configuration of the arm for orientation theta (deg): where every trial starts
   /// (DefaultRestConfiguration, scene/rest_pose.hpp, for the wrist orientation of the
-  /// scripted grasp, simulation/scripted_grasp.hpp), and the open hand. Throws InputError when
+  /// scripted grasp, motion/scripted_grasp.hpp), and the open hand. Throws InputError when
   /// the rest pose of the scene is out of reach.
   static Vector7d RestArm(const RobotModel& robot, const SceneModel& scene, double theta_deg);
   static HandVector RestHand();

@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "scene/rest_pose.hpp"
-#include "simulation/scripted_grasp.hpp"
+#include "motion/scripted_grasp.hpp"
 #include "tests/utils/eigen_matchers.hpp"
 #include "tests/utils/simulation_fixtures.hpp"
 

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "common/errors.hpp"
-#include "simulation/scripted_grasp.hpp"
+#include "motion/scripted_grasp.hpp"
 #include "tests/utils/simulation_fixtures.hpp"
 
 namespace graspsynth {

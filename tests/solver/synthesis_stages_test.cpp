@@ -2,7 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "scene/rest_pose.hpp"
-#include "simulation/scripted_grasp.hpp"
+#include "motion/scripted_grasp.hpp"
 #include "solver/motion_generation.hpp"
 #include "solver/reach_planning.hpp"
 #include "solver/refinement.hpp"

@@ -5,7 +5,7 @@
 #include "common/errors.hpp"
 #include "kinematics/pose_math.hpp"
 #include "learning_data/grasp_library.hpp"
-#include "simulation/scripted_grasp.hpp"
+#include "motion/scripted_grasp.hpp"
 #include "simulation/trial.hpp"
 #include "tests/solver/synthesis_fixtures.hpp"
 

@@ -2,7 +2,7 @@
 
 /// @file
 /// Shared inputs of the teleoperation tests: a synthetic demonstration made from the scripted
-/// grasp (simulation/scripted_grasp.hpp), as an operator would have recorded it, and commands
+/// grasp (motion/scripted_grasp.hpp), as an operator would have recorded it, and commands
 /// for the robot's wrist.
 
 #include <gtest/gtest.h>
@@ -11,7 +11,7 @@
 
 #include "kinematics/arm_model.hpp"
 #include "learning_data/demo_log.hpp"
-#include "simulation/scripted_grasp.hpp"
+#include "motion/scripted_grasp.hpp"
 #include "simulation/trial.hpp"
 #include "teleop/protocol.hpp"
 #include "tests/utils/simulation_fixtures.hpp"

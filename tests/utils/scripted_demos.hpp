@@ -1,7 +1,7 @@
 #pragma once
 
 /// @file
-/// Demonstration logs made from the scripted grasp (simulation/scripted_grasp.hpp), for the
+/// Demonstration logs made from the scripted grasp (motion/scripted_grasp.hpp), for the
 /// tests of the representative selection and `graspsynth select`: the joint trajectory of
 /// BuildScriptedGrasp, sampled at 60 Hz, turned into the wrist pose (arm FK * X_FH) and
 /// fingers of a v1 log, with the object positions of a real (kFast) RunTrial of the same
@@ -14,7 +14,7 @@
 
 #include "kinematics/pose_math.hpp"
 #include "learning_data/demo_log.hpp"
-#include "simulation/scripted_grasp.hpp"
+#include "motion/scripted_grasp.hpp"
 #include "simulation/simulation_model.hpp"
 #include "simulation/trial.hpp"
 

@@ -1,7 +1,7 @@
 #pragma once
 
 /// @file
-/// A small grasp library built in memory from scripted grasps (simulation/scripted_grasp.hpp):
+/// A small grasp library built in memory from scripted grasps (motion/scripted_grasp.hpp):
 /// each entry's grasping motion runs from the scripted pre-grasp pose to the pose where the
 /// fingers have closed on the handle (the demonstrations' grasp-button moment), wrist poses from
 /// the arm's forward kinematics of the scripted joint samples.
@@ -12,7 +12,7 @@
 
 #include "kinematics/arm_model.hpp"
 #include "learning_data/grasp_library.hpp"
-#include "simulation/scripted_grasp.hpp"
+#include "motion/scripted_grasp.hpp"
 
 namespace graspsynth::testing {
 

@@ -8,7 +8,7 @@
 
 #include "motion/joint_space.hpp"
 #include "motion/joint_trajectory.hpp"
-#include "simulation/scripted_grasp.hpp"
+#include "motion/scripted_grasp.hpp"
 #include "simulation/simulation_model.hpp"
 #include "tests/utils/paths.hpp"
 

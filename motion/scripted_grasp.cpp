@@ -1,4 +1,4 @@
-#include "simulation/scripted_grasp.hpp"
+#include "motion/scripted_grasp.hpp"
 
 #include <cmath>
 
