@@ -17,8 +17,8 @@
 #include "common/errors.hpp"
 #include "kinematics/pose_math.hpp"
 #include "motion/joint_trajectory.hpp"
-#include "simulation/robustness.hpp"
 #include "motion/scripted_grasp.hpp"
+#include "simulation/robustness.hpp"
 #include "simulation/trial.hpp"
 #include "solver/grasp_file.hpp"
 #include "studies/trial_json.hpp"
@@ -255,6 +255,29 @@ int RunScripted(const ScriptedOptions& o) {
   return 0;
 }
 
+// graspsynth scripted-grasp: the hand-made grasp trajectory (motion/scripted_grasp.hpp).
+void AddScriptedGraspCommand(CLI::App& app, int* exit_code) {
+  auto sopts = std::make_shared<ScriptedOptions>();
+  CLI::App* scripted = app.add_subcommand(
+      "scripted-grasp",
+      "Write the scripted (hand-made) grasp-and-lift trajectory for an object orientation:\n"
+      "reach from a rest pose, approach from above, close the hand on the handle (fingertips\n"
+      "on its far face, thumb on its near face), lift 10 cm. examples/grasp_60deg.json is\n"
+      "its output for --theta 60.");
+  scripted->add_option("--theta", sopts->theta, "Object orientation, deg")->capture_default_str();
+  scripted
+      ->add_option("--grasp-radius", sopts->grasp_radius,
+                   "Grasp point along the handle from the object centre, m")
+      ->capture_default_str();
+  scripted->add_flag("--keep-open", sopts->keep_open,
+                     "Keep the hand open (a trajectory that must fail)");
+  scripted->add_option("--out", sopts->out, "Trajectory file to write")->required();
+  scripted->add_option("--robot", sopts->robot, "Robot description (URDF)");
+  scripted->add_option("--scene", sopts->scene, "Scene description (JSON)");
+  AddObjectFlag(scripted, &sopts->object);
+  scripted->callback([sopts, exit_code] { *exit_code = RunScripted(*sopts); });
+}
+
 }  // namespace
 
 void AddSimulateCommand(CLI::App& app, int* exit_code) {
@@ -339,25 +362,7 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
     *exit_code = RunSimulate(*opts);
   });
 
-  auto sopts = std::make_shared<ScriptedOptions>();
-  CLI::App* scripted = app.add_subcommand(
-      "scripted-grasp",
-      "Write the scripted (hand-made) grasp-and-lift trajectory for an object orientation:\n"
-      "reach from a rest pose, approach from above, close the hand on the handle (fingertips\n"
-      "on its far face, thumb on its near face), lift 10 cm. examples/grasp_60deg.json is\n"
-      "its output for --theta 60.");
-  scripted->add_option("--theta", sopts->theta, "Object orientation, deg")->capture_default_str();
-  scripted
-      ->add_option("--grasp-radius", sopts->grasp_radius,
-                   "Grasp point along the handle from the object centre, m")
-      ->capture_default_str();
-  scripted->add_flag("--keep-open", sopts->keep_open,
-                     "Keep the hand open (a trajectory that must fail)");
-  scripted->add_option("--out", sopts->out, "Trajectory file to write")->required();
-  scripted->add_option("--robot", sopts->robot, "Robot description (URDF)");
-  scripted->add_option("--scene", sopts->scene, "Scene description (JSON)");
-  AddObjectFlag(scripted, &sopts->object);
-  scripted->callback([sopts, exit_code] { *exit_code = RunScripted(*sopts); });
+  AddScriptedGraspCommand(app, exit_code);
 }
 
 }  // namespace graspsynth::apps
