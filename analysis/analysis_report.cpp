@@ -7,6 +7,7 @@
 
 #include "common/demand.hpp"
 #include "common/format.hpp"
+#include "common/valid_options.hpp"
 
 namespace graspsynth {
 namespace {
@@ -86,8 +87,7 @@ std::optional<PlacementLineFit> FitOverPlacements(const std::vector<SegmentedTri
 
 DemonstrationAnalysis AnalyzeDemonstrations(const DemoDirectory& demos,
                                             const AnalysisOptions& options) {
-  std::string why;
-  GS_DEMAND(options.IsValid(&why), why);
+  RequireValid(options, "invalid analysis options");
   DemonstrationAnalysis analysis;
   analysis.directory = demos.directory;
   analysis.options = options;
@@ -138,8 +138,7 @@ const std::vector<PaperTableRow>& PaperTableI() {
 
 std::vector<PaperComparisonRow> CompareWithPaper(const TableAnalysis& table,
                                                  const PaperComparisonOptions& options) {
-  std::string why;
-  GS_DEMAND(options.IsValid(&why), why);
+  RequireValid(options, "invalid analysis options");
   // keyed by theta rounded to 1e-9 deg so that 20 and 20.0000000001 meet.
   std::map<long long, PaperComparisonRow> rows;
   const auto key = [](double theta_deg) { return std::llround(theta_deg * 1e9); };

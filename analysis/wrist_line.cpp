@@ -15,6 +15,7 @@
 
 #include "common/demand.hpp"
 #include "common/format.hpp"
+#include "common/valid_options.hpp"
 #include "kinematics/types.hpp"
 
 namespace graspsynth {
@@ -286,8 +287,7 @@ NormalForm RobustStart(const std::vector<Eigen::Vector2d>& points, const NormalF
 
 WristLineResult FitWristLine(const std::vector<Eigen::Vector2d>& points,
                              const WristLineOptions& options) {
-  std::string why;
-  GS_DEMAND(options.IsValid(&why), why);
+  RequireValid(options, "invalid wrist-line options");
   for (const Eigen::Vector2d& p : points) {
     GS_DEMAND(p.allFinite(), "FitWristLine: a point is not finite");
   }

@@ -20,6 +20,7 @@
 #include <utility>
 
 #include "common/demand.hpp"
+#include "common/valid_options.hpp"
 #include "scene/triangle_mesh.hpp"
 
 namespace graspsynth {
@@ -378,8 +379,7 @@ CollisionDataImpl& CheckedData(const CollisionModel& model, CollisionData* data,
 
 template <typename Options>
 void DemandValid(const Options& options) {
-  std::string why;
-  GS_DEMAND(options.IsValid(&why), why);
+  RequireValid(options, "invalid collision options");
 }
 
 struct CollideContext {

@@ -11,6 +11,7 @@
 #include "common/byte_codec.hpp"
 #include "common/errors.hpp"
 #include "common/parallel.hpp"
+#include "common/valid_options.hpp"
 #include "learning_data/demo_replay.hpp"
 #include "simulation/random.hpp"
 #include "simulation/robustness.hpp"
@@ -359,8 +360,7 @@ SelectionResult SelectRepresentatives(const SimulationModel& model,
                                       const std::vector<DemoLog>& logs,
                                       const std::string& directory, const SelectionOptions& options,
                                       const SelectionProgress& progress) {
-  std::string why;
-  if (!options.IsValid(&why)) throw InputError("bad selection option: " + why);
+  RequireValid(options, "bad selection option");
   std::set<std::string> names;
   for (const DemoLog& log : logs) {
     if (!names.insert(FileName(log.source)).second) {
@@ -458,8 +458,7 @@ SelectionResult SelectRepresentatives(const SimulationModel& model,
                                       const std::filesystem::path& directory,
                                       const SelectionOptions& options,
                                       const SelectionProgress& progress) {
-  std::string why;
-  if (!options.IsValid(&why)) throw InputError("bad selection option: " + why);
+  RequireValid(options, "bad selection option");
   const DemoDirectory demos = ReadDemoDirectory(directory);
   SelectionResult result =
       SelectRepresentatives(model, demos.logs, directory.string(), options, progress);

@@ -5,6 +5,7 @@
 
 #include "common/demand.hpp"
 #include "common/format.hpp"
+#include "common/valid_options.hpp"
 
 namespace graspsynth {
 namespace {
@@ -58,8 +59,8 @@ const char* ToString(SegmentationStatus status) {
 }
 
 SegmentedTrial Segment(const DemoLog& log, const SegmentationOptions& options) {
+  RequireValid(options, "invalid segmentation options");
   std::string why;
-  GS_DEMAND(options.IsValid(&why), why);
   GS_DEMAND(!log.samples.empty(), "Segment: the log has no samples");
   const std::optional<size_t> grasp = FindEvent(log, DemoEvent::kGrasp);
   GS_DEMAND(grasp.has_value(), "Segment: the log has no grasp event");

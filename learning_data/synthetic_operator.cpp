@@ -8,6 +8,7 @@
 #include "common/byte_codec.hpp"
 #include "common/errors.hpp"
 #include "common/parallel.hpp"
+#include "common/valid_options.hpp"
 #include "kinematics/hand_model.hpp"
 #include "kinematics/pose_math.hpp"
 #include "learning_data/demo_replay.hpp"
@@ -313,8 +314,7 @@ std::vector<OperatorTrial> GenerateDemonstrations(const SimulationModel& model,
                                                   const OperatorOptions& options, int threads,
                                                   const OperatorProgress& progress,
                                                   JobRunner* runner) {
-  std::string why;
-  if (!options.IsValid(&why)) throw InputError("invalid operator options: " + why);
+  RequireValid(options, "invalid operator options");
   std::vector<std::optional<Eigen::Vector2d>> positions(options.positions.begin(),
                                                         options.positions.end());
   if (positions.empty()) positions.emplace_back();  // the scene's centre

@@ -1,6 +1,7 @@
 #include "motion/interpolation.hpp"
 
 #include "common/demand.hpp"
+#include "common/valid_options.hpp"
 #include "kinematics/pose_math.hpp"
 
 namespace graspsynth {
@@ -20,7 +21,7 @@ double BlendParameter(double theta, double theta1, double theta2) {
 
 GraspingMotion BlendMotions(const GraspingMotion& m1, const GraspingMotion& m2, double t,
                             const BlendOptions& options) {
-  GS_DEMAND(options.IsValid(nullptr), "invalid BlendOptions");
+  RequireValid(options, "invalid BlendOptions");
   const GraspingMotion a = Resample(m1, options.waypoints, options.resample);
   const GraspingMotion b = Resample(m2, options.waypoints, options.resample);
   // exact endpoints: t = 0 and t = 1 reproduce the inputs bit for bit.
@@ -47,7 +48,7 @@ GraspingMotion BlendMotions(const GraspingMotion& m1, const GraspingMotion& m2, 
 GraspingMotion BlendMotionsWeighted(const std::vector<const GraspingMotion*>& motions,
                                     const std::vector<double>& weights,
                                     const BlendOptions& options) {
-  GS_DEMAND(options.IsValid(nullptr), "invalid BlendOptions");
+  RequireValid(options, "invalid BlendOptions");
   GS_DEMAND(!motions.empty() && motions.size() == weights.size(), "one weight per motion");
   std::vector<GraspingMotion> m;
   for (const GraspingMotion* motion : motions) {
@@ -61,8 +62,8 @@ GraspingMotion BlendMotionsWeighted(const std::vector<const GraspingMotion*>& mo
   for (size_t i = 0; i < m.size(); ++i) {
     out.theta += weights[i] * m[i].theta;
     out.p_WO += weights[i] * m[i].p_WO;
-    out.source += motions[i]->source + " w=" + std::to_string(weights[i]) +
-                  (i + 1 < m.size() ? ", " : ")");
+    out.source +=
+        motions[i]->source + " w=" + std::to_string(weights[i]) + (i + 1 < m.size() ? ", " : ")");
   }
   const size_t n = m.front().waypoints.size();
   out.waypoints.resize(n);

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "common/demand.hpp"
+#include "common/valid_options.hpp"
 #include "kinematics/arm_ik.hpp"
 #include "kinematics/pose_math.hpp"
 #include "motion/reach.hpp"
@@ -75,7 +76,7 @@ std::optional<Vector7d> SolveWristPose(const RobotModel& robot, const Eigen::Iso
 
 JointSpaceResult ToJointTrajectory(const RobotModel& robot, const CartesianPath& path,
                                    const Vector7d& q_start, const JointSpaceOptions& options) {
-  GS_DEMAND(options.IsValid(nullptr), "invalid JointSpaceOptions");
+  RequireValid(options, "invalid JointSpaceOptions");
   JointSpaceResult result;
   const ArmBranch branch = BranchOf(q_start);
   Vector7d q_prev = q_start;
@@ -149,7 +150,7 @@ std::vector<TrajectorySample> JointReach(const RobotModel& robot, const Vector7d
                                          const HandVector& f_start, const Vector7d& q_goal,
                                          const HandVector& f_goal,
                                          const JointReachOptions& options) {
-  GS_DEMAND(options.IsValid(nullptr), "invalid JointReachOptions");
+  RequireValid(options, "invalid JointReachOptions");
   constexpr double kPeakSlope = 1.875;  // of the minimum-jerk profile
   const double arm_time = ((q_goal - q_start).cwiseAbs().array() /
                            (options.velocity_scale * robot.arm.max_velocity().array()))

@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 
 #include "common/demand.hpp"
+#include "common/valid_options.hpp"
 #include "kinematics/pose_math.hpp"
 
 namespace graspsynth {
@@ -95,7 +96,7 @@ bool SplineReachOptions::IsValid(std::string* why) const {
 
 CartesianPath SplineReach(const MotionWaypoint& start, const MotionWaypoint& pregrasp,
                           const Eigen::Vector3d& v_end, const SplineReachOptions& options) {
-  GS_DEMAND(options.IsValid(nullptr), "invalid SplineReachOptions");
+  RequireValid(options, "invalid SplineReachOptions");
   std::vector<Eigen::Vector3d> points = {start.p_WH};
   points.insert(points.end(), options.via_points.begin(), options.via_points.end());
   points.push_back(pregrasp.p_WH);
@@ -145,7 +146,7 @@ PositionDmp::PositionDmp(const std::vector<double>& times,
                          const std::vector<Eigen::Vector3d>& positions,
                          const DmpReachOptions& options)
     : options_(options) {
-  GS_DEMAND(options.IsValid(nullptr), "invalid DmpReachOptions");
+  RequireValid(options, "invalid DmpReachOptions");
   GS_DEMAND(times.size() == positions.size() && times.size() >= 3,
             "a DMP needs at least 3 demonstrated samples");
   const int nb = options.basis_functions;
@@ -240,7 +241,7 @@ std::vector<Eigen::Vector3d> PositionDmp::Rollout(const Eigen::Vector3d& y0,
 
 CartesianPath DmpReach(const PositionDmp& dmp, const MotionWaypoint& start,
                        const MotionWaypoint& pregrasp, const DmpReachOptions& options) {
-  GS_DEMAND(options.IsValid(nullptr), "invalid DmpReachOptions");
+  RequireValid(options, "invalid DmpReachOptions");
   const std::vector<Eigen::Vector3d> positions = dmp.Rollout(start.p_WH, pregrasp.p_WH);
   const double total = (pregrasp.p_WH - start.p_WH).norm();
   CartesianPath path;
@@ -278,7 +279,7 @@ bool LiftOptions::IsValid(std::string* why) const {
 }
 
 CartesianPath LiftPath(const MotionWaypoint& grasp, const LiftOptions& options) {
-  GS_DEMAND(options.IsValid(nullptr), "invalid LiftOptions");
+  RequireValid(options, "invalid LiftOptions");
   const double total = options.settle + options.duration + options.hold;
   const int n = SampleCount(total, options.sample_period);
   CartesianPath path;

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "common/errors.hpp"
+#include "common/valid_options.hpp"
 #include "kinematics/arm_ik.hpp"
 #include "motion/joint_space.hpp"
 #include "motion/reach.hpp"
@@ -119,8 +120,7 @@ Eigen::Isometry3d GraspWristPose(const SceneModel& scene, const ScriptedGraspOpt
 
 ScriptedGraspResult BuildScriptedGrasp(const RobotModel& robot, const SceneModel& scene,
                                        const ScriptedGraspOptions& options) {
-  std::string why;
-  if (!options.IsValid(&why)) throw InputError("invalid scripted grasp option: " + why);
+  RequireValid(options, "invalid scripted grasp option");
   ScriptedGraspResult result;
   const Eigen::Isometry3d X_grasp = GraspWristPose(scene, options);
   const Vector7d rest =

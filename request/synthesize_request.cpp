@@ -5,6 +5,8 @@
 #include "request/physics_options.hpp"
 #include "solver/reach_planning.hpp"
 
+#include "common/valid_options.hpp"
+
 namespace graspsynth::request {
 namespace {
 
@@ -134,9 +136,8 @@ ValidatedSynthesisOptions ToValidatedSynthesisOptions(const SynthesizeRequest& r
   so.start = request.start;
   vo.physics_fallback = request.physics_fallback;
   vo.gate = request.gate;
-  std::string why;
-  if (!so.IsValid(&why)) throw InputError("bad synthesis option: " + why);
-  if (!vo.gate.IsValid(&why)) throw InputError("bad physics gate option: " + why);
+  RequireValid(so, "bad synthesis option");
+  RequireValid(vo.gate, "bad physics gate option");
   return vo;
 }
 

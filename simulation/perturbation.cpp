@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "common/errors.hpp"
+#include "common/valid_options.hpp"
 #include "kinematics/arm_ik.hpp"
 #include "motion/joint_space.hpp"
 #include "simulation/random.hpp"
@@ -66,8 +67,7 @@ bool PerturbationOptions::IsValid(std::string* why) const {
 
 PerturbedTrajectory PerturbTrajectory(const RobotModel& robot, const JointTrajectory& nominal,
                                       const PerturbationOptions& options, SplitMix64& rng) {
-  std::string why;
-  if (!options.IsValid(&why)) throw InputError("invalid perturbation option: " + why);
+  RequireValid(options, "invalid perturbation option");
   if (nominal.samples.empty()) throw InputError("the trajectory has no samples");
   PerturbedTrajectory out;
   out.time_scale = options.time_scale_min == options.time_scale_max

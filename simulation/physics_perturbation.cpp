@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "common/errors.hpp"
+#include "common/valid_options.hpp"
 #include "simulation/random.hpp"
 
 namespace graspsynth {
@@ -28,8 +29,7 @@ double LogUniform(SplitMix64& rng, double lo, double hi) {
 }
 
 void Validate(const PhysicsPerturbationOptions& options) {
-  std::string why;
-  if (!options.IsValid(&why)) throw InputError("invalid option: " + why);
+  RequireValid(options, "invalid option");
 }
 
 }  // namespace

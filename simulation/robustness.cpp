@@ -10,6 +10,7 @@
 #include "common/errors.hpp"
 #include "common/parallel.hpp"
 #include "common/stopwatch.hpp"
+#include "common/valid_options.hpp"
 #include "simulation/random.hpp"
 
 namespace graspsynth {
@@ -73,8 +74,7 @@ RobustnessTrial RunReplay(const SimulationModel& model, const JointTrajectory& n
 }
 
 void Validate(const RobustnessOptions& options) {
-  std::string why;
-  if (!options.IsValid(&why)) throw InputError("invalid robustness option: " + why);
+  RequireValid(options, "invalid robustness option");
 }
 
 // Runs `count` replays on options.threads workers, reporting progress per finished replay.

@@ -15,6 +15,7 @@
 #include "common/demand.hpp"
 #include "common/errors.hpp"
 #include "common/stopwatch.hpp"
+#include "common/valid_options.hpp"
 #include "simulation/detail/simulation_data_internal.hpp"
 
 namespace graspsynth {
@@ -228,8 +229,7 @@ using sim_internal::FromOdeMatrix;
 SimulationData::SimulationData(const SimulationModel& model, const WorldOptions& options,
                                const Vector7d& arm_q, const HandVector& hand_f)
     : impl_(std::make_unique<Impl>()) {
-  std::string why;
-  if (!options.IsValid(&why)) throw InputError("invalid world option: " + why);
+  RequireValid(options, "invalid world option");
   EnsureOdeThread();
   impl_->model = &model;
   impl_->options = options;

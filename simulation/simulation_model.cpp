@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "common/errors.hpp"
+#include "common/valid_options.hpp"
 
 namespace graspsynth {
 namespace {
@@ -61,8 +62,7 @@ bool SimulationOptions::IsValid(std::string* why) const {
 
 SimulationModel::SimulationModel(RobotModel robot, SceneModel scene, SimulationOptions options)
     : robot_(std::move(robot)), scene_(std::move(scene)), options_(options) {
-  std::string why;
-  if (!options_.IsValid(&why)) throw InputError("invalid simulation option: " + why);
+  RequireValid(options_, "invalid simulation option");
   object_inertia_ = scene_.object.Inertia();
 }
 

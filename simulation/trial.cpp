@@ -11,6 +11,7 @@
 #include "common/errors.hpp"
 #include "common/format.hpp"
 #include "common/stopwatch.hpp"
+#include "common/valid_options.hpp"
 
 namespace graspsynth {
 namespace {
@@ -126,8 +127,7 @@ std::optional<TrialVerdict> PlayTrial(const SimulationModel& model,
 
 TrialResult RunTrial(const SimulationModel& model, const JointTrajectory& trajectory,
                      const TrialOptions& options, const StepObserver& observer) {
-  std::string why;
-  if (!options.IsValid(&why)) throw InputError("invalid trial option: " + why);
+  RequireValid(options, "invalid trial option");
   if (trajectory.samples.empty()) throw InputError("the trajectory has no samples");
   const auto wall_start = std::chrono::steady_clock::now();
   const double cpu_start = ThreadCpuSeconds();

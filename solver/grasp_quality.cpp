@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "common/demand.hpp"
+#include "common/valid_options.hpp"
 
 namespace graspsynth {
 namespace {
@@ -46,7 +47,7 @@ bool GraspQualityOptions::IsValid(std::string* why) const {
 
 GraspQuality EvaluateGraspQuality(const std::vector<GraspContact>& contacts,
                                   const Eigen::Vector3d& p_WR, const GraspQualityOptions& options) {
-  GS_DEMAND(options.IsValid(nullptr), "invalid GraspQualityOptions");
+  RequireValid(options, "invalid GraspQualityOptions");
   GraspQuality q;
   double rho = options.torque_scale;
   if (rho == 0.0) {

@@ -6,6 +6,7 @@
 
 #include "common/errors.hpp"
 #include "common/stopwatch.hpp"
+#include "common/valid_options.hpp"
 
 namespace graspsynth {
 
@@ -32,8 +33,7 @@ bool PhysicsGateOptions::IsValid(std::string* why) const {
 PhysicsGateResult RunPhysicsGate(const SimulationModel& model, const JointTrajectory& trajectory,
                                  const PhysicsGateOptions& options,
                                  const ProgressCallback& progress) {
-  std::string why;
-  if (!options.IsValid(&why)) throw InputError("invalid physics gate option: " + why);
+  RequireValid(options, "invalid physics gate option");
   const auto t0 = std::chrono::steady_clock::now();
   PhysicsGateResult r;
   // the nominal trial, keeping the last hand-object contact set and the object pose with it.

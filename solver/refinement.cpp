@@ -11,6 +11,7 @@
 
 #include "common/errors.hpp"
 #include "common/stopwatch.hpp"
+#include "common/valid_options.hpp"
 #include "kinematics/arm_ik.hpp"
 #include "motion/joint_space.hpp"
 
@@ -565,8 +566,8 @@ RefinementResult RefineGraspingMotion(const RobotModel& robot, const SceneModel&
                                       const RefinementInputs& inputs,
                                       const RefinementOptions& options, CollisionData* data,
                                       const RefinementStages& stages) {
+  RequireValid(options, "invalid refinement option");
   std::string why;
-  if (!options.IsValid(&why)) throw InputError("invalid refinement option: " + why);
   if (!IsValidRefinementStages(stages, &why)) throw InputError("invalid refinement: " + why);
   const auto t_start = Clock::now();
   RefinementResult result;

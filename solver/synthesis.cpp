@@ -6,6 +6,7 @@
 
 #include "common/errors.hpp"
 #include "common/stopwatch.hpp"
+#include "common/valid_options.hpp"
 #include "scene/rest_pose.hpp"
 
 namespace graspsynth {
@@ -252,8 +253,7 @@ SynthesisResult SynthesizeGrasp(const SynthesisModel& model, double theta_deg,
 
 SynthesisResult SynthesizeGrasp(const SynthesisModel& model, const SynthesisTask& task,
                                 const SynthesisOptions& options, SynthesisData* workspace) {
-  std::string why;
-  if (!options.IsValid(&why)) throw InputError("invalid synthesis option: " + why);
+  RequireValid(options, "invalid synthesis option");
   CollisionData* data = workspace->collision();
   SynthesisResult r;
   r.theta_deg = task.theta_deg;

@@ -7,6 +7,7 @@
 #include "common/demand.hpp"
 #include "common/errors.hpp"
 #include "common/format.hpp"
+#include "common/valid_options.hpp"
 #include "motion/scripted_grasp.hpp"
 
 namespace graspsynth {
@@ -67,8 +68,7 @@ SynthesisModel::SynthesisModel(RobotModel robot, SceneModel scene, GraspLibrary 
     theta_min_deg_ = i == 0 ? e.theta_deg : std::min(theta_min_deg_, e.theta_deg);
     theta_max_deg_ = i == 0 ? e.theta_deg : std::max(theta_max_deg_, e.theta_deg);
   }
-  std::string why;
-  if (!line_options.IsValid(&why)) throw InputError("invalid line-principle option: " + why);
+  RequireValid(line_options, "invalid line-principle option");
   if (positions) {
     std::vector<Eigen::Vector3d> placements;
     for (const LibraryEntry& e : library_.entries) {

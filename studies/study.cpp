@@ -10,6 +10,7 @@
 #include "common/format.hpp"
 #include "common/parallel.hpp"
 #include "common/stopwatch.hpp"
+#include "common/valid_options.hpp"
 #include "kinematics/arm_ik.hpp"
 #include "kinematics/pose_math.hpp"
 #include "solver/validated_synthesis.hpp"
@@ -357,8 +358,7 @@ std::vector<StudyRow> SynthesisStage(const SimulationModel& model, const StudyOp
 
 StudyResult RunStudy(const SimulationModel& model, const StudyOptions& options,
                      const StudyProgress& progress) {
-  std::string why;
-  if (!options.IsValid(&why)) throw InputError("study: " + why);
+  RequireValid(options, "study");
   const auto study_start = std::chrono::steady_clock::now();
   StudyResult result;
   result.options = options;

@@ -8,11 +8,12 @@
 
 #include "common/errors.hpp"
 #include "common/format.hpp"
+#include "common/valid_options.hpp"
 #include "kinematics/arm_ik.hpp"
 #include "kinematics/pose_math.hpp"
 #include "motion/joint_space.hpp"
-#include "scene/rest_pose.hpp"
 #include "motion/scripted_grasp.hpp"
+#include "scene/rest_pose.hpp"
 #include "simulation/simulation_data.hpp"
 #include "simulation/trial_judge.hpp"
 
@@ -106,8 +107,7 @@ struct TeleopSession::Impl {
   double simulated = 0.0;
 
   Impl(const SimulationModel& m, TeleopOptions o) : model(m), options(std::move(o)) {
-    std::string why;
-    if (!options.IsValid(&why)) throw InputError("invalid teleoperation option: " + why);
+    RequireValid(options, "invalid teleoperation option");
     if (options.object_xy) model.scene().CheckOnTable(*options.object_xy);
     glove = options.glove_map ? *options.glove_map : GloveMap::Default(model.robot().hand);
     tick = 1.0 / options.rate_hz;

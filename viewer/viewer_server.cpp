@@ -17,6 +17,7 @@
 
 #include "common/errors.hpp"
 #include "common/input_file.hpp"
+#include "common/valid_options.hpp"
 #include "viewer/http_request.hpp"
 
 namespace graspsynth::viewer {
@@ -121,8 +122,7 @@ ViewerServer::ViewerServer(std::string scene_json, const ViewerServerOptions& op
     : address_(options.address),
       options_(options),
       scene_(std::make_shared<const std::string>(std::move(scene_json))) {
-  std::string why;
-  if (!options.IsValid(&why)) throw InputError("viewer server: " + why);
+  RequireValid(options, "viewer server");
 
   for (const AssetFile& file : kAssetFiles) {
     const std::filesystem::path path = options.asset_dir / file.file;

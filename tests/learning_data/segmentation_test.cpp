@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "common/errors.hpp"
 #include "tests/learning_data/demo_fixtures.hpp"
 #include "tests/utils/eigen_matchers.hpp"
 
@@ -75,6 +76,11 @@ TEST(Segmentation, CylinderPreGraspIsTheFirstSampleInside) {
   EXPECT_TRUE(
       testing::MatricesNear((m.pregrasp().p_WH - m.p_WO).head<2>(), spec.pregrasp_xy, 1e-12));
   EXPECT_TRUE(testing::MatricesNear((m.grasp().p_WH - m.p_WO).head<2>(), spec.grasp_xy, 1e-12));
+}
+
+TEST(Segmentation, InvalidOptionsAreAnInputErrorNotAnAbort) {
+  GS_EXPECT_THROW_WITH(Segment(MakeTrial(TrialSpec{}), Cylinder(-1.0)), InputError,
+                       "invalid segmentation options: grasp region radius must be finite and > 0");
 }
 
 TEST(Segmentation, RegionRadiusAndHeightMoveTheEntry) {

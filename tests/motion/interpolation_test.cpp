@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "common/errors.hpp"
 #include "kinematics/pose_math.hpp"
 #include "tests/utils/eigen_matchers.hpp"
 #include "tests/utils/motion_fixtures.hpp"
@@ -41,6 +42,16 @@ TEST(BlendMotions, EndpointsReproduceTheDemonstrations) {
   // and they are the original pre-grasp and grasp poses.
   EXPECT_TRUE(MatricesNear(at1.grasp().p_WH, p.m2.grasp().p_WH, 0.0));
   EXPECT_LT(AngleBetween(at0.pregrasp().q_WH, p.m1.pregrasp().q_WH), 1e-15);
+}
+
+TEST(BlendMotions, InvalidOptionsAreAnInputErrorNotAnAbort) {
+  // the one policy for invalid options (common/valid_options.hpp): a library caller that gives
+  // bad options gets an error it can catch and show, as a command line or Python user does.
+  const Pair p;
+  BlendOptions options;
+  options.waypoints = 1;
+  GS_EXPECT_THROW_WITH(BlendMotions(p.m1, p.m2, 0.5, options), InputError,
+                       "invalid BlendOptions: BlendOptions::waypoints must be at least 2, is 1");
 }
 
 TEST(BlendMotions, BlendsEachComponentAsThePaperSays) {
@@ -88,11 +99,10 @@ TEST(BlendOptions, RejectsTooFewWaypoints) {
   EXPECT_EQ(why, "BlendOptions::waypoints must be at least 2, is 1");
 }
 
-
 // a third demonstration at another object position: the placements' blend.
 GraspingMotion Third(const Eigen::Vector3d& p_WO) {
-  return LineMotion(p_WO + Eigen::Vector3d(0.05, -0.41, 0.19), p_WO + Eigen::Vector3d(0.04, -0.37, 0.08),
-                    0.1, 0.9, 23, 1.3, p_WO, 25 * kDeg);
+  return LineMotion(p_WO + Eigen::Vector3d(0.05, -0.41, 0.19),
+                    p_WO + Eigen::Vector3d(0.04, -0.37, 0.08), 0.1, 0.9, 23, 1.3, p_WO, 25 * kDeg);
 }
 
 TEST(BlendMotionsWeighted, AWeightOfOneIsThatDemonstrationExactly) {
@@ -155,7 +165,8 @@ TEST(BlendMotionsWeighted, BlendsRelativeToEachObjectAndPlacesAtTheWeightedCentr
   const GraspingMotion base = Resample(p.m1, 30);
   EXPECT_TRUE(MatricesNear(blend.p_WO, p.p_WO + 0.75 * shift, 1e-12));
   for (size_t i = 0; i < 30; ++i) {
-    EXPECT_TRUE(MatricesNear(blend.waypoints[i].p_WH, base.waypoints[i].p_WH + 0.75 * shift, 1e-12));
+    EXPECT_TRUE(
+        MatricesNear(blend.waypoints[i].p_WH, base.waypoints[i].p_WH + 0.75 * shift, 1e-12));
     EXPECT_LT(AngleBetween(blend.waypoints[i].q_WH, base.waypoints[i].q_WH), 1e-12);
   }
 }
