@@ -14,8 +14,7 @@ using request::OptionKind;
 
 std::string HelpOf(const OptionInfo& info, const request::Value& default_value) {
   std::string help = info.help;
-  const bool negated = info.Flag(default_value).rfind("--no-", 0) == 0;
-  if (negated && !help.empty()) {
+  if (info.Negated(default_value) && !help.empty()) {
     help[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(help[0])));
     help = "Turn off: " + help;
   }
@@ -37,7 +36,7 @@ void AddOptionFlags(CLI::App* app, const std::vector<OptionInfo>& infos,
     };
     CLI::Option* option = nullptr;
     if (info.kind == OptionKind::kBool && !info.on_off) {
-      const bool negated = flag.rfind("--no-", 0) == 0;
+      const bool negated = info.Negated(defaults[k]);
       option = app->add_flag_callback(
           flag, [record, negated] { record(negated ? "false" : "true"); }, help);
     } else if (info.kind == OptionKind::kNumberPair) {

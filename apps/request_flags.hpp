@@ -64,12 +64,11 @@ class RequestFlags {
   RequestFlags(CLI::App* app, const request::OptionList<R>& options, bool with_config = true)
       : options_(&options), given_(std::make_shared<GivenFlags>()) {
     const R defaults{};
-    std::vector<request::OptionInfo> infos;
     for (const request::Option<R>& o : options) {
-      infos.push_back(o.info);
+      infos_.push_back(o.info);
       defaults_.push_back(o.get(defaults));
     }
-    AddOptionFlags(app, infos, defaults_, with_config, given_.get());
+    AddOptionFlags(app, infos_, defaults_, with_config, given_.get());
   }
 
   /// The request of the defaults, the config file and the flags, in that order. Throws
@@ -78,33 +77,20 @@ class RequestFlags {
     R request{};
     std::vector<bool> set(options_->size(), false);
     if (!given_->config.empty()) {
-      const std::vector<std::string> names = Names();
-      for (const auto& [k, field] : request::detail::ConfigFields(given_->config, names)) {
-        const request::Option<R>& o = (*options_)[k];
-        request::Apply(o, request::ValueFromJson(o.info, field),
-                       field.source() + ": field '" + field.path() + "'", &request);
-        set[k] = true;
-      }
+      for (size_t k : request::ApplyConfig(*options_, given_->config, &request)) set[k] = true;
     }
     for (const GivenFlags::Given& g : given_->given) {
       const request::Option<R>& o = (*options_)[g.option];
       request::Apply(o, request::ParseText(o.info, g.text, g.flag), g.flag, &request);
       set[g.option] = true;
     }
-    std::vector<request::OptionInfo> infos;
-    for (const request::Option<R>& o : *options_) infos.push_back(o.info);
-    RequireGiven(infos, defaults_, set);
+    RequireGiven(infos_, defaults_, set);
     return request;
   }
 
  private:
-  std::vector<std::string> Names() const {
-    std::vector<std::string> names;
-    for (const request::Option<R>& o : *options_) names.push_back(o.info.name);
-    return names;
-  }
-
   const request::OptionList<R>* options_;
+  std::vector<request::OptionInfo> infos_;  // what the flags show, in the options' order
   std::vector<request::Value> defaults_;
   std::shared_ptr<GivenFlags> given_;  // shared with the flags' callbacks
 };

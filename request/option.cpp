@@ -114,12 +114,15 @@ size_t EditDistance(std::string_view a, std::string_view b) {
 
 }  // namespace
 
+bool OptionInfo::Negated(const Value& default_value) const {
+  return kind == OptionKind::kBool && !on_off && std::holds_alternative<bool>(default_value) &&
+         std::get<bool>(default_value);
+}
+
 std::string OptionInfo::Flag(const Value& default_value) const {
   std::string flag = name;
   std::replace(flag.begin(), flag.end(), '_', '-');
-  const bool negated = kind == OptionKind::kBool && !on_off &&
-                       std::holds_alternative<bool>(default_value) && std::get<bool>(default_value);
-  return (negated ? "--no-" : "--") + flag;
+  return (Negated(default_value) ? "--no-" : "--") + flag;
 }
 
 std::string OptionInfo::Placeholder() const {

@@ -72,6 +72,8 @@ struct OptionInfo {
   /// The command-line flag: "--" and the name with '-' for '_' ("--min-robustness"), or
   /// "--no-..." for a bool that is true by default (given `default_value`).
   std::string Flag(const Value& default_value) const;
+  /// Whether the flag is "--no-NAME": a bool switch (not on|off) that is true by default.
+  bool Negated(const Value& default_value) const;
 };
 
 /// Why `value` is not a value of `info` (its kind, range or choices), or "" when it is.
@@ -138,14 +140,19 @@ std::vector<std::pair<size_t, JsonReader>> ConfigFields(const std::filesystem::p
 /// optionally "format": "graspsynth-options/1") into `request`, over what it holds. Throws
 /// InputError naming the file and the field for a file that cannot be read, a key that is not
 /// an option (with the nearest option's name) or a value that is not one of the option's.
+/// Returns the indices in `options` of the options the file set.
 template <class R>
-void ApplyConfig(const OptionList<R>& options, const std::filesystem::path& file, R* request) {
+std::vector<size_t> ApplyConfig(const OptionList<R>& options, const std::filesystem::path& file,
+                                R* request) {
   std::vector<std::string> names;
   for (const Option<R>& o : options) names.push_back(o.info.name);
+  std::vector<size_t> set;
   for (const auto& [k, field] : detail::ConfigFields(file, names)) {
     Apply(options[k], ValueFromJson(options[k].info, field),
           field.source() + ": field '" + field.path() + "'", request);
+    set.push_back(k);
   }
+  return set;
 }
 
 /// The description of an option `name` of `kind` with `help`; the rest at their defaults.
