@@ -70,11 +70,6 @@ int RunGeneralize(const GeneralizeOptions& o, const request::GeneralizeRequest& 
   std::vector<StudyRow> rows;
   std::ostringstream what;
   if (r.leave_one_out) {
-    if (library.entries.size() < 3) {
-      throw InputError("--leave-one-out needs a library with at least 3 orientations ('" +
-                       library_path.string() + "' has " + std::to_string(library.entries.size()) +
-                       ")");
-    }
     what << "Leave-one-out on " << library_name
          << ": each inner demonstrated orientation synthesized from the library without it.";
     rows = LeaveOneOutTable(model, library, table,

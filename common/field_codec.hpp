@@ -5,15 +5,18 @@
 /// every field in the list's order, every number to the bit. The bytes of each kind of value:
 /// bool, int, uint64 and enums as 8 bytes (an enum refused outside its EnumRange), double as
 /// its bit pattern, strings and vectors with their length first, std::optional as a presence
-/// flag then the value, fixed-size arrays and Eigen vectors as their numbers, a nested struct as
-/// its own field list.
+/// flag then the value, fixed-size arrays and Eigen vectors as their numbers, a quaternion as w,
+/// x, y, z, an isometry as its 4 x 4 matrix (column by column), a pair as its first then its
+/// second, a nested struct as its own field list.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "common/byte_codec.hpp"
@@ -32,6 +35,11 @@ template <class T>
 struct IsVector : std::false_type {};
 template <class T>
 struct IsVector<std::vector<T>> : std::true_type {};
+
+template <class T>
+struct IsPair : std::false_type {};
+template <class A, class B>
+struct IsPair<std::pair<A, B>> : std::true_type {};
 
 template <class T>
 struct IsArray : std::false_type {};
@@ -81,6 +89,13 @@ void WriteValue(ByteWriter& w, const T& value) {
     for (const auto& v : value) WriteValue(w, v);
   } else if constexpr (FixedEigenVector<T>) {
     for (int i = 0; i < value.size(); ++i) w.Double(value[i]);
+  } else if constexpr (std::is_same_v<T, Eigen::Quaterniond>) {
+    for (double c : {value.w(), value.x(), value.y(), value.z()}) w.Double(c);
+  } else if constexpr (std::is_same_v<T, Eigen::Isometry3d>) {
+    for (int i = 0; i < 16; ++i) w.Double(value.matrix().data()[i]);
+  } else if constexpr (IsPair<T>::value) {
+    WriteValue(w, value.first);
+    WriteValue(w, value.second);
   } else {
     static_assert(HasFields<T>, "a field of a type the job bytes cannot write");
     FieldWriter fields{w};
@@ -131,6 +146,14 @@ void ReadValue(ByteReader& r, T& value) {
     for (auto& v : value) ReadValue(r, v);
   } else if constexpr (FixedEigenVector<T>) {
     for (int i = 0; i < value.size(); ++i) value[i] = r.Double();
+  } else if constexpr (std::is_same_v<T, Eigen::Quaterniond>) {
+    const double qw = r.Double(), qx = r.Double(), qy = r.Double(), qz = r.Double();
+    value = Eigen::Quaterniond(qw, qx, qy, qz);
+  } else if constexpr (std::is_same_v<T, Eigen::Isometry3d>) {
+    for (int i = 0; i < 16; ++i) value.matrix().data()[i] = r.Double();
+  } else if constexpr (IsPair<T>::value) {
+    ReadValue(r, value.first);
+    ReadValue(r, value.second);
   } else {
     static_assert(HasFields<T>, "a field of a type the job bytes cannot read");
     FieldReader fields{r};

@@ -39,8 +39,9 @@ struct Field {
   const char* csv_header = nullptr;
   /// An empty optional's text in the JSON and the CSV ("" or "no_library"); nullptr: JSON null.
   const char* null_text = nullptr;
-  /// An empty optional is left out of the JSON object (not written as null), and its CSV
-  /// columns are there only when some row of the table has a value.
+  /// An empty optional or text is left out of the JSON object (an optional is not written as
+  /// null), and an optional's CSV columns are there only when some row of the table has a
+  /// value.
   bool omit_empty = false;
   /// Written as JSON null whatever the value (a figure that is not meaningful in this row).
   bool json_null = false;

@@ -44,7 +44,8 @@ namespace field_detail {
 template <class T>
 concept VectorOfFields = IsVector<T>::value && HasFields<typename T::value_type>;
 
-// The JSON of one value: `forms` first (a report's own form of a nested type), then by type.
+// The JSON of one value: `forms` first (a report's own form of a nested type), then by type (a
+// quaternion as [w, x, y, z], a pose as its 4 x 4 matrix by rows, a pair as [first, second]).
 template <class Json, class T, class Forms>
 Json JsonValue(const T& value, const Forms& forms) {
   if constexpr (std::is_invocable_v<const Forms&, const T&>) {
@@ -55,6 +56,18 @@ Json JsonValue(const T& value, const Forms& forms) {
     Json a = Json::array();
     for (int i = 0; i < value.size(); ++i) a.push_back(value[i]);
     return a;
+  } else if constexpr (std::is_same_v<T, Eigen::Quaterniond>) {
+    return Json::array({value.w(), value.x(), value.y(), value.z()});
+  } else if constexpr (std::is_same_v<T, Eigen::Isometry3d>) {
+    Json rows = Json::array();
+    for (int i = 0; i < 4; ++i) {
+      Json row = Json::array();
+      for (int j = 0; j < 4; ++j) row.push_back(value.matrix()(i, j));
+      rows.push_back(std::move(row));
+    }
+    return rows;
+  } else if constexpr (IsPair<T>::value) {
+    return Json::array({JsonValue<Json>(value.first, forms), JsonValue<Json>(value.second, forms)});
   } else if constexpr (VectorOfFields<T>) {
     Json a = Json::array();
     for (const auto& v : value) a.push_back(FieldsJson<Json>(v, forms));
@@ -83,6 +96,8 @@ struct JsonWriter {
       } else if (!f.omit_empty) {
         out[at] = f.null_text ? Json(f.null_text) : Json(nullptr);
       }
+    } else if constexpr (std::is_same_v<T, std::string>) {
+      if (!(f.omit_empty && value.empty())) out[at] = value;
     } else {
       out[at] = JsonValue<Json>(value, forms);
     }

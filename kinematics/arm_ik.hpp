@@ -21,6 +21,7 @@
 #include <string_view>
 #include <vector>
 
+#include "common/field_list.hpp"
 #include "kinematics/arm_model.hpp"
 #include "kinematics/types.hpp"
 
@@ -59,6 +60,11 @@ enum class IkStatus {
 
 /// A short lowercase name of the status, e.g. "unreachable".
 std::string_view ToString(IkStatus status);
+
+template <>
+struct EnumRange<IkStatus> {
+  static constexpr IkStatus kLast = IkStatus::kOutOfLimits;
+};
 
 /// The closed forms of one flange target for one elbow sign gc4 (robot.md 1.5 steps 1-4):
 /// R03(psi) = As sin(psi) + Bs cos(psi) + Cs and R47(psi) = Aw sin(psi) + Bw cos(psi) + Cw.

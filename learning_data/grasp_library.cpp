@@ -10,9 +10,11 @@
 #include "common/atomic_file.hpp"
 #include "common/data_dir.hpp"
 #include "common/errors.hpp"
+#include "common/field_text.hpp"
 #include "common/json_reader.hpp"
 #include "kinematics/pose_math.hpp"
 #include "learning_data/demo_directory.hpp"
+#include "learning_data/learning_data_fields.hpp"
 
 namespace graspsynth {
 namespace {
@@ -58,29 +60,28 @@ json LibraryJson(const GraspLibrary& library) {
   const bool v2 = library.HasPositions();
   json scores = json::array();
   for (const DemoScore& s : library.scores) {
-    scores.push_back({{"file", s.file}, {"trial", s.trial}, {"theta_deg", s.theta_deg}});
-    if (v2) scores.back()["placement"] = PlacementJson(s.xy, s.theta_deg);
-    scores.back().update(json{{"trials", s.trials},
-                      {"successes", s.successes},
-                      {"score", s.score},
-                      {"ci_low", s.ci_low},
-                      {"ci_high", s.ci_high},
-                      {"nominal_success", s.nominal_success},
-                      {"seed", s.seed},
-                      {"failures", s.failures},
-                      {"selected", s.selected}});
-    if (!s.stopped.empty()) scores.back()["stopped"] = s.stopped;
+    const json fields = FieldsJson<json>(s);
+    if (!v2) {
+      scores.push_back(fields);
+      continue;
+    }
+    json score;  // version 2: the placement after theta_deg
+    for (const auto& [key, value] : fields.items()) {
+      score[key] = value;
+      if (key == "theta_deg") score["placement"] = PlacementJson(s.xy, s.theta_deg);
+    }
+    scores.push_back(std::move(score));
   }
   json entries = json::array();
   for (const LibraryEntry& e : library.entries) {
     entries.push_back({{"theta_deg", e.theta_deg}});
     if (v2) entries.back()["placement"] = PlacementJson(e.motion.p_WO.head<2>(), e.theta_deg);
     entries.back().update(json{{"file", e.file},
-                       {"trial", e.trial},
-                       {"score", e.score},
-                       {"lift_height", e.lift_height},
-                       {"lift_duration", e.lift_duration},
-                       {"motion", MotionJson(e.motion)}});
+                               {"trial", e.trial},
+                               {"score", e.score},
+                               {"lift_height", e.lift_height},
+                               {"lift_duration", e.lift_duration},
+                               {"motion", MotionJson(e.motion)}});
   }
   json j;
   j["format"] = v2 ? kLibraryFormatV2 : kLibraryFormat;
@@ -178,9 +179,9 @@ LibraryEntry ReadEntry(const JsonReader& object, bool v2) {
   e.lift_duration = object.NumberIn("lift_duration", 0.0, INFINITY);
   e.motion = ReadMotion(object.Field("motion"), e.theta_deg);
   if (v2 && (e.motion.p_WO.head<2>() - xy).norm() > kSamePosition) {
-    object.Field("placement").Fail("the motion's object_position in x and y (" +
-                                   Shown(e.motion.p_WO.x()) + ", " + Shown(e.motion.p_WO.y()) +
-                                   ")");
+    object.Field("placement")
+        .Fail("the motion's object_position in x and y (" + Shown(e.motion.p_WO.x()) + ", " +
+              Shown(e.motion.p_WO.y()) + ")");
   }
   return e;
 }

@@ -5,13 +5,14 @@
 #include <cstdio>
 #include <mutex>
 
-#include "common/byte_codec.hpp"
 #include "common/errors.hpp"
+#include "common/field_codec.hpp"
 #include "common/parallel.hpp"
 #include "common/valid_options.hpp"
 #include "kinematics/hand_model.hpp"
 #include "kinematics/pose_math.hpp"
 #include "learning_data/demo_replay.hpp"
+#include "learning_data/learning_data_fields.hpp"
 #include "motion/reach.hpp"
 #include "simulation/random.hpp"
 #include "simulation/trial.hpp"
@@ -363,89 +364,10 @@ std::vector<OperatorTrial> GenerateDemonstrations(const SimulationModel& model,
   return trials;
 }
 
-std::string EncodeOperatorTrial(const OperatorTrial& t) {
-  ByteWriter w;
-  WriteOptional(w, t.position, [&](const Eigen::Vector2d& p) {
-    w.Double(p.x());
-    w.Double(p.y());
-  });
-  w.Double(t.theta_deg);
-  w.Int(t.index);
-  w.Int(t.strategy);
-  w.Bool(t.sloppy);
-  w.Bool(t.success);
-  WriteOptional(w, t.outcome, [&](TrialOutcome o) { w.EnumValue(o); });
-  w.String(t.reason);
-  w.Int(t.attempts);
-  const DemoLog& log = t.log;
-  w.String(log.source);
-  const DemoMetadata& m = log.metadata;
-  w.String(m.format);
-  w.Double(m.theta_deg);
-  for (int k = 0; k < 3; ++k) w.Double(m.object_position[k]);
-  WriteOptional(w, m.trial, [&](const std::string& v) { w.String(v); });
-  WriteOptional(w, m.operator_name, [&](const std::string& v) { w.String(v); });
-  WriteOptional(w, m.sample_rate_hz, [&](double v) { w.Double(v); });
-  w.UInt(m.extra.size());
-  for (const auto& [key, value] : m.extra) {
-    w.String(key);
-    w.String(value);
-  }
-  w.UInt(log.samples.size());
-  for (const DemoSample& d : log.samples) {
-    w.Double(d.t);
-    for (int k = 0; k < 3; ++k) w.Double(d.p_WH[k]);
-    for (double q : {d.q_WH.w(), d.q_WH.x(), d.q_WH.y(), d.q_WH.z()}) w.Double(q);
-    for (int k = 0; k < d.f.size(); ++k) w.Double(d.f[k]);
-    w.EnumValue(d.event);
-    for (int k = 0; k < 3; ++k) w.Double(d.p_WO[k]);
-  }
-  return w.Take();
-}
+std::string EncodeOperatorTrial(const OperatorTrial& t) { return EncodeFields(t); }
 
 OperatorTrial DecodeOperatorTrial(std::string_view bytes, const std::string& source) {
-  ByteReader r(bytes, source);
-  OperatorTrial t;
-  t.position = ReadOptional(r, [&] {
-    const double x = r.Double();
-    return Eigen::Vector2d(x, r.Double());
-  });
-  t.theta_deg = r.Double();
-  t.index = r.Int32();
-  t.strategy = r.Int32();
-  t.sloppy = r.Bool();
-  t.success = r.Bool();
-  t.outcome = ReadOptional(r, [&] { return r.EnumValue(TrialOutcome::kUnstable); });
-  t.reason = r.String();
-  t.attempts = r.Int32();
-  DemoLog& log = t.log;
-  log.source = r.String();
-  DemoMetadata& m = log.metadata;
-  m.format = r.String();
-  m.theta_deg = r.Double();
-  for (int k = 0; k < 3; ++k) m.object_position[k] = r.Double();
-  m.trial = ReadOptional(r, [&] { return r.String(); });
-  m.operator_name = ReadOptional(r, [&] { return r.String(); });
-  m.sample_rate_hz = ReadOptional(r, [&] { return r.Double(); });
-  const int64_t extra = r.IntIn(0, static_cast<int64_t>(bytes.size()));
-  for (int64_t k = 0; k < extra; ++k) {
-    std::string key = r.String();
-    m.extra.emplace_back(std::move(key), r.String());
-  }
-  // a sample is 28 numbers of 8 bytes: a count beyond that cannot be read.
-  const int64_t samples = r.IntIn(0, static_cast<int64_t>(bytes.size() / (28 * 8)));
-  log.samples.resize(static_cast<size_t>(samples));
-  for (DemoSample& d : log.samples) {
-    d.t = r.Double();
-    for (int k = 0; k < 3; ++k) d.p_WH[k] = r.Double();
-    const double qw = r.Double(), qx = r.Double(), qy = r.Double(), qz = r.Double();
-    d.q_WH = Eigen::Quaterniond(qw, qx, qy, qz);
-    for (int k = 0; k < d.f.size(); ++k) d.f[k] = r.Double();
-    d.event = r.EnumValue(DemoEvent::kEnd);
-    for (int k = 0; k < 3; ++k) d.p_WO[k] = r.Double();
-  }
-  r.Finish();
-  return t;
+  return DecodeFields<OperatorTrial>(bytes, source);
 }
 
 }  // namespace graspsynth

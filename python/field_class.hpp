@@ -6,8 +6,11 @@
 // an enum with an EnumRange becomes a pybind11 enum whose members are its ToString() names in
 // capitals (TrialOutcome.NOT_LIFTED, .label "not_lifted").
 
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+
+#include <Eigen/Geometry>
 
 #include <cctype>
 #include <string>
@@ -21,12 +24,18 @@ namespace graspsynth::python {
 namespace py = pybind11;
 
 /// A field's value as a Python object: numbers, strings, enums (bound with BindEnum), tuples
-/// for Eigen vectors and fixed arrays, lists for vectors, None for an empty optional, a bound
-/// class for a nested result.
+/// for Eigen vectors and fixed arrays, a 4 x 4 array for a pose, lists for vectors, None for an
+/// empty optional, a bound class for a nested result.
 template <class T>
 py::object FieldToPython(const T& value) {
   using field_detail::FixedEigenVector;
-  if constexpr (field_detail::IsOptional<T>::value) {
+  if constexpr (std::is_same_v<T, Eigen::Isometry3d>) {
+    py::array_t<double> pose({4, 4});
+    for (int i = 0; i < 4; ++i) {
+      for (int j = 0; j < 4; ++j) pose.mutable_at(i, j) = value.matrix()(i, j);
+    }
+    return pose;
+  } else if constexpr (field_detail::IsOptional<T>::value) {
     return value ? FieldToPython(*value) : py::none();
   } else if constexpr (FixedEigenVector<T> || field_detail::IsArray<T>::value) {
     py::tuple t(value.size());
@@ -130,10 +139,11 @@ py::enum_<E> BindEnum(py::handle scope, const char* name, const char* doc) {
 
 /// Binds the result T as `name`: a read-only property per field of its list, __repr__ (the
 /// brief fields, or every field when none is brief), to_dict() and __eq__ (the same fields,
-/// compared by their job bytes: every number to the bit).
-template <HasFields T>
-py::class_<T> BindFieldClass(py::handle scope, const char* name, const char* doc) {
-  py::class_<T> c(scope, name, doc);
+/// compared by their job bytes: every number to the bit). `Options` are pybind11's class
+/// options (a holder: std::shared_ptr<T> for a result that functions return shared).
+template <HasFields T, class... Options>
+py::class_<T, Options...> BindFieldClass(py::handle scope, const char* name, const char* doc) {
+  py::class_<T, Options...> c(scope, name, doc);
   for (size_t k = 0; k < FieldCount<T>(); ++k) {
     const char* field = "";
     VisitField(T{}, k, [&](const Field& f, const auto&) { field = f.name; });

@@ -338,12 +338,11 @@ them for a batch.)doc")
       "The shipped scene (models/scene.json), read once and shared by every call that is given "
       "no scene");
 
-  // the codes of IkStatus, by name: graspsynth.IkStatus (python/graspsynth/__init__.py)
-  // checks itself against them at import.
+  // the codes of IkStatus, by name: graspsynth.IkStatus (python/graspsynth/__init__.py) is
+  // made from them.
   py::dict statuses;
-  for (IkStatus status : {IkStatus::kOk, IkStatus::kUnreachable, IkStatus::kSingular,
-                          IkStatus::kElbowLimit, IkStatus::kOutOfLimits}) {
-    statuses[py::str(std::string(ToString(status)))] = static_cast<int>(status);
+  for (int k = 0; k <= static_cast<int>(EnumRange<IkStatus>::kLast); ++k) {
+    statuses[py::str(std::string(ToString(static_cast<IkStatus>(k))))] = k;
   }
   m.attr("IK_STATUS_CODES") = statuses;
 }

@@ -96,24 +96,6 @@ const SynthesisResult& Synthesized(const Grasp& g) {
   return g.validated.synthesis;
 }
 
-py::dict ScoreDict(const DemoScore& s) {
-  py::dict d;
-  d["file"] = s.file;
-  d["trial"] = s.trial;
-  d["theta_deg"] = s.theta_deg;
-  d["trials"] = s.trials;
-  d["successes"] = s.successes;
-  d["score"] = s.score;
-  d["ci_low"] = s.ci_low;
-  d["ci_high"] = s.ci_high;
-  d["nominal_success"] = s.nominal_success;
-  d["seed"] = s.seed;
-  d["failures"] = s.failures;
-  d["selected"] = s.selected;
-  d["stopped"] = s.stopped;
-  return d;
-}
-
 py::tuple Select(const std::optional<std::filesystem::path>& directory, int perturbations,
                  uint64_t seed, int threads, bool early_stop, bool physics,
                  const std::shared_ptr<RobotModel>& robot,
@@ -220,13 +202,8 @@ default). Raises InputError naming the file and the field at fault.)doc")
           "One dict per orientation: theta_deg, file, trial, score, lift_height (m), "
           "lift_duration (s) and motion (the grasping motion's arrays)")
       .def_property_readonly(
-          "scores",
-          [](const GraspLibrary& l) {
-            py::list out;
-            for (const DemoScore& s : l.scores) out.append(ScoreDict(s));
-            return out;
-          },
-          "Every successful demonstration's robustness score, by theta then file")
+          "scores", [](const GraspLibrary& l) { return l.scores; },
+          "Every successful demonstration's robustness score (DemoScore), by theta then file")
       .def("to_json", &GraspLibraryToJson, "The graspsynth-library/1 text")
       .def(
           "save",

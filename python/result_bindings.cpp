@@ -1,7 +1,8 @@
-// graspsynth._core: the study's results as typed classes and its outcomes, methods and statuses
-// as enums, all made from the field lists (common/field_list.hpp, studies/study_fields.hpp) by
-// python/field_class.hpp.
+// graspsynth._core: the study's and the selection's results as typed classes and its outcomes,
+// methods and statuses as enums, all made from the field lists (common/field_list.hpp,
+// studies/study_fields.hpp) by python/field_class.hpp.
 
+#include "learning_data/learning_data_fields.hpp"
 #include "python/bindings.hpp"
 #include "python/field_class.hpp"
 #include "studies/study_fields.hpp"
@@ -38,6 +39,12 @@ void BindResults(py::module_& m) {
       "to_dict() gives every field; synthesis.json's rows are the files' form.");
   BindFieldClass<StudyMethodSummary>(m, "StudyMethodSummary",
                                      "Per-method totals of a synthesis table.");
+  BindFieldClass<DemoScore>(
+      m, "DemoScore",
+      "A successful demonstration's robustness in the selection: its perturbed replays (trials, "
+      "successes, score, the Wilson 95% interval ci_low..ci_high), the nominal replay, whether it "
+      "was selected, and why its replays stopped early (stopped; empty when all ran). xy: the "
+      "object centre on the table in its log, m.");
 }
 
 }  // namespace graspsynth::python

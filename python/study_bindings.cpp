@@ -102,10 +102,6 @@ py::object Generalize(const py::object& library_arg, const py::dict& options,
   const std::shared_ptr<const GraspLibrary> shared =
       LibraryArgument(library_arg, scene.object.name);
   const GraspLibrary& library = *shared;
-  if (leave_one_out && library.entries.size() < 3) {
-    throw InputError("leave_one_out needs a library with at least 3 orientations ('" +
-                     library.source + "' has " + std::to_string(library.entries.size()) + ")");
-  }
   std::vector<StudyRow> rows;
   {
     py::gil_scoped_release release;

@@ -289,8 +289,8 @@ std::vector<StudyRow> LeaveOneOutTable(
     const std::function<void(const std::string& stage, int done, int total,
                              const std::string& what)>& progress) {
   if (library.entries.size() < 3) {
-    throw InputError("leave-one-out needs a library with at least 3 orientations (this one has " +
-                     std::to_string(library.entries.size()) + ")");
+    throw InputError("leave-one-out needs a library with at least 3 orientations ('" +
+                     library.source + "' has " + std::to_string(library.entries.size()) + ")");
   }
   SynthesisTableOptions table = options;
   std::vector<StudyRow> rows;

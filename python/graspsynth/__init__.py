@@ -37,6 +37,7 @@ from ._core import (
     IK_STATUS_CODES,
     __version__,
     DemoLog,
+    DemoScore,
     FallbackKind,
     FallbackReason,
     Grasp,
@@ -73,8 +74,8 @@ from ._core import (
 from . import _core
 
 __all__ = [
-    "InputError", "IkStatus", "Robot", "Scene", "DemoLog", "Trajectory", "TrialResult",
-    "Simulation", "GraspLibrary", "Synthesizer", "Grasp", "Table", "StudyResult",
+    "InputError", "IkStatus", "Robot", "Scene", "DemoLog", "DemoScore", "Trajectory",
+    "TrialResult", "Simulation", "GraspLibrary", "Synthesizer", "Grasp", "Table", "StudyResult",
     "StudyRow", "StudyMethodSummary", "HoldQuality", "FallbackReason", "PhysicsVariation",
     "PhysicsDraw", "SensitivityCell", "SensitivityRow", "SensitivityResult", "TrialOutcome",
     "SynthesisMethod", "SynthesisStatus", "FallbackKind", "PhysicsFactor",
@@ -87,25 +88,25 @@ __all__ = [
 PathLike = Union[str, "os.PathLike[str]"]
 
 
-class IkStatus(enum.IntEnum):
-    """Outcome of an IK query; the ``status`` arrays of :func:`ik` hold these values."""
+def _ik_status_enum() -> type:
+    # One member per value of the C++ IkStatus, named by its label in capitals (the extension's
+    # IK_STATUS_CODES), so that nothing here mirrors the C++ list.
+    members = {label.upper().replace(" ", "_"): code for label, code in IK_STATUS_CODES.items()}
+    status = enum.IntEnum("IkStatus", members, module=__name__)
+    status.__doc__ = (
+        "Outcome of an IK query; the ``status`` arrays of :func:`ik` hold these values. OK: a "
+        "solution within every joint limit; UNREACHABLE: the wrist centre is out of the arm's "
+        "reach; SINGULAR: the elbow is stretched, the arm angle is undefined; ELBOW_LIMIT: the "
+        "elbow angle the target needs is outside its limit; OUT_OF_LIMITS: a solution at this "
+        "arm angle and branch breaks a joint limit. ``label`` is the C++ library's name, e.g. "
+        "``\"out of limits\"``.")
+    labels = {code: label for label, code in IK_STATUS_CODES.items()}
+    status.label = property(lambda self: labels[self.value],
+                            doc="The C++ library's name of the status, e.g. ``\"out of limits\"``.")
+    return status
 
-    OK = 0  #: a solution within every joint limit
-    UNREACHABLE = 1  #: the wrist centre is out of the arm's reach
-    SINGULAR = 2  #: the elbow is stretched: the arm angle is undefined
-    ELBOW_LIMIT = 3  #: the elbow angle the target needs is outside its limit
-    OUT_OF_LIMITS = 4  #: a solution at this arm angle and branch breaks a joint limit
 
-    @property
-    def label(self) -> str:
-        """The C++ library's name of the status, e.g. ``"out of limits"``."""
-        return _IK_STATUS_LABELS[self.value]
-
-
-_IK_STATUS_LABELS = {code: name for name, code in IK_STATUS_CODES.items()}
-if {s.name.lower(): s.value for s in IkStatus} != {
-        name.replace(" ", "_"): code for name, code in IK_STATUS_CODES.items()}:
-    raise ImportError(f"graspsynth.IkStatus does not match the extension's {IK_STATUS_CODES}")
+IkStatus = _ik_status_enum()
 
 _defaults_lock = threading.Lock()
 

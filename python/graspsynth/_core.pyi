@@ -196,7 +196,7 @@ class GraspLibrary:
     @property
     def entries(self) -> list[dict[str, Any]]: ...
     @property
-    def scores(self) -> list[dict[str, Any]]: ...
+    def scores(self) -> list[DemoScore]: ...
     def to_json(self) -> str: ...
     def save(self, path: PathLike) -> None: ...
 
@@ -417,6 +417,24 @@ class StudyMethodSummary:
     fallbacks: int
     mean_robustness: float
     mean_robustness_all: float
+    def to_dict(self) -> dict[str, Any]:
+        """every field; enums as their labels, nested results as dicts"""
+
+class DemoScore:
+    file: str
+    trial: str
+    theta_deg: float
+    xy: tuple[float, float]
+    trials: int
+    successes: int
+    score: float
+    ci_low: float
+    ci_high: float
+    nominal_success: bool
+    seed: int
+    failures: str
+    selected: bool
+    stopped: str
     def to_dict(self) -> dict[str, Any]:
         """every field; enums as their labels, nested results as dicts"""
 

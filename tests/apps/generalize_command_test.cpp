@@ -7,6 +7,9 @@
 #include <fstream>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
+#include "tests/utils/paths.hpp"
 #include "tests/utils/run_command.hpp"
 
 namespace graspsynth {
@@ -163,6 +166,25 @@ TEST_F(GeneralizeCommand, BadOptionsAreNamedAndWriteNothing) {
     EXPECT_NE(r.err.find(expected), std::string::npos) << args << ": " << r.err;
     EXPECT_FALSE(fs::exists(dir_ / "generalization.csv")) << args;
   }
+}
+
+// The library must keep an inner orientation once one is left out: one check, in the library
+// (LeaveOneOutTable), with the library's file in its words, for the command and for Python.
+TEST_F(GeneralizeCommand, LeaveOneOutOfATwoEntryLibraryNamesTheLibrary) {
+  fs::create_directories(dir_);
+  nlohmann::json library = nlohmann::json::parse(
+      ReadFileText(fs::path(::testing::SourceDir()) / "learning_data" / "library.json"));
+  library["entries"].erase(library["entries"].begin() + 1, library["entries"].end() - 1);
+  const fs::path two = dir_ / "two.json";
+  std::ofstream(two) << library.dump();
+  const testing::CommandOutput r = RunGraspsynth("generalize --leave-one-out --library " +
+                                                 two.string() + " --out " + dir_.string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("leave-one-out needs a library with at least 3 orientations ('" +
+                       two.string() + "' has 2)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "generalization.csv"));
 }
 
 }  // namespace

@@ -6,10 +6,12 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/errors.hpp"
@@ -69,6 +71,23 @@ void VisitFields(V& v, Row& r) {
   v(Field("hidden"), r.hidden);
 }
 
+// A pose, a quaternion, pairs of texts and a text left out of the JSON when empty.
+struct Shapes {
+  Eigen::Quaterniond q = Eigen::Quaterniond::Identity();
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  std::vector<std::pair<std::string, std::string>> extra;
+  std::string note;
+};
+
+template <class V, class Row>
+requires SameStruct<Row, Shapes>
+void VisitFields(V& v, Row& r) {
+  v(Field("q"), r.q);
+  v(Field("pose"), r.pose);
+  v(Field("extra"), r.extra);
+  v(Field("note").Json("/note").OmitEmpty(), r.note);
+}
+
 namespace {
 
 using nlohmann::json;
@@ -126,6 +145,22 @@ TEST(FieldCodec, DamagedBytesAreAnInputError) {
   EXPECT_THROW(DecodeFields<Toy>(bad, "bad colour"), InputError);
 }
 
+TEST(FieldCodec, QuaternionsPosesAndPairsComeBackToTheBit) {
+  Shapes s;
+  s.q = Eigen::Quaterniond(0.5, -0.5, 0.5 + 1e-16, 0.5);  // w x y z, not normalized
+  s.pose.translate(Eigen::Vector3d(0.1, -0.2, 0.3))
+      .rotate(Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ()));
+  s.extra = {{"key", "value"}, {"", "empty key"}};
+  const Shapes back = DecodeFields<Shapes>(EncodeFields(s), "shapes");
+  EXPECT_EQ(back.q.coeffs(), s.q.coeffs());
+  EXPECT_EQ(back.pose.matrix(), s.pose.matrix());
+  EXPECT_EQ(back.extra, s.extra);
+  // w first: the old hand-written codecs' order.
+  const std::string bytes = EncodeFields(s);
+  EXPECT_EQ(DecodeFields<Shapes>(bytes, "shapes").q.w(), 0.5);
+  EXPECT_EQ(bytes.substr(0, 8), EncodeFields(Inner{0.5, {}}).substr(0, 8));
+}
+
 TEST(FieldText, JsonHasTheFieldsThatNameAPointer) {
   const json j = FieldsJson<json>(FullToy());
   EXPECT_EQ(j["a"], 0.1 + 0.2);
@@ -145,6 +180,11 @@ TEST(FieldText, JsonHasTheFieldsThatNameAPointer) {
     json operator()(const Inner& i) const { return i.x * 2; }
   };
   EXPECT_EQ(FieldsJson<json>(FullToy(), Forms{})["inner"], 3.0);
+  // an empty text marked OmitEmpty is left out; a text that has something is there.
+  Shapes shapes;
+  EXPECT_FALSE(FieldsJson<json>(shapes).contains("note"));
+  shapes.note = "n";
+  EXPECT_EQ(FieldsJson<json>(shapes)["note"], "n");
 }
 
 TEST(FieldText, CsvHasTheColumnsInOrder) {

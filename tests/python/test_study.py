@@ -88,6 +88,18 @@ def test_bad_generalize_options_raise(gs, kwargs, message):
         gs.generalize(**kwargs)
 
 
+def test_leave_one_out_of_a_two_entry_library_names_the_library(gs, tmp_path):
+    # the one check of LeaveOneOutTable, with the command line's words.
+    import json
+    import pathlib
+    library = json.loads((pathlib.Path(gs.GraspLibrary().source)).read_text())
+    del library["entries"][1:-1]
+    two = tmp_path / "two.json"
+    two.write_text(json.dumps(library))
+    with pytest.raises(gs.InputError, match=r"at least 3 orientations \('.*two.json' has 2\)"):
+        gs.generalize(str(two), leave_one_out=True)
+
+
 def test_the_stubs_list_every_bound_field_and_enum_member(gs):
     # python/graspsynth/_core.pyi in step with the classes the field lists make.
     import ast
@@ -101,7 +113,7 @@ def test_the_stubs_list_every_bound_field_and_enum_member(gs):
                 for n in node.body if isinstance(n, (ast.AnnAssign, ast.Assign))}
     for name in ("HoldQuality", "PhysicsVariation", "PhysicsDraw", "SensitivityCell",
                  "SensitivityRow", "SensitivityResult", "FallbackReason", "StudyRow",
-                 "StudyMethodSummary"):
+                 "StudyMethodSummary", "DemoScore"):
         cls = getattr(gs, name)
         bound = {n for n, v in vars(cls).items() if isinstance(v, property)}
         assert declared[name] == bound, name

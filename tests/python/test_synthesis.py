@@ -44,7 +44,10 @@ def test_the_shipped_library_reads_and_writes_the_same_bytes(gs, repo):
     np.testing.assert_array_equal(library.thetas, np.arange(20.0, 101.0, 10.0))
     entry = library.entries[0]
     assert entry["motion"]["position"].shape[1] == 3
-    assert sum(s["selected"] for s in library.scores) == len(library)
+    assert sum(s.selected for s in library.scores) == len(library)
+    best = max(library.scores, key=lambda s: s.score)
+    assert best.to_dict()["score"] == best.score and 0.0 <= best.ci_low <= best.ci_high <= 1.0
+    assert repr(best).startswith("DemoScore(file=")
 
 
 def test_a_bad_library_raises_with_the_file_named(gs, tmp_path):

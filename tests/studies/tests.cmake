@@ -2,7 +2,7 @@
 graspsynth_test(studies/study_test.cpp LIBS graspsynth::studies nlohmann_json::nlohmann_json)
 graspsynth_test(studies/study_codec_test.cpp LIBS graspsynth::studies)
 graspsynth_test(studies/study_fields_test.cpp LIBS graspsynth::studies nlohmann_json::nlohmann_json)
-graspsynth_test(apps/generalize_command_test.cpp)
+graspsynth_test(apps/generalize_command_test.cpp LIBS nlohmann_json::nlohmann_json)
 add_dependencies(apps_generalize_command_test graspsynth)
 graspsynth_test(apps/run_command_test.cpp LIBS nlohmann_json::nlohmann_json)
 add_dependencies(apps_run_command_test graspsynth)
