@@ -41,21 +41,6 @@ CLI::Validator PositiveValue() {
       "POSITIVE");
 }
 
-void AddPhysicsFallbackFlag(CLI::App* app, bool* no_physics_fallback) {
-  app->add_flag("--no-physics-fallback", *no_physics_fallback,
-                "Keep an interp blend whose nominal trial fails in physics (default: the blend "
-                "gives way to the fallbacks of a bracket that cannot be blended, the nearer "
-                "demonstration turned with the object first)");
-}
-
-void AddAllReplaysFlag(CLI::App* app, bool* all_replays) {
-  app->add_flag("--all-replays", *all_replays,
-                "Run every selection replay of every demonstration (default: a demonstration "
-                "stops replaying once it has failed too often to win its orientation; the "
-                "representatives and their scores are the same, the losers' scores count fewer "
-                "replays)");
-}
-
 void AddObjectFlag(CLI::App* app, std::string* object) {
   app->add_option("--object", *object,
                   "The object to grasp in place of the scene's: a shipped object's name (a file "

@@ -66,13 +66,6 @@ SceneModel LoadScene(const std::string& scene, const std::string& object,
 /// PositiveNumber prints the whole double range instead).
 CLI::Validator PositiveValue();
 
-/// Adds --no-physics-fallback (ValidatedSynthesisOptions::physics_fallback off) to `app`.
-void AddPhysicsFallbackFlag(CLI::App* app, bool* no_physics_fallback);
-
-/// --all-replays: every selection replay of every demonstration (SelectionOptions::early_stop
-/// off).
-void AddAllReplaysFlag(CLI::App* app, bool* all_replays);
-
 /// The runner of this process's job stages (common/job_runner.hpp): spread over an MPI job's
 /// processes when main() started one (SetProcessRunner), else this process's threads.
 JobRunner& ProcessRunner();

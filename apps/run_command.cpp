@@ -17,11 +17,13 @@
 
 #include "apps/cli_helpers.hpp"
 #include "apps/figure8.hpp"
+#include "apps/request_flags.hpp"
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
 #include "kinematics/robot_description.hpp"
 #include "learning_data/demo_directory.hpp"
 #include "learning_data/grasp_library.hpp"
+#include "request/run_request.hpp"
 #include "scene/scene_model.hpp"
 #include "simulation/simulation_model.hpp"
 #include "studies/study.hpp"
@@ -32,50 +34,16 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The command's own options; the study's are the request's (request/run_request.hpp).
 struct RunOptions {
   std::string out = "study";
   std::string demos;  // empty: learning_data/demos of the data folder
-  uint64_t seed = StudyOptions{}.seed;
-  int threads = StudyOptions{}.threads;
-  bool quick = false;
-  int perturb = -1;         // -1: the study's default (or --quick's)
-  int select_perturb = -1;  // -1: the study's default (or --quick's)
-  int sensitivity = -1;     // -1: the study's default (or --quick's)
-  std::string orientations;
   std::string gnuplot = "gnuplot";
   std::string robot;
   std::string scene;
   std::string object;  // --object: a shipped object's name or an object file
-  PhysicsPerturbationOptions physics = StudyOptions{}.perturbation.physics;
-  bool no_physics_fallback = false;
-  bool all_replays = false;
   bool resume = false;
 };
-
-// The study's options from the command's flags; throws InputError for invalid ones.
-StudyOptions StudyOptionsOf(const RunOptions& o, const SceneModel& scene) {
-  StudyOptions options;
-  options.demos = o.demos.empty() ? DefaultDemoDirectory(scene.object.name) : fs::path(o.demos);
-  options.seed = o.seed;
-  options.threads = o.threads;
-  options.analysis.segmentation.region = scene.grasp_region;
-  options.paper_object = scene.object.paper_object;
-  options.perturbation.physics = o.physics;
-  options.physics_fallback = !o.no_physics_fallback;
-  options.selection_early_stop = !o.all_replays;
-  if (o.quick) options.UseQuickStudy();
-  if (o.sensitivity >= 0) options.sensitivity_trials = o.sensitivity;
-  if (o.perturb >= 0) options.gate_perturbations = o.perturb;
-  if (o.select_perturb >= 0) options.selection_perturbations = o.select_perturb;
-  if (!o.orientations.empty())
-    options.orientations = ParseOrientationList(o.orientations, "--orientations");
-  std::string why;
-  if (!options.IsValid(&why)) throw InputError("run: " + why);
-  if (!fs::is_directory(options.demos)) {
-    throw InputError("run: --demos '" + options.demos.string() + "' is not a folder");
-  }
-  return options;
-}
 
 // The files; every one is written atomically, the report last (with Fig. 8 when drawn).
 void WriteStudyFiles(const SceneModel& scene, const std::string& gnuplot, const fs::path& out,
@@ -136,13 +104,14 @@ void PrintStudySummary(const StudyResult& result, const fs::path& out) {
   std::fflush(stdout);
 }
 
-int RunStudyCommand(const RunOptions& o, const CLI::App& command) {
+int RunStudyCommand(const RunOptions& o, const request::RunRequest& r, const CLI::App& command) {
   const SceneModel scene = LoadScene(o.scene, o.object, kSynthesisNeedsHandle);
   const SimulationModel model(
       LoadRobotModel(o.robot.empty() ? DefaultRobotDescriptionPath() : fs::path(o.robot)), scene);
-  StudyOptions options = StudyOptionsOf(o, scene);
+  StudyOptions options = request::ToStudyOptions(r, scene, o.demos);
   options.runner = &ProcessRunner();
   RunIdentity identity = CommandIdentity(command);
+  AddRequestIdentity(request::RunOptions(), r, &identity);
   identity.AddFile("demonstrations", options.demos);
   AddModelFiles(o.robot, o.scene, o.object, &identity);
   RunCheckpoint checkpoint(fs::path(o.out) / ".run.resume", identity, o.resume);
@@ -170,9 +139,6 @@ int RunStudyCommand(const RunOptions& o, const CLI::App& command) {
 
 void AddRunCommand(CLI::App& app, int* exit_code) {
   auto opts = std::make_shared<RunOptions>();
-  const StudyOptions defaults;
-  StudyOptions quick;
-  quick.UseQuickStudy();
   CLI::App* run = app.add_subcommand(
       "run",
       "The main job: the end-to-end study on the shipped demonstrations.\n"
@@ -206,44 +172,15 @@ void AddRunCommand(CLI::App& app, int* exit_code) {
   run->add_option("--out", opts->out, "Output folder")->capture_default_str();
   run->add_option("--demos", opts->demos,
                   "Folder of demonstration logs (default: the shipped learning_data/demos)");
-  run->add_option("--seed", opts->seed, "Seed of the whole study")->capture_default_str();
-  run->add_option("--threads", opts->threads, "Worker threads (0: all cores); changes no result")
-      ->capture_default_str()
-      ->check(CLI::Range(0, 1024));
-  run->add_flag("--quick", opts->quick,
-                "Reduced study: orientations 40,45,60,85, 2 selection and 3 gate replays");
-  run->add_option("--perturb", opts->perturb,
-                  "Perturbed replays of each synthesized grasp's physics gate (default " +
-                      std::to_string(defaults.gate_perturbations) + ", --quick " +
-                      std::to_string(quick.gate_perturbations) + ")")
-      ->check(CLI::NonNegativeNumber);
-  run->add_option("--select-perturb", opts->select_perturb,
-                  "Perturbed replays per demonstration in the selection (default " +
-                      std::to_string(defaults.selection_perturbations) + ", --quick " +
-                      std::to_string(quick.selection_perturbations) + ")")
-      ->check(PositiveValue());
-  run->add_option("--sensitivity", opts->sensitivity,
-                  "Replays per end of each physics factor's range in each synthesized grasp's "
-                  "sensitivity table (default " +
-                      std::to_string(defaults.sensitivity_trials) + ", --quick " +
-                      std::to_string(quick.sensitivity_trials) + "; 0: none)")
-      ->check(CLI::NonNegativeNumber);
-  run->add_option("--orientations", opts->orientations,
-                  "Comma-separated object orientations to synthesize, deg, each a number or a "
-                  "range FROM:TO:STEP (default 20:100:5)");
+  auto flags = std::make_shared<RequestFlags<request::RunRequest>>(run, request::RunOptions());
   run->add_option("--gnuplot", opts->gnuplot, "The gnuplot program for Fig. 8")
       ->capture_default_str();
   run->add_option("--robot", opts->robot, "Robot description (URDF); default: the shipped one");
   run->add_option("--scene", opts->scene, "Scene description (JSON); default: models/scene.json");
   AddObjectFlag(run, &opts->object);
-  AddPhysicsFallbackFlag(run, &opts->no_physics_fallback);
-  AddAllReplaysFlag(run, &opts->all_replays);
-  const auto physics = AddPhysicsPerturbationFlags(run);
   AddResumeFlag(run, &opts->resume);
-  run->callback([opts, physics, exit_code, run] {
-    opts->physics = physics->Build();
-    *exit_code = RunStudyCommand(*opts, *run);
-  });
+  run->callback(
+      [opts, flags, exit_code, run] { *exit_code = RunStudyCommand(*opts, flags->Build(), *run); });
 }
 
 }  // namespace graspsynth::apps

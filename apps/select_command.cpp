@@ -12,46 +12,37 @@
 #include <tuple>
 
 #include "apps/cli_helpers.hpp"
+#include "apps/request_flags.hpp"
 #include "common/errors.hpp"
 #include "kinematics/robot_description.hpp"
 #include "learning_data/grasp_library.hpp"
 #include "learning_data/representative_selection.hpp"
+#include "request/select_request.hpp"
 #include "scene/scene_model.hpp"
 
 namespace graspsynth::apps {
 namespace {
 
+// The command's own options; the selection's are the request's (request/select_request.hpp).
 struct SelectCommandOptions {
   std::string directory;
   std::string out;
-  // the defaults are the library's, so that the command and the library cannot drift apart.
-  int perturb = SelectionOptions{}.perturbations;
-  uint64_t seed = SelectionOptions{}.seed;
-  int threads = SelectionOptions{}.threads;
   std::string robot;
   std::string scene;
   std::string object;  // --object: a shipped object's name or an object file
-  PhysicsPerturbationOptions physics = SelectionOptions{}.perturbation.physics;
-  bool all_replays = false;
   bool resume = false;
 };
 
-int RunSelect(const SelectCommandOptions& o, const CLI::App& command) {
+int RunSelect(const SelectCommandOptions& o, const request::SelectRequest& r,
+              const CLI::App& command) {
   const SceneModel scene = LoadScene(o.scene, o.object);
   const SimulationModel model(LoadRobotModel(o.robot.empty() ? DefaultRobotDescriptionPath()
                                                              : std::filesystem::path(o.robot)),
                               scene);
-  SelectionOptions options;
-  options.perturbations = o.perturb;
-  options.seed = o.seed;
-  options.threads = o.threads;
-  options.early_stop = !o.all_replays;
-  options.segmentation.region = scene.grasp_region;
-  options.perturbation.physics = o.physics;
-  std::string why;
-  if (!options.IsValid(&why)) throw InputError("select: " + why);
+  SelectionOptions options = request::ToSelectionOptions(r, scene);
   options.runner = &ProcessRunner();
   RunIdentity identity = CommandIdentity(command);
+  AddRequestIdentity(request::SelectOptions(), r, &identity);
   identity.AddFile("demonstrations", o.directory);
   AddModelFiles(o.robot, o.scene, o.object, &identity);
   const std::filesystem::path out(o.out);
@@ -78,8 +69,8 @@ int RunSelect(const SelectCommandOptions& o, const CLI::App& command) {
       "read %d demonstration log(s) from %s (%d rejected): %zu successful and scored, %d "
       "unsuccessful (skipped)\n",
       result.logs, o.directory.c_str(), unreadable, library.scores.size(), result.unsuccessful);
-  std::printf("%d perturbed replays per demonstration, seed %llu\n", o.perturb,
-              static_cast<unsigned long long>(o.seed));
+  std::printf("%d perturbed replays per demonstration, seed %llu\n", options.robustness.trials,
+              static_cast<unsigned long long>(options.robustness.seed));
   const auto [ran, all, stopped] = CountSelectionReplays(library);
   if (stopped > 0) {
     std::printf(
@@ -177,24 +168,15 @@ void AddSelectCommand(CLI::App& app, int* exit_code) {
       ->required()
       ->check(CLI::ExistingDirectory);
   select->add_option("--out", opts->out, "Library file to write (JSON)")->required();
-  select->add_option("--perturb", opts->perturb, "Perturbed replays per demonstration (>= 1)")
-      ->capture_default_str()
-      ->check(PositiveValue());
-  select->add_option("--seed", opts->seed, "Seed of the perturbations")->capture_default_str();
-  select->add_option("--threads", opts->threads, "Worker threads for the replays (0: all cores)")
-      ->capture_default_str()
-      ->check(CLI::Range(0, 1024));
+  auto flags =
+      std::make_shared<RequestFlags<request::SelectRequest>>(select, request::SelectOptions());
   select->add_option("--robot", opts->robot, "Robot description (URDF); default: the shipped one");
-  AddAllReplaysFlag(select, &opts->all_replays);
-  const auto physics = AddPhysicsPerturbationFlags(select);
   select->add_option("--scene", opts->scene,
                      "Scene description (JSON); default: models/scene.json");
   AddObjectFlag(select, &opts->object);
   AddResumeFlag(select, &opts->resume);
-  select->callback([opts, physics, exit_code, select] {
-    opts->physics = physics->Build();
-    *exit_code = RunSelect(*opts, *select);
-  });
+  select->callback(
+      [opts, flags, exit_code, select] { *exit_code = RunSelect(*opts, flags->Build(), *select); });
 }
 
 }  // namespace graspsynth::apps

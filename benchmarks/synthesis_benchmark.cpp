@@ -110,8 +110,8 @@ void Gate(benchmark::State& state, int perturbations) {
   SynthesisData data(Library406080());
   const SynthesisResult r = SynthesizeGrasp(Library406080(), 50.0, o, &data);
   PhysicsGateOptions g;
-  g.perturbations = perturbations;
-  g.threads = 1;
+  g.robustness.trials = perturbations;
+  g.robustness.threads = 1;
   int passed = 0;
   for (auto _ : state) passed += RunPhysicsGate(Sim(), r.trajectory, g).passed ? 1 : 0;
   state.counters["passed"] = passed / static_cast<double>(state.iterations());

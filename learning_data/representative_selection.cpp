@@ -44,10 +44,12 @@ bool SelectionOptions::IsValid(std::string* why) const {
     if (why) *why = text;
     return false;
   };
-  if (perturbations < 1) {
-    return fail("perturbations must be >= 1, not " + std::to_string(perturbations));
+  if (robustness.trials < 1) {
+    return fail("perturbations must be >= 1, not " + std::to_string(robustness.trials));
   }
-  if (threads < 0) return fail("threads must be >= 0, not " + std::to_string(threads));
+  if (robustness.threads < 0) {
+    return fail("threads must be >= 0, not " + std::to_string(robustness.threads));
+  }
   if (!(min_score >= 0.0 && min_score < 1.0)) {
     std::ostringstream s;
     s << "min_score must be in [0, 1), not " << min_score;
@@ -55,8 +57,8 @@ bool SelectionOptions::IsValid(std::string* why) const {
   }
   std::string nested;
   if (!segmentation.IsValid(&nested)) return fail("segmentation: " + nested);
-  if (!trial.IsValid(&nested)) return fail("trial: " + nested);
-  if (!perturbation.IsValid(&nested)) return fail("perturbation: " + nested);
+  if (!robustness.trial.IsValid(&nested)) return fail("trial: " + nested);
+  if (!robustness.perturbation.IsValid(&nested)) return fail("perturbation: " + nested);
   return true;
 }
 
@@ -146,7 +148,7 @@ void PrepareNominal(const SimulationModel& model, const SelectionOptions& option
   score.trial = log.metadata.trial.value_or("");
   score.theta_deg = log.metadata.theta_deg;
   score.xy = log.metadata.object_position.head<2>();
-  score.seed = DemoSeed(options.seed, score.file);
+  score.seed = DemoSeed(options.robustness.seed, score.file);
   s->candidate.motion_duration = s->segmented.motion.duration();
 
   s->replay = ReplayDemoLog(model.robot(), log);
@@ -156,7 +158,7 @@ void PrepareNominal(const SimulationModel& model, const SelectionOptions& option
     score.ci_low = 0.0;
     score.ci_high = 1.0;
     s->issue = SelectionIssue{score.file, SelectionIssueKind::kNotReplayable, s->replay.message};
-    counter->Add(options.perturbations + 1, score.file);
+    counter->Add(options.robustness.trials + 1, score.file);
   }
 }
 
@@ -164,7 +166,7 @@ void PrepareNominal(const SimulationModel& model, const SelectionOptions& option
 std::string RunNominal(const SimulationModel& model, const SelectionOptions& options,
                        const Scored& s, ProgressCounter* counter) {
   ByteWriter w;
-  w.Bool(s.replay.ok && RunTrial(model, s.replay.trajectory, options.trial).success());
+  w.Bool(s.replay.ok && RunTrial(model, s.replay.trajectory, options.robustness.trial).success());
   if (s.replay.ok) counter->Add(1, s.candidate.score.file);
   return w.Take();
 }
@@ -219,7 +221,7 @@ void ScorePerturbed(const SimulationModel& model, const SelectionOptions& option
                     ProgressCounter* counter) {
   DemoScore& score = s->candidate.score;
   if (!s->replay.ok) return;
-  const int n = options.perturbations;
+  const int n = options.robustness.trials;
   StopRule stop;
   if (rival) {
     const int needed = rival->successes + 1;  // ties go to the rival
@@ -373,17 +375,15 @@ SelectionResult SelectRepresentatives(const SimulationModel& model,
   result.logs = static_cast<int>(logs.size());
   GraspLibrary& library = result.library;
   library.demo_directory = directory;
-  library.seed = options.seed;
-  library.perturbations = options.perturbations;
+  library.seed = options.robustness.seed;
+  library.perturbations = options.robustness.trials;
   library.tie_rule = std::string(kTieRule);
 
   std::vector<Scored> scored = SegmentLogs(logs, options, &result);
-  RobustnessOptions robustness;
-  robustness.trials = options.perturbations;
-  robustness.perturbation = options.perturbation;
-  robustness.trial = options.trial;
-  ProgressCounter counter(static_cast<int>(scored.size()) * (options.perturbations + 1), progress);
-  ParallelFor(static_cast<int>(scored.size()), options.threads, [&](int i) {
+  RobustnessOptions robustness = options.robustness;  // its seed is each demonstration's
+  ProgressCounter counter(static_cast<int>(scored.size()) * (options.robustness.trials + 1),
+                          progress);
+  ParallelFor(static_cast<int>(scored.size()), options.robustness.threads, [&](int i) {
     PrepareNominal(model, options, &scored[static_cast<size_t>(i)], &counter);
   });
   LocalJobRunner local;
@@ -391,7 +391,7 @@ SelectionResult SelectRepresentatives(const SimulationModel& model,
   JobStage nominal;
   nominal.name = "selection-nominal";
   nominal.count = static_cast<int>(scored.size());
-  nominal.threads = options.threads;
+  nominal.threads = options.robustness.threads;
   nominal.run = [&](int i) {
     return RunNominal(model, options, scored[static_cast<size_t>(i)], &counter);
   };
@@ -412,7 +412,8 @@ SelectionResult SelectRepresentatives(const SimulationModel& model,
   const std::vector<std::vector<Scored*>> orientations = GroupByPlacement(&scored);
   // each orientation on its share of the threads (one, when there are more orientations than
   // threads; a replay never depends on the thread that runs it).
-  const ThreadSplit split = SplitThreads(options.threads, static_cast<int>(orientations.size()));
+  const ThreadSplit split =
+      SplitThreads(options.robustness.threads, static_cast<int>(orientations.size()));
   robustness.threads = split.inner;
   JobStage perturbed;
   perturbed.name = "selection";
@@ -436,7 +437,7 @@ SelectionResult SelectRepresentatives(const SimulationModel& model,
   perturbed.finished = [&](int k, bool here) {
     if (here) return;
     for (const Scored* s : orientations[static_cast<size_t>(k)]) {
-      if (s->replay.ok) counter.Add(options.perturbations, s->candidate.score.file);
+      if (s->replay.ok) counter.Add(options.robustness.trials, s->candidate.score.file);
     }
   };
   const std::vector<std::string> perturbed_results = runner.Run(perturbed);

@@ -43,6 +43,7 @@
 #include "learning_data/grasp_library.hpp"
 #include "learning_data/segmentation.hpp"
 #include "simulation/perturbation.hpp"
+#include "simulation/robustness.hpp"
 #include "simulation/simulation_model.hpp"
 #include "simulation/trial.hpp"
 
@@ -55,16 +56,16 @@ inline constexpr std::string_view kTieRule =
 
 /// Inputs of SelectRepresentatives().
 struct SelectionOptions {
-  /// Perturbed replays per demonstration, >= 1. 20 replays under the evaluator's default
+  /// The perturbed replays of each demonstration, passed down whole: `trials` per
+  /// demonstration, >= 1; `seed` of the whole selection (each demonstration's stream is
+  /// DemoSeed(seed, file name)); `threads` (0: one per hardware thread; changes no result);
+  /// `perturbation`, the time scaling, waypoint noise and physics ranges; `trial`, the nominal
+  /// and the perturbed replays' trial settings. 20 replays under the evaluator's default
   /// perturbation (time scale U[0.7, 1.3], wrist noise 5 mm and 2 deg, finger noise 2 deg per
   /// knot, and the physics perturbation) separate a robust grasp from a fragile one (Wilson 95%
   /// interval [0.30, 0.70] at 10 of 20, [0.84, 1] at 20 of 20) for 21 kFast trials per
   /// demonstration; raise it for a finer ranking.
-  int perturbations = 20;
-  /// Seed of the whole selection; each demonstration's stream is DemoSeed(seed, file name).
-  uint64_t seed = 1;
-  /// Worker threads of the perturbed replays (0: one per hardware thread). Changes no result.
-  int threads = 0;
+  RobustnessOptions robustness = RobustnessOptions::WithTrials(20);
   /// Spend replays only where they can change the selection: the demonstrations of an
   /// orientation are scored in the tie rule's order of ties, and one stops replaying once it
   /// has failed so often that it cannot win over the best fully scored one (DemoScore::stopped).
@@ -73,10 +74,6 @@ struct SelectionOptions {
   bool early_stop = true;
   /// Pre-grasp region and success label (commands take the region from the scene).
   SegmentationOptions segmentation;
-  /// The nominal and the perturbed replays' trial settings.
-  TrialOptions trial;
-  /// Time scaling, waypoint noise and physics ranges of the perturbed replays.
-  PerturbationOptions perturbation;
   /// An orientation gets a library entry only when its best demonstration scores above this
   /// (strictly), in [0, 1): by default at least one perturbed replay must succeed.
   double min_score = 0.0;

@@ -17,6 +17,7 @@
 #include "learning_data/representative_selection.hpp"
 #include "python/bindings.hpp"
 #include "python/request_bindings.hpp"
+#include "request/select_request.hpp"
 #include "request/synthesize_request.hpp"
 #include "scene/scene_model.hpp"
 #include "simulation/simulation_model.hpp"
@@ -96,23 +97,14 @@ const SynthesisResult& Synthesized(const Grasp& g) {
   return g.validated.synthesis;
 }
 
-py::tuple Select(const std::optional<std::filesystem::path>& directory, int perturbations,
-                 uint64_t seed, int threads, bool early_stop, bool physics,
+py::tuple Select(const std::optional<std::filesystem::path>& directory, const py::dict& given,
                  const std::shared_ptr<RobotModel>& robot,
                  const std::shared_ptr<SceneModel>& scene_arg) {
+  const request::SelectRequest r = RequestFromPython(request::SelectOptions(), given);
   const SceneModel& scene = *SceneOrDefault(scene_arg);
   const std::filesystem::path folder =
       directory ? std::filesystem::path(*directory) : DefaultDemoDirectory(scene.object.name);
-  SelectionOptions options;
-  options.perturbations = perturbations;
-  options.seed = seed;
-  options.threads = threads;
-  options.early_stop = early_stop;
-  options.segmentation.region = scene.grasp_region;
-  options.perturbation.physics.enabled = physics;
-  CheckThreads(threads);
-  std::string why;
-  if (!options.IsValid(&why)) throw InputError("select: " + why);
+  const SelectionOptions options = request::ToSelectionOptions(r, scene);
   SelectionResult result;
   {
     py::gil_scoped_release release;
@@ -212,16 +204,10 @@ default). Raises InputError naming the file and the field at fault.)doc")
           },
           py::arg("path"), "Writes the library file atomically");
 
-  m.def("select_representatives", &Select, py::arg("directory") = py::none(),
-        py::arg("perturbations") = SelectionOptions{}.perturbations,
-        py::arg("seed") = SelectionOptions{}.seed, py::arg("threads") = 0,
-        py::arg("early_stop") = true, py::arg("physics") = true, py::arg("robot") = py::none(),
-        py::arg("scene") = py::none(), R"doc(
-Ranks every successful demonstration of a folder by its success under `perturbations`
-perturbed replays in physics and keeps the best per orientation (`graspsynth select`).
-Returns (library, report): the GraspLibrary, and a dict with the logs read, the unsuccessful
-ones, the issues (files rejected or not replayable, with reasons) and the orientations where
-nothing could be selected. The same seed gives the same library whatever `threads` is.)doc");
+  m.def("_select_representatives", &Select, py::arg("directory"), py::arg("options"),
+        py::arg("robot"), py::arg("scene"), R"doc(
+select_representatives' work (graspsynth/__init__.py gives it its signature): the options of
+request_options("select") as a dict. Returns (library, report).)doc");
 }
 
 void BindSynthesis(py::module_& m) {

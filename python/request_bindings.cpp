@@ -11,6 +11,8 @@
 #include "common/format.hpp"
 #include "common/text_input.hpp"
 #include "request/generalize_request.hpp"
+#include "request/run_request.hpp"
+#include "request/select_request.hpp"
 #include "request/synthesize_request.hpp"
 
 namespace graspsynth::python {
@@ -138,10 +140,12 @@ void BindRequests(py::module_& m) {
       [](const std::string& name) -> py::list {
         if (name == "synthesize") return OptionDescriptions(request::SynthesizeOptions());
         if (name == "generalize") return OptionDescriptions(request::GeneralizeOptions());
-        throw InputError("no request '" + name + "' (synthesize, generalize)");
+        if (name == "run") return OptionDescriptions(request::RunOptions());
+        if (name == "select") return OptionDescriptions(request::SelectOptions());
+        throw InputError("no request '" + name + "' (synthesize, generalize, run, select)");
       },
       py::arg("request"), R"doc(
-The options of a request ("synthesize", "generalize"): a list of dicts with name, kind,
+The options of a request ("synthesize", "generalize", "run", "select"): a list of dicts with name, kind,
 default, help, choices and required, the one description the command's flags, the Python
 keyword arguments and --config files are made from.)doc");
 }

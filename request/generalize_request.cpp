@@ -26,14 +26,6 @@ void CheckMethods(const Value& value, const std::string& where) {
   }
 }
 
-// A check that a text is a list of numbers and ranges of `unit` (common/orientation_list.hpp).
-std::function<void(const Value&, const std::string&)> NumberListCheck(const char* unit) {
-  return [unit](const Value& value, const std::string& where) {
-    const std::string& text = std::get<std::string>(value);
-    if (!text.empty()) ParseNumberList(text, where, unit);
-  };
-}
-
 OptionList<R> MakeOptions() {
   OptionList<R> list;
   OptionInfo orientations =
@@ -104,15 +96,16 @@ const OptionList<GeneralizeRequest>& GeneralizeOptions() {
 SynthesisTableOptions ToSynthesisTableOptions(const GeneralizeRequest& request) {
   SynthesisTableOptions table;
   for (const std::string& label : request.methods) table.methods.push_back(ParseStudyMethod(label));
-  table.gate_perturbations = request.perturb;
-  table.sensitivity_trials = request.sensitivity;
+  table.gate.robustness.trials = request.perturb;
+  table.gate.sensitivity_trials = request.sensitivity;
   table.seed = request.seed;
   table.threads = request.threads;
   table.physics_fallback = request.physics_fallback;
-  table.perturbation.ScaleMotionNoise(request.noise_scale);
-  table.perturbation.physics = request.physics;
+  PerturbationOptions& perturbation = table.gate.robustness.perturbation;
+  perturbation.ScaleMotionNoise(request.noise_scale);
+  perturbation.physics = request.physics;
   std::string why;
-  if (!table.perturbation.IsValid(&why)) throw InputError("noise_scale: " + why);
+  if (!perturbation.IsValid(&why)) throw InputError("noise_scale: " + why);
   if (request.leave_one_out) {
     if (!request.x.empty() || !request.y.empty()) {
       throw InputError(

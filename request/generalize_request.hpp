@@ -31,7 +31,7 @@ struct GeneralizeRequest {
   uint64_t seed = 1;
   int threads = 0;  ///< 0: all cores
   bool physics_fallback = true;
-  PhysicsPerturbationOptions physics = SynthesisTableOptions{}.perturbation.physics;
+  PhysicsPerturbationOptions physics = SynthesisTableOptions{}.gate.robustness.perturbation.physics;
 };
 
 /// The options of GeneralizeRequest, in the order the front ends list them.

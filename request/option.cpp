@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "common/format.hpp"
+#include "common/orientation_list.hpp"
 #include "common/text_input.hpp"
 
 namespace graspsynth::request {
@@ -309,6 +310,13 @@ std::string NearestName(const std::vector<std::string>& names, std::string_view 
     }
   }
   return best;
+}
+
+std::function<void(const Value&, const std::string&)> NumberListCheck(const char* unit) {
+  return [unit](const Value& value, const std::string& where) {
+    const std::string& text = std::get<std::string>(value);
+    if (!text.empty()) ParseNumberList(text, where, unit);
+  };
 }
 
 namespace detail {

@@ -164,9 +164,13 @@ inline OptionInfo MakeInfo(std::string name, OptionKind kind, std::string help) 
   return info;
 }
 
+/// A check (Option::check) of a kText option with number_list: its text, unless empty, is a
+/// list of numbers and ranges FROM:TO:STEP of `unit` (common/orientation_list.hpp).
+std::function<void(const Value&, const std::string&)> NumberListCheck(const char* unit);
+
 /// Makes an option that reads and writes the field `ref` returns, a lambda
-/// `[](R& r) -> T& { return r.gate.seed; }` (through nested options where they are); T is
-/// bool, int, uint64_t, double, std::string or std::vector<std::string>.
+/// `[](R& r) -> T& { return r.gate.robustness.seed; }` (through nested options where they are); T
+/// is bool, int, uint64_t, double, std::string or std::vector<std::string>.
 template <class R, class F>
 Option<R> FieldOption(OptionInfo info, F ref) {
   using T = std::remove_reference_t<std::invoke_result_t<F, R&>>;

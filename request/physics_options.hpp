@@ -20,7 +20,7 @@ inline constexpr const char* kPhysicsGroup =
 
 /// The physics perturbation's options of request type R, reading and writing the
 /// PhysicsPerturbationOptions that `ref` returns (`[](R& r) -> PhysicsPerturbationOptions& {
-/// return r.gate.perturbation.physics; }`).
+/// return r.gate.robustness.perturbation.physics; }`).
 template <class R, class F>
 OptionList<R> PhysicsOptions(F ref) {
   using P = PhysicsPerturbationOptions;
@@ -92,6 +92,23 @@ Option<R> PhysicsFallbackOption(F ref) {
                "of a bracket that cannot be blended, the nearer demonstration turned with the "
                "object first"),
       ref);
+}
+
+/// The option all_replays of request type R: every selection replay of every demonstration.
+/// It reads and writes the bool that `ref` returns: SelectionOptions::early_stop, its negation,
+/// with `inverted` (`[](R& r) -> bool& { return r.selection.early_stop; }`), or the request's
+/// own all_replays without.
+template <class R, class F>
+Option<R> AllReplaysOption(F ref, bool inverted) {
+  Option<R> o;
+  o.info = MakeInfo("all_replays", OptionKind::kBool,
+                    "Run every selection replay of every demonstration (default: a demonstration "
+                    "stops replaying once it has failed too often to win its orientation; the "
+                    "representatives and their scores are the same, the losers' scores count "
+                    "fewer replays)");
+  o.get = [ref, inverted](const R& r) -> Value { return ref(const_cast<R&>(r)) != inverted; };
+  o.set = [ref, inverted](R& r, const Value& v) { ref(r) = std::get<bool>(v) != inverted; };
+  return o;
 }
 
 }  // namespace graspsynth::request

@@ -91,16 +91,16 @@ OptionList<R> MakeOptions() {
       [](R& r) -> std::optional<Vector7d>& { return r.start; }));
   list.push_back(
       FieldOption<R>(MakeInfo("seed", OptionKind::kUnsigned, "Seed of the perturbed trials"),
-                     [](R& r) -> uint64_t& { return r.gate.seed; }));
+                     [](R& r) -> uint64_t& { return r.gate.robustness.seed; }));
   OptionInfo perturb = MakeInfo("perturb", OptionKind::kInt,
                                 "Perturbed trials of the physics gate (0: nominal only)");
   perturb.lo = 0;
-  list.push_back(FieldOption<R>(perturb, [](R& r) -> int& { return r.gate.perturbations; }));
+  list.push_back(FieldOption<R>(perturb, [](R& r) -> int& { return r.gate.robustness.trials; }));
   OptionInfo threads =
       MakeInfo("threads", OptionKind::kInt, "Worker threads of the gate (0: all cores)");
   threads.lo = 0;
   threads.hi = 1024;
-  list.push_back(FieldOption<R>(threads, [](R& r) -> int& { return r.gate.threads; }));
+  list.push_back(FieldOption<R>(threads, [](R& r) -> int& { return r.gate.robustness.threads; }));
   OptionInfo robustness = MakeInfo("min_robustness", OptionKind::kNumber,
                                    "Success fraction the gate needs under perturbation");
   robustness.lo = 0.0;
@@ -108,7 +108,8 @@ OptionList<R> MakeOptions() {
   list.push_back(FieldOption<R>(robustness, [](R& r) -> double& { return r.gate.min_robustness; }));
   list.push_back(PhysicsFallbackOption<R>([](R& r) -> bool& { return r.physics_fallback; }));
   AppendPhysicsOptions<R>(
-      [](R& r) -> PhysicsPerturbationOptions& { return r.gate.perturbation.physics; }, &list);
+      [](R& r) -> PhysicsPerturbationOptions& { return r.gate.robustness.perturbation.physics; },
+      &list);
   return list;
 }
 

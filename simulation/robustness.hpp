@@ -33,6 +33,13 @@ struct RobustnessOptions {
   TrialOptions trial;
 
   bool IsValid(std::string* why) const;
+
+  /// The defaults with `count` replays (the defaults of the options that nest these).
+  static RobustnessOptions WithTrials(int count) {
+    RobustnessOptions o;
+    o.trials = count;
+    return o;
+  }
 };
 
 /// One perturbed replay.

@@ -1,5 +1,6 @@
 #include "solver/physics_gate.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -11,7 +12,7 @@
 namespace graspsynth {
 
 bool PhysicsGateOptions::IsValid(std::string* why) const {
-  if (perturbations < 0) {
+  if (robustness.trials < 0) {
     if (why) *why = "perturbations must be >= 0";
     return false;
   }
@@ -19,15 +20,14 @@ bool PhysicsGateOptions::IsValid(std::string* why) const {
     if (why) *why = "min_robustness must be in [0, 1]";
     return false;
   }
-  if (threads < 0) {
-    if (why) *why = "threads must be >= 0";
-    return false;
-  }
   if (sensitivity_trials < 0) {
     if (why) *why = "sensitivity_trials must be >= 0";
     return false;
   }
-  return trial.IsValid(why) && perturbation.IsValid(why) && quality.IsValid(why);
+  // the replays' own checks, but their count (0 is the gate's nominal only).
+  RobustnessOptions replays = robustness;
+  replays.trials = std::max(replays.trials, 1);
+  return replays.IsValid(why) && quality.IsValid(why);
 }
 
 PhysicsGateResult RunPhysicsGate(const SimulationModel& model, const JointTrajectory& trajectory,
@@ -39,7 +39,7 @@ PhysicsGateResult RunPhysicsGate(const SimulationModel& model, const JointTrajec
   // the nominal trial, keeping the last hand-object contact set and the object pose with it.
   std::vector<HandObjectContact> last;
   Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
-  r.nominal = RunTrial(model, trajectory, options.trial, [&](SimulationData& data) {
+  r.nominal = RunTrial(model, trajectory, options.robustness.trial, [&](SimulationData& data) {
     if (!data.hand_object_contacts().empty()) {
       last = data.hand_object_contacts();
       X_WO = data.object_pose();
@@ -50,19 +50,15 @@ PhysicsGateResult RunPhysicsGate(const SimulationModel& model, const JointTrajec
 
   std::ostringstream s;
   const bool nominal_ok = r.nominal.success() || !options.require_nominal;
-  if (options.perturbations > 0 && nominal_ok) {
-    RobustnessOptions ro;
-    ro.trials = options.perturbations;
-    ro.seed = options.seed;
-    ro.threads = options.threads;
-    ro.perturbation = options.perturbation;
-    ro.trial = options.trial;
-    r.robustness = EvaluateRobustness(model, trajectory, ro, progress);
+  if (options.robustness.trials > 0 && nominal_ok) {
+    const int n = options.robustness.trials;
+    r.robustness = EvaluateRobustness(model, trajectory, options.robustness, progress);
     r.robustness_run = true;
     if (options.sensitivity_trials > 0) {
-      ro.trials = options.sensitivity_trials;
-      r.sensitivity = EvaluateSensitivity(model, trajectory, ro, [&](int done, int total) {
-        if (progress) progress(options.perturbations + done, options.perturbations + total);
+      RobustnessOptions sensitivity = options.robustness;
+      sensitivity.trials = options.sensitivity_trials;
+      r.sensitivity = EvaluateSensitivity(model, trajectory, sensitivity, [&](int done, int total) {
+        if (progress) progress(n + done, n + total);
       });
     }
   }

@@ -19,16 +19,15 @@ namespace graspsynth {
 
 /// Options of RunPhysicsGate.
 struct PhysicsGateOptions {
-  int perturbations = 30;  ///< perturbed replays, >= 0 (0: nominal only)
+  /// The perturbed replays, passed to EvaluateRobustness whole: their number (`trials`, here
+  /// >= 0, 0: nominal only), seed, threads and perturbation; its `trial` is the nominal
+  /// trial's too.
+  RobustnessOptions robustness = RobustnessOptions::WithTrials(30);
   /// Replays per end of each physics factor's range for the sensitivity table, >= 0 (0: no
-  /// table); run when the robustness replays run.
+  /// table); run when the robustness replays run, with the robustness' seed and perturbation.
   int sensitivity_trials = 0;
   double min_robustness = 0.8;  ///< success fraction needed, [0, 1]
   bool require_nominal = true;  ///< the nominal trial must succeed
-  uint64_t seed = 1;
-  int threads = 0;  ///< 0: one per hardware thread
-  TrialOptions trial;
-  PerturbationOptions perturbation;
   GraspQualityOptions quality;
 
   bool IsValid(std::string* why) const;

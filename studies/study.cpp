@@ -194,8 +194,9 @@ std::vector<StudyRow> SynthesisTable(const SimulationModel& model, const GraspLi
                                      const SynthesisTableProgress& progress) {
   const SynthesisModel synthesis(model.robot(), model.scene(), library);
   // the nominal trial, the perturbed replays and the sensitivity table's replays.
-  const int per_row = options.gate_perturbations + 1 +
-                      2 * static_cast<int>(AllPhysicsFactors().size()) * options.sensitivity_trials;
+  const int per_row =
+      options.gate.robustness.trials + 1 +
+      2 * static_cast<int>(AllPhysicsFactors().size()) * options.gate.sensitivity_trials;
   std::vector<StudyMethod> methods;  // of each row
   std::vector<StudyRow> rows = NewRows(model.scene(), options, &methods);
   ProgressCounter counter(static_cast<int>(rows.size()) * per_row, progress);
@@ -227,12 +228,9 @@ std::vector<StudyRow> SynthesisTable(const SimulationModel& model, const GraspLi
     ValidatedSynthesisOptions vo;
     vo.synthesis = methods[static_cast<size_t>(i)].Options();
     vo.physics_fallback = options.physics_fallback;
-    vo.gate.perturbations = options.gate_perturbations;
-    vo.gate.min_robustness = options.min_robustness;
-    vo.gate.perturbation = options.perturbation;
-    vo.gate.sensitivity_trials = options.sensitivity_trials;
-    vo.gate.seed = row.seed;
-    vo.gate.threads = split.inner;
+    vo.gate = options.gate;
+    vo.gate.robustness.seed = row.seed;
+    vo.gate.robustness.threads = split.inner;
     SynthesisData data(synthesis);
     int counted = 0;  // of the row's per_row (a fallback's second gate counts no further)
     const ValidatedSynthesis v =
@@ -320,10 +318,10 @@ std::vector<StudyRow> SynthesisStage(const SimulationModel& model, const StudyOp
   SynthesisTableOptions table;
   table.orientations = options.orientations;
   table.methods = options.methods;
-  table.gate_perturbations = options.gate_perturbations;
-  table.min_robustness = options.min_robustness;
-  table.perturbation = options.perturbation;
-  table.sensitivity_trials = options.sensitivity_trials;
+  table.gate.robustness.trials = options.gate_perturbations;
+  table.gate.robustness.perturbation = options.perturbation;
+  table.gate.sensitivity_trials = options.sensitivity_trials;
+  table.gate.min_robustness = options.min_robustness;
   table.physics_fallback = options.physics_fallback;
   table.seed = options.seed;
   table.threads = options.threads;
@@ -385,10 +383,10 @@ StudyResult RunStudy(const SimulationModel& model, const StudyOptions& options,
   // stage 2: the representative selection makes the study's own library.
   start = std::chrono::steady_clock::now();
   SelectionOptions selection;
-  selection.perturbations = options.selection_perturbations;
-  selection.perturbation = options.perturbation;
-  selection.seed = options.seed;
-  selection.threads = options.threads;
+  selection.robustness.trials = options.selection_perturbations;
+  selection.robustness.perturbation = options.perturbation;
+  selection.robustness.seed = options.seed;
+  selection.robustness.threads = options.threads;
   selection.early_stop = options.selection_early_stop;
   selection.runner = options.runner;
   selection.segmentation = options.analysis.segmentation;

@@ -31,6 +31,7 @@
 #include "simulation/robustness.hpp"
 #include "simulation/simulation_model.hpp"
 #include "simulation/trial.hpp"
+#include "solver/physics_gate.hpp"
 #include "solver/synthesis.hpp"
 #include "studies/study_method.hpp"
 
@@ -216,6 +217,14 @@ uint64_t StudyRowSeed(uint64_t seed, double theta_deg, const std::string& method
 /// The reachability of the paper's Table I grasp wrist poses in `scene` (see ReachabilityRow).
 std::vector<ReachabilityRow> TableIReachability(const RobotModel& robot, const SceneModel& scene);
 
+/// The physics gate of the study's rows: the gate's defaults with kStudyGatePerturbations
+/// replays.
+inline PhysicsGateOptions StudyGateOptions() {
+  PhysicsGateOptions gate;
+  gate.robustness.trials = kStudyGatePerturbations;
+  return gate;
+}
+
 /// Options of the synthesis table (the study's stage 3; experiments 2 and 3).
 struct SynthesisTableOptions {
   std::vector<double> orientations;  ///< deg
@@ -223,12 +232,13 @@ struct SynthesisTableOptions {
   /// first; empty: the scene's object centre only.
   std::vector<Eigen::Vector2d> positions;
   std::vector<StudyMethod> methods;
-  int gate_perturbations = kStudyGatePerturbations;  ///< per row (0: nominal only)
-  /// Replays per end of each physics factor's range in each row's sensitivity table (0: none).
-  int sensitivity_trials = 0;
-  double min_robustness = 0.8;
-  PerturbationOptions perturbation;  ///< of the gate's replays
-  uint64_t seed = 1;                 ///< rows are seeded by StudyRowSeed(seed, theta, label)
+  /// Each row's physics gate, passed down whole: its replays (`robustness.trials` per row, 0:
+  /// nominal only, and their perturbation), its sensitivity table's replays per end of each
+  /// physics factor's range (0: none) and its threshold. The rows' own seed
+  /// (StudyRowSeed(seed, theta, label)) and share of `threads` replace its robustness.seed and
+  /// robustness.threads.
+  PhysicsGateOptions gate = StudyGateOptions();
+  uint64_t seed = 1;  ///< rows are seeded by StudyRowSeed(seed, theta, label)
   int threads = 0;
   /// An interp blend whose nominal trial fails gives way to the unblendable bracket's
   /// fallbacks (solver/validated_synthesis.hpp).

@@ -69,7 +69,6 @@ from ._core import (
     read_demo_directory,
     read_demo_log,
     segment,
-    select_representatives,
 )
 from . import _core
 
@@ -150,9 +149,9 @@ _OPTION_TYPES = ["bool", "int", "int", "float", "str", "Sequence[str]",
 
 def _with_options(request: str):
     """Gives the decorated function the options of ``request`` (``"synthesize"``,
-    ``"generalize"``) as explicit keyword arguments: their names, defaults and help come from the
-    one description the command's flags and ``--config`` files are made from (C++
-    request/option.hpp, :func:`request_options`). A required option (``theta``) is a
+    ``"generalize"``, ``"run"``, ``"select"``) as explicit keyword arguments: their names,
+    defaults and help come from the one description the command's flags and ``--config`` files
+    are made from (C++ request/option.hpp, :func:`request_options`). A required option (``theta``) is a
     positional argument after the function's own. The function gets the options its caller
     gave as one dict, ``options``; the extension checks them."""
     described = _core.request_options(request)
@@ -190,9 +189,10 @@ def _with_options(request: str):
 
 
 def request_options(request: str) -> list[dict]:
-    """The options of a request (``"synthesize"``, ``"generalize"``): name, kind, default,
-    help, choices and required, as the command's flags and the keyword arguments of
-    :meth:`Synthesizer.synthesize`, :func:`synthesize` and :func:`generalize` show them."""
+    """The options of a request (``"synthesize"``, ``"generalize"``, ``"run"``, ``"select"``):
+    name, kind, default, help, choices and required, as the command's flags and the keyword
+    arguments of :meth:`Synthesizer.synthesize`, :func:`synthesize`, :func:`generalize`,
+    :func:`run` and :func:`select_representatives` show them."""
     return _core.request_options(request)
 
 
@@ -288,23 +288,32 @@ class StudyResult:
         return f"<StudyResult: {len(self.library)} library entries; {methods}>"
 
 
-def run(demos: Optional[PathLike] = None, *, quick: bool = False,
-        orientations: Union[str, Sequence[float], None] = None, seed: int = 1,
-        threads: int = 0, perturb: Optional[int] = None, select_perturb: Optional[int] = None,
-        sensitivity: Optional[int] = None, physics: bool = True, physics_fallback: bool = True,
-        all_replays: bool = False, robot: Optional[Robot] = None,
-        scene: Optional[Scene] = None) -> StudyResult:
+@_with_options("run")
+def run(demos: Optional[PathLike] = None, *, robot: Optional[Robot] = None,
+        scene: Optional[Scene] = None, options: dict) -> StudyResult:
     """The end-to-end study of ``graspsynth run`` on a folder of demonstrations (the shipped
     ones by default): Table I, the representative selection, and a grasp for every orientation
     by each method, validated in physics. ``quick`` is ``run --quick``; the other options are
-    the command's flags. The same options give the same analysis, library and synthesis
-    tables as the command, whatever ``threads`` is. Takes minutes (``quick``: about one)."""
-    if orientations is not None and not isinstance(orientations, str):
-        orientations = [float(t) for t in orientations]
-    parts = _core.run(None if demos is None else os.fspath(demos), quick, orientations, seed,
-                      threads, perturb, select_perturb, sensitivity, physics, physics_fallback,
-                      all_replays, robot, scene)
+    the command's flags (``perturb=-1``: the study's default, or ``quick``'s); ``orientations``
+    takes a list of numbers or the command line's text (``"20:100:5,33"``). The same options
+    give the same analysis, library and synthesis tables as the command, whatever ``threads``
+    is. Takes minutes (``quick``: about one)."""
+    parts = _core._run(None if demos is None else os.fspath(demos), options, robot, scene)
     return StudyResult(parts)
+
+
+@_with_options("select")
+def select_representatives(directory: Optional[PathLike] = None, *,
+                           robot: Optional[Robot] = None, scene: Optional[Scene] = None,
+                           options: dict) -> tuple[GraspLibrary, dict]:
+    """Ranks every successful demonstration of a folder (the shipped ones by default) by its
+    success under ``perturb`` perturbed replays in physics and keeps the best per orientation
+    (``graspsynth select``). Returns ``(library, report)``: the :class:`GraspLibrary`, and a
+    dict with the logs read, the unsuccessful ones, the issues (files rejected or not
+    replayable, with reasons) and the orientations where nothing could be selected. The same
+    seed gives the same library whatever ``threads`` is."""
+    return _core._select_representatives(None if directory is None else os.fspath(directory),
+                                         options, robot, scene)
 
 
 @_with_options("generalize")

@@ -200,10 +200,9 @@ class GraspLibrary:
     def to_json(self) -> str: ...
     def save(self, path: PathLike) -> None: ...
 
-def select_representatives(directory: Optional[PathLike] = None, perturbations: int = 20,
-                           seed: int = 1, threads: int = 0, early_stop: bool = True,
-                           physics: bool = True, robot: Optional[Robot] = None,
-                           scene: Optional[Scene] = None) -> tuple[GraspLibrary, dict[str, Any]]: ...
+def _select_representatives(directory: Optional[str], options: dict[str, Any],
+                            robot: Optional[Robot],
+                            scene: Optional[Scene]) -> tuple[GraspLibrary, dict[str, Any]]: ...
 
 class Grasp:
     @property
@@ -440,12 +439,8 @@ class DemoScore:
 
 # --- studies -------------------------------------------------------------------------------
 
-def run(demos: Optional[PathLike] = None, quick: bool = False,
-        orientations: Union[str, Sequence[float], None] = None, seed: int = 1, threads: int = 0,
-        perturb: Optional[int] = None, select_perturb: Optional[int] = None,
-        sensitivity: Optional[int] = None, physics: bool = True, physics_fallback: bool = True,
-        all_replays: bool = False, robot: Optional[Robot] = None,
-        scene: Optional[Scene] = None) -> dict[str, Any]:
+def _run(demos: Optional[str], options: dict[str, Any], robot: Optional[Robot],
+         scene: Optional[Scene]) -> dict[str, Any]:
     """-> analysis, library, synthesis, timing, rows (list[StudyRow]), summary
     (list[StudyMethodSummary])"""
 def _generalize(library: Union[GraspLibrary, str, None], options: dict[str, Any],

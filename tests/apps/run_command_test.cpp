@@ -196,12 +196,19 @@ TEST_F(RunCommand, SameSeedGivesTheSameFilesWhateverTheThreads) {
   // one orientation's demonstrations: the selection, and the gate of the grasp at 40 deg
   // (the 40 deg demonstration itself) with perturbed replays spread over the threads.
   const std::string demos = DemoSubset({40}).string();
+  // the second run takes its options from --config, and a flag over the file's seed.
+  const fs::path config = dir_ / "run.json";
+  std::ofstream(config) << R"({"orientations": [40], "perturb": 3, "select_perturb": 2,)"
+                        << R"( "seed": 9})";
   std::vector<fs::path> outs;
   for (int threads : {1, 2}) {
     outs.push_back(dir_ / ("out" + std::to_string(threads)));
-    const testing::CommandOutput r = RunGraspsynth(
-        "run --orientations 40 --perturb 3 --select-perturb 2 --seed 7 --demos " + demos +
-        " --threads " + std::to_string(threads) + " --out " + outs.back().string());
+    const std::string options = threads == 1
+                                    ? "--orientations 40 --perturb 3 --select-perturb 2 --seed 7"
+                                    : "--config " + config.string() + " --seed 7";
+    const testing::CommandOutput r =
+        RunGraspsynth("run " + options + " --demos " + demos + " --threads " +
+                      std::to_string(threads) + " --out " + outs.back().string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
   }
   for (const char* file :
@@ -221,6 +228,16 @@ TEST_F(RunCommand, BadOptionsAreRefusedNamingTheValue) {
       RunGraspsynth("run --orientations 40,40 --out " + (dir_ / "o").string());
   EXPECT_EQ(twice.exit_code, 2);
   EXPECT_THAT(twice.err, HasSubstr("40 deg is given twice"));
+  const testing::CommandOutput zero =
+      RunGraspsynth("run --select-perturb 0 --out " + (dir_ / "o").string());
+  EXPECT_EQ(zero.exit_code, 2);
+  EXPECT_THAT(zero.err, HasSubstr("--select-perturb: must be >= 1 or -1 (got 0)"));
+  const fs::path config = dir_ / "bad.json";
+  std::ofstream(config) << R"({"perturb": -2})";
+  const testing::CommandOutput bad_config =
+      RunGraspsynth("run --config " + config.string() + " --out " + (dir_ / "o").string());
+  EXPECT_EQ(bad_config.exit_code, 2);
+  EXPECT_THAT(bad_config.err, HasSubstr("field 'perturb'"));
   const testing::CommandOutput missing =
       RunGraspsynth("run --demos /nonexistent/demos --out " + (dir_ / "o").string());
   EXPECT_EQ(missing.exit_code, 2);

@@ -57,10 +57,12 @@ TEST(SelectCommand, SelectsPerOrientationWritesTheLibraryAndNamesTheBadFile) {
   const json j = json::parse(ReadFileText(out));
   EXPECT_EQ(j.at("format"), "graspsynth-library/1");
 
-  // one thread: the same bytes.
+  // one thread, the options from --config and a flag over the file's seed: the same bytes.
+  const auto config = folder.path() / "select.json";
+  std::ofstream(config) << R"({"perturb": )" << perturb << R"(, "seed": 9, "all_replays": false})";
   const auto out1 = folder.path() / "out" / "library1.json";
   const auto r1 = RunGraspsynth("select " + demos.string() + " --out " + out1.string() +
-                                " --perturb " + std::to_string(perturb) + " --seed 5 --threads 1");
+                                " --config " + config.string() + " --seed 5 --threads 1");
   EXPECT_EQ(r1.exit_code, 0) << r1.err;
   EXPECT_EQ(ReadFileText(out), ReadFileText(out1));
 }
@@ -163,8 +165,16 @@ TEST(SelectCommand, RejectsBadInputAndExplainsItself) {
   const auto zero = RunGraspsynth("select " + folder.path().string() + " --out " +
                                   (folder.path() / "l.json").string() + " --perturb 0");
   EXPECT_NE(zero.exit_code, 0);
-  EXPECT_THAT(zero.err, HasSubstr("--perturb: must be > 0 (got 0)"));
+  EXPECT_THAT(zero.err, HasSubstr("--perturb: must be >= 1 (got 0)"));
   EXPECT_THAT(zero.err, Not(HasSubstr("1797693")));  // not the whole range of a double
+  const auto config = folder.path() / "bad.json";
+  std::ofstream(config) << R"({"pertrub": 2})";
+  const auto typo =
+      RunGraspsynth("select " + folder.path().string() + " --out " +
+                    (folder.path() / "l.json").string() + " --config " + config.string());
+  EXPECT_EQ(typo.exit_code, 2);
+  EXPECT_THAT(typo.err, HasSubstr("field 'pertrub' is not an option"));
+  EXPECT_THAT(typo.err, HasSubstr("did you mean 'perturb'?"));
 }
 
 }  // namespace

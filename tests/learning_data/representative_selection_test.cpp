@@ -52,9 +52,9 @@ const std::vector<DemoLog>& TestDemos() {
 // Every replay of every demonstration (early_stop off), unless `early_stop`.
 SelectionOptions SmallOptions(int threads, bool early_stop = false) {
   SelectionOptions o;
-  o.perturbations = testing::Scaled(4, 2);
-  o.seed = 11;
-  o.threads = threads;
+  o.robustness.trials = testing::Scaled(4, 2);
+  o.robustness.seed = 11;
+  o.robustness.threads = threads;
   o.early_stop = early_stop;
   return o;
 }
@@ -63,11 +63,11 @@ TEST(SelectionOptions, RejectsBadValues) {
   std::string why;
   EXPECT_TRUE(SelectionOptions{}.IsValid(&why)) << why;
   SelectionOptions o;
-  o.perturbations = 0;
+  o.robustness.trials = 0;
   EXPECT_FALSE(o.IsValid(&why));
   EXPECT_THAT(why, ::testing::HasSubstr("perturbations"));
   o = {};
-  o.threads = -1;
+  o.robustness.threads = -1;
   EXPECT_FALSE(o.IsValid(&why));
   EXPECT_THAT(why, ::testing::HasSubstr("threads"));
   o = {};
@@ -79,7 +79,7 @@ TEST(SelectionOptions, RejectsBadValues) {
   EXPECT_FALSE(o.IsValid(&why));
   EXPECT_THAT(why, ::testing::HasSubstr("segmentation"));
   o = {};
-  o.perturbation.time_scale_min = 0.0;
+  o.robustness.perturbation.time_scale_min = 0.0;
   EXPECT_FALSE(o.IsValid(&why));
   EXPECT_THAT(why, ::testing::HasSubstr("perturbation"));
   GS_EXPECT_THROW_WITH(
@@ -155,7 +155,7 @@ TEST(SelectRepresentatives, PicksTheMostRobustPerOrientationWhateverTheThreads) 
   const SelectionResult one = SelectRepresentatives(
       model, demos, "demos", SmallOptions(1),
       [&](int done, int total, const std::string&) { reported.emplace_back(done, total); });
-  const int n = SmallOptions(1).perturbations;
+  const int n = SmallOptions(1).robustness.trials;
   // 5 successful demonstrations (the failed one is skipped), 1 + n replays each.
   ASSERT_FALSE(reported.empty());
   EXPECT_EQ(reported.back().first, 5 * (n + 1));
@@ -260,7 +260,7 @@ TEST(SelectRepresentatives, EarlyStopKeepsTheRepresentativesAndTheirScores) {
   off.theta_deg = 40.0;
   off.grasp_radius = 0.18;
   demos.push_back(ScriptedDemoLog(model, off, "demo_040_off.csv"));
-  const int n = SmallOptions(1).perturbations;
+  const int n = SmallOptions(1).robustness.trials;
   const SelectionResult all = SelectRepresentatives(model, demos, "demos", SmallOptions(2));
   std::vector<std::pair<int, int>> reported;
   const SelectionResult early = SelectRepresentatives(

@@ -72,6 +72,23 @@ def test_the_stub_of_synthesize_has_the_options_of_the_request(gs):
     assert described["theta"]["required"]
 
 
+@pytest.mark.parametrize("function, request_name", [
+    ("generalize", "generalize"), ("run", "run"), ("select_representatives", "select")])
+def test_a_study_functions_keywords_are_the_options_of_its_request(gs, function, request_name):
+    # run, select_representatives and generalize take their options as explicit keyword
+    # arguments made from the one C++ description, with its defaults, after their own.
+    parameters = inspect.signature(getattr(gs, function)).parameters
+    options = [p for p in parameters.values() if p.kind is inspect.Parameter.KEYWORD_ONLY
+               and p.name not in ("robot", "scene")]
+    described = gs.request_options(request_name)
+    assert [p.name for p in options] == [o["name"] for o in described]
+    for p, o in zip(options, described):
+        assert p.default == o["default"], p.name
+        assert o["help"] in getattr(gs, function).__doc__
+    with pytest.raises(TypeError):
+        getattr(gs, function)(no_such_option=1)
+
+
 def split_top_level(text):
     parts, depth, start = [], 0, 0
     for i, c in enumerate(text):

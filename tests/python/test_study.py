@@ -100,6 +100,26 @@ def test_leave_one_out_of_a_two_entry_library_names_the_library(gs, tmp_path):
         gs.generalize(str(two), leave_one_out=True)
 
 
+@pytest.mark.parametrize("kwargs, message", [
+    ({"select_perturb": 0}, "select_perturb: must be >= 1 or -1"),
+    ({"perturb": -2}, "perturb"),
+    ({"orientations": "40,40"}, "given twice"),
+    ({"orientations": "20:x"}, "orientations"),
+    ({"threads": 5000}, "threads"),
+    ({"quick": 1}, "quick: needs True or False"),
+])
+def test_bad_run_options_raise_before_any_work(gs, kwargs, message):
+    with pytest.raises(gs.InputError, match=message):
+        gs.run(**kwargs)
+
+
+def test_bad_select_options_raise_before_any_work(gs):
+    with pytest.raises(gs.InputError, match="perturb: must be >= 1"):
+        gs.select_representatives(perturb=0)
+    with pytest.raises(gs.InputError, match="friction_spread"):
+        gs.select_representatives(friction_spread=2.0)
+
+
 def test_the_stubs_list_every_bound_field_and_enum_member(gs):
     # python/graspsynth/_core.pyi in step with the classes the field lists make.
     import ast

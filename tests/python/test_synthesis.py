@@ -195,6 +195,6 @@ def test_selection_equals_the_command_lines_library(gs, cli, repo, tmp_path):
         shutil.copy(repo / "learning_data" / "demos" / name, demos / name)
     out = tmp_path / "library.json"
     cli("select", demos, "--out", out, "--perturb", "2", "--threads", "2", expect=None)
-    library, report = gs.select_representatives(str(demos), perturbations=2, threads=2)
+    library, report = gs.select_representatives(str(demos), perturb=2, threads=2)
     assert report["logs"] == 3
     assert library.to_json() == out.read_text()

@@ -37,7 +37,7 @@ const SynthesisResult& Synthesized() {
 TEST(GraspFile, HoldsEverySectionAndAPlayableTrajectory) {
   ASSERT_TRUE(Synthesized().ok()) << Synthesized().message;
   PhysicsGateOptions go;
-  go.perturbations = 0;
+  go.robustness.trials = 0;
   const PhysicsGateResult gate =
       RunPhysicsGate(ShippedSimulationModel(), Synthesized().trajectory, go);
   const nlohmann::json j = nlohmann::json::parse(GraspFileToJson(Synthesized(), &gate, false));

@@ -24,13 +24,13 @@ JointTrajectory Scripted(double theta_deg, double higher = 0.0) {
 
 TEST(PhysicsGate, PassesAGraspThatWorks) {
   PhysicsGateOptions o;
-  o.perturbations = Scaled(8, 2);
-  o.threads = 2;
+  o.robustness.trials = Scaled(8, 2);
+  o.robustness.threads = 2;
   const PhysicsGateResult r = RunPhysicsGate(ShippedSimulationModel(), Scripted(60.0), o);
   EXPECT_TRUE(r.passed) << r.reason;
   EXPECT_TRUE(r.nominal.success());
   EXPECT_TRUE(r.robustness_run);
-  EXPECT_EQ(static_cast<int>(r.robustness.trials.size()), o.perturbations);
+  EXPECT_EQ(static_cast<int>(r.robustness.trials.size()), o.robustness.trials);
   EXPECT_GE(r.robustness.score, 0.8);
   // quality from the held grasp's contacts.
   EXPECT_GE(r.contacts.size(), 2u);
@@ -40,7 +40,7 @@ TEST(PhysicsGate, PassesAGraspThatWorks) {
 
 TEST(PhysicsGate, RejectsAHandFiveCentimetresTooHigh) {
   PhysicsGateOptions o;
-  o.perturbations = Scaled(8, 2);
+  o.robustness.trials = Scaled(8, 2);
   const PhysicsGateResult r = RunPhysicsGate(ShippedSimulationModel(), Scripted(60.0, 0.05), o);
   EXPECT_FALSE(r.passed);
   EXPECT_FALSE(r.nominal.success());
@@ -50,11 +50,11 @@ TEST(PhysicsGate, RejectsAHandFiveCentimetresTooHigh) {
 
 TEST(PhysicsGate, RobustnessBelowTheThresholdFails) {
   PhysicsGateOptions o;
-  o.perturbations = 2;
+  o.robustness.trials = 2;
   o.min_robustness = 1.0;
   // so much noise that no replay can hold (15 cm and 45 deg on the wrist, per axis and knot).
-  o.perturbation.position_sigma = 0.15;
-  o.perturbation.orientation_sigma = 45.0 * M_PI / 180.0;
+  o.robustness.perturbation.position_sigma = 0.15;
+  o.robustness.perturbation.orientation_sigma = 45.0 * M_PI / 180.0;
   const PhysicsGateResult r = RunPhysicsGate(ShippedSimulationModel(), Scripted(60.0), o);
   ASSERT_TRUE(r.nominal.success()) << r.nominal.reason;
   ASSERT_TRUE(r.robustness_run);
@@ -67,9 +67,9 @@ TEST(PhysicsGate, RobustnessBelowTheThresholdFails) {
 
 TEST(PhysicsGate, ProgressCountsTheReplaysThenTheSensitivityTable) {
   PhysicsGateOptions o;
-  o.perturbations = 1;
+  o.robustness.trials = 1;
   o.sensitivity_trials = 1;
-  o.threads = 2;
+  o.robustness.threads = 2;
   int last_done = 0, last_total = 0;
   const PhysicsGateResult r =
       RunPhysicsGate(ShippedSimulationModel(), Scripted(60.0), o, [&](int done, int total) {

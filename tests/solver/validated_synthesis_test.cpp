@@ -22,7 +22,7 @@ const SynthesisModel& ShippedModel() {
 ValidatedSynthesis Validate(double theta_deg, bool physics_fallback) {
   ValidatedSynthesisOptions o;
   o.physics_fallback = physics_fallback;
-  o.gate.perturbations = 0;  // the nominal trial decides
+  o.gate.robustness.trials = 0;  // the nominal trial decides
   SynthesisData data(ShippedModel());
   return SynthesizeAndValidate(ShippedSimulationModel(), ShippedModel(), theta_deg, o, &data);
 }
@@ -80,7 +80,7 @@ TEST(ValidatedSynthesis, ASlidGripWhoseNominalTrialFailsGivesWayToTheUnslidOne) 
   static const SynthesisModel model(ShippedSimulationModel().robot(),
                                     ShippedSimulationModel().scene(), library);
   ValidatedSynthesisOptions o;
-  o.gate.perturbations = 0;
+  o.gate.robustness.trials = 0;
   o.synthesis.grip_slide = GripSlideOptions{0.3, 0.03, 0, 0.0};
   SynthesisData data(model);
   const SynthesisTask task = MakeSynthesisTask(model.scene(), 43.0, Eigen::Vector2d(-0.25, 0.82));

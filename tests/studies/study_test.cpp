@@ -110,7 +110,7 @@ TEST(LeaveOneOutTable, TheHeldOutDemonstrationIsNeverASource) {
   const SimulationModel model = LoadDefaultSimulationModel();
   SynthesisTableOptions options;
   options.methods = {{SynthesisMethod::kInterp, false}};
-  options.gate_perturbations = 0;
+  options.gate.robustness.trials = 0;
   options.threads = 2;
   std::vector<std::string> stages;
   const std::vector<StudyRow> rows = LeaveOneOutTable(

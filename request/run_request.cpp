@@ -1,0 +1,113 @@
+#include "request/run_request.hpp"
+
+#include <utility>
+
+#include "common/errors.hpp"
+#include "common/orientation_list.hpp"
+#include "common/valid_options.hpp"
+#include "learning_data/demo_directory.hpp"
+#include "request/physics_options.hpp"
+
+namespace graspsynth::request {
+namespace {
+
+using R = RunRequest;
+
+// " (-1, the default: the study's N, --quick's M)": what the sentinel of a count means.
+std::string StudyDefaultText(int StudyOptions::*field) {
+  StudyOptions quick;
+  quick.UseQuickStudy();
+  return " (-1, the default: the study's " + std::to_string(StudyOptions{}.*field) +
+         ", --quick's " + std::to_string(quick.*field) + ")";
+}
+
+// A count that is at least `lo` or -1 (the study's default); `field` gives the help the defaults.
+Option<R> CountOption(const char* name, std::string help, int lo, int StudyOptions::*field,
+                      int R::*member) {
+  OptionInfo info = MakeInfo(name, OptionKind::kInt, help + StudyDefaultText(field));
+  info.lo = kStudyDefault;
+  Option<R> o = FieldOption<R>(info, [member](R& r) -> int& { return r.*member; });
+  if (lo > 0) {
+    o.check = [lo](const Value& value, const std::string& where) {
+      const int64_t v = std::get<int64_t>(value);
+      if (v != kStudyDefault && v < lo) {
+        throw InputError(where + ": must be >= " + std::to_string(lo) + " or -1 (got " +
+                         std::to_string(v) + ")");
+      }
+    };
+  }
+  return o;
+}
+
+OptionList<R> MakeOptions() {
+  OptionList<R> list;
+  list.push_back(FieldOption<R>(MakeInfo("seed", OptionKind::kUnsigned, "Seed of the whole study"),
+                                [](R& r) -> uint64_t& { return r.seed; }));
+  OptionInfo threads =
+      MakeInfo("threads", OptionKind::kInt, "Worker threads (0: all cores); changes no result");
+  threads.lo = 0;
+  threads.hi = 1024;
+  list.push_back(FieldOption<R>(threads, [](R& r) -> int& { return r.threads; }));
+  list.push_back(FieldOption<R>(
+      MakeInfo("quick", OptionKind::kBool,
+               "Reduced study: orientations 40,45,60,85, 2 selection and 3 gate replays"),
+      [](R& r) -> bool& { return r.quick; }));
+  list.push_back(CountOption("perturb",
+                             "Perturbed replays of each synthesized grasp's physics gate", 0,
+                             &StudyOptions::gate_perturbations, &R::perturb));
+  list.push_back(CountOption("select_perturb",
+                             "Perturbed replays per demonstration in the selection, >= 1", 1,
+                             &StudyOptions::selection_perturbations, &R::select_perturb));
+  list.push_back(CountOption("sensitivity",
+                             "Replays per end of each physics factor's range in each synthesized "
+                             "grasp's sensitivity table (0: none)",
+                             0, &StudyOptions::sensitivity_trials, &R::sensitivity));
+  OptionInfo orientations =
+      MakeInfo("orientations", OptionKind::kText,
+               "Comma-separated object orientations to synthesize, deg, each a number or a range "
+               "FROM:TO:STEP (default: the study's 20:100:5, --quick's 40,45,60,85)");
+  orientations.number_list = true;
+  Option<R> o = FieldOption<R>(orientations, [](R& r) -> std::string& { return r.orientations; });
+  o.check = NumberListCheck("degrees");
+  list.push_back(std::move(o));
+  list.push_back(PhysicsFallbackOption<R>([](R& r) -> bool& { return r.physics_fallback; }));
+  list.push_back(AllReplaysOption<R>([](R& r) -> bool& { return r.all_replays; }, false));
+  AppendPhysicsOptions<R>([](R& r) -> PhysicsPerturbationOptions& { return r.physics; }, &list);
+  return list;
+}
+
+}  // namespace
+
+const OptionList<RunRequest>& RunOptions() {
+  static const OptionList<RunRequest> options = MakeOptions();
+  return options;
+}
+
+StudyOptions ToStudyOptions(const RunRequest& request, const SceneModel& scene,
+                            const std::filesystem::path& demos) {
+  StudyOptions options;
+  options.demos = demos.empty() ? DefaultDemoDirectory(scene.object.name) : demos;
+  options.seed = request.seed;
+  options.threads = request.threads;
+  options.analysis.segmentation.region = scene.grasp_region;
+  options.paper_object = scene.object.paper_object;
+  options.perturbation.physics = request.physics;
+  options.physics_fallback = request.physics_fallback;
+  options.selection_early_stop = !request.all_replays;
+  if (request.quick) options.UseQuickStudy();
+  if (request.sensitivity != kStudyDefault) options.sensitivity_trials = request.sensitivity;
+  if (request.perturb != kStudyDefault) options.gate_perturbations = request.perturb;
+  if (request.select_perturb != kStudyDefault) {
+    options.selection_perturbations = request.select_perturb;
+  }
+  if (!request.orientations.empty()) {
+    options.orientations = ParseOrientationList(request.orientations, "orientations");
+  }
+  RequireValid(options, "run");
+  if (!std::filesystem::is_directory(options.demos)) {
+    throw InputError("run: demos '" + options.demos.string() + "' is not a folder");
+  }
+  return options;
+}
+
+}  // namespace graspsynth::request
