@@ -11,6 +11,7 @@
 #include "common/format.hpp"
 #include "common/text_input.hpp"
 #include "request/generalize_request.hpp"
+#include "request/simulate_request.hpp"
 #include "request/synthesize_request.hpp"
 
 namespace graspsynth::python {
@@ -50,6 +51,9 @@ int64_t IntegerOf(py::handle value, const std::string& where) {
     throw InputError(where + ": " + std::string(py::repr(value)) + " is out of range");
   }
 }
+
+// The requests request_options knows, for its message.
+constexpr const char* kRequestNames = "synthesize, generalize, simulate, robustness";
 
 }  // namespace
 
@@ -138,10 +142,12 @@ void BindRequests(py::module_& m) {
       [](const std::string& name) -> py::list {
         if (name == "synthesize") return OptionDescriptions(request::SynthesizeOptions());
         if (name == "generalize") return OptionDescriptions(request::GeneralizeOptions());
-        throw InputError("no request '" + name + "' (synthesize, generalize)");
+        if (name == "simulate") return OptionDescriptions(request::TrialRequestOptions());
+        if (name == "robustness") return OptionDescriptions(request::RobustnessRequestOptions());
+        throw InputError("no request '" + name + "' (" + kRequestNames + ")");
       },
       py::arg("request"), R"doc(
-The options of a request ("synthesize", "generalize"): a list of dicts with name, kind,
+The options of a request ("synthesize", "generalize", "simulate", "robustness"): a list of dicts with name, kind,
 default, help, choices and required, the one description the command's flags, the Python
 keyword arguments and --config files are made from.)doc");
 }

@@ -164,6 +164,29 @@ inline OptionInfo MakeInfo(std::string name, OptionKind kind, std::string help) 
   return info;
 }
 
+/// `info` with the range from `lo` to `hi` (kInt, kNumber); `lo_open`, `hi_open` leave the ends
+/// out.
+inline OptionInfo WithRange(OptionInfo info, double lo, double hi = INFINITY, bool lo_open = false,
+                            bool hi_open = false) {
+  info.lo = lo;
+  info.hi = hi;
+  info.lo_open = lo_open;
+  info.hi_open = hi_open;
+  return info;
+}
+
+/// `info` with the allowed texts `choices` (kText, kTextList).
+inline OptionInfo WithChoices(OptionInfo info, std::vector<std::string> choices) {
+  info.choices = std::move(choices);
+  return info;
+}
+
+/// The description of the option threads, worker threads in [0, 1024] (0: all cores), with
+/// `help`.
+inline OptionInfo ThreadsInfo(std::string help) {
+  return WithRange(MakeInfo("threads", OptionKind::kInt, std::move(help)), 0, 1024);
+}
+
 /// Makes an option that reads and writes the field `ref` returns, a lambda
 /// `[](R& r) -> T& { return r.gate.seed; }` (through nested options where they are); T is
 /// bool, int, uint64_t, double, std::string or std::vector<std::string>.
@@ -185,6 +208,31 @@ Option<R> FieldOption(OptionInfo info, F ref) {
       ref(r) = static_cast<int>(std::get<int64_t>(v));
     } else {
       ref(r) = std::get<T>(v);
+    }
+  };
+  return o;
+}
+
+/// Makes an option of N numbers (OptionKind::kNumbers, `info.count` set to N) held as an
+/// optional fixed-size vector, the field `ref` returns (`[](R& r) -> std::optional<V>& { return
+/// r.at; }`): no numbers is none.
+template <class R, int N, class F>
+Option<R> OptionalVectorOption(OptionInfo info, F ref) {
+  info.count = N;
+  Option<R> o;
+  o.info = std::move(info);
+  o.get = [ref](const R& r) -> Value {
+    const auto& v = ref(const_cast<R&>(r));
+    return v ? std::vector<double>(v->data(), v->data() + N) : std::vector<double>();
+  };
+  o.set = [ref](R& r, const Value& value) {
+    const auto& v = std::get<std::vector<double>>(value);
+    auto& field = ref(r);
+    if (v.empty()) {
+      field.reset();
+    } else {
+      field.emplace();
+      for (int i = 0; i < N; ++i) (*field)[i] = v[static_cast<size_t>(i)];
     }
   };
   return o;

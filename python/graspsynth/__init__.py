@@ -148,8 +148,8 @@ _OPTION_TYPES = ["bool", "int", "int", "float", "str", "Sequence[str]",
 
 
 def _with_options(request: str):
-    """Gives the decorated function the options of ``request`` (``"synthesize"``,
-    ``"generalize"``) as explicit keyword arguments: their names, defaults and help come from the
+    """Gives the decorated function the options of ``request`` (:func:`request_options`) as
+    explicit keyword arguments: their names, defaults and help come from the
     one description the command's flags and ``--config`` files are made from (C++
     request/option.hpp, :func:`request_options`). A required option (``theta``) is a
     positional argument after the function's own. The function gets the options its caller
@@ -189,9 +189,11 @@ def _with_options(request: str):
 
 
 def request_options(request: str) -> list[dict]:
-    """The options of a request (``"synthesize"``, ``"generalize"``): name, kind, default,
-    help, choices and required, as the command's flags and the keyword arguments of
-    :meth:`Synthesizer.synthesize`, :func:`synthesize` and :func:`generalize` show them."""
+    """The options of a request (``"synthesize"``, ``"generalize"``, ``"simulate"``,
+    ``"robustness"``): name, kind, default, help, choices and required, as the command's flags
+    and the keyword arguments of :meth:`Synthesizer.synthesize`, :func:`synthesize`,
+    :func:`generalize`, :func:`simulate`, :func:`robustness` and the methods of
+    :class:`Simulation` show them."""
     return _core.request_options(request)
 
 
@@ -234,22 +236,47 @@ def _simulation(robot: Optional[Robot], scene: Optional[Scene]) -> Simulation:
     return Simulation(robot or default_robot(), scene or default_scene())
 
 
-def simulate(trajectory: Union[Trajectory, Grasp, PathLike], *, robot: Optional[Robot] = None,
-             scene: Optional[Scene] = None, **options: Any) -> TrialResult:
-    """One grasp-and-lift trial in ODE of a :class:`Trajectory`, a :class:`Grasp` or a
-    trajectory or grasp file: the nominal trial of ``graspsynth simulate``. ``options``:
-    fidelity, time_step, hold, record_interval (see :meth:`Simulation.trial`). Releases the
+@_with_options("simulate")
+def _simulation_trial(self: Simulation, trajectory: Trajectory, options: dict) -> TrialResult:
+    """One grasp-and-lift trial of the trajectory (then ``hold`` s holding the object up):
+    the nominal trial of ``graspsynth simulate``. ``fidelity``: "fast" (the study's),
+    "fast-wrist" or "full"; ``time_step`` 0 takes the fidelity's step; ``record_interval`` > 0
+    records the states every so many seconds. Returns a :class:`TrialResult`. Releases the
     GIL."""
-    return _simulation(robot, scene).trial(_trajectory(trajectory, robot), **options)
+    return self._trial(trajectory, options)
 
 
+@_with_options("robustness")
+def _simulation_robustness(self: Simulation, trajectory: Trajectory, options: dict) -> dict:
+    """The success rate of ``trials`` perturbed replays of the trajectory (the same replays as
+    ``graspsynth simulate --perturb TRIALS --seed SEED``; the result does not depend on
+    ``threads``). ``physics=False`` keeps the modelled physics (motion noise only);
+    ``noise_scale`` scales the motion noise. Returns a dict: trials, successes, score, ci95
+    (Wilson), failures, and replays, one dict per replay with its outcome and drawn physics.
+    Releases the GIL."""
+    return self._robustness(trajectory, options)
+
+
+Simulation.trial = _simulation_trial
+Simulation.robustness = _simulation_robustness
+
+
+@_with_options("simulate")
+def simulate(trajectory: Union[Trajectory, Grasp, PathLike], *, robot: Optional[Robot] = None,
+             scene: Optional[Scene] = None, options: dict) -> TrialResult:
+    """One grasp-and-lift trial in ODE of a :class:`Trajectory`, a :class:`Grasp` or a
+    trajectory or grasp file: the nominal trial of ``graspsynth simulate`` (see
+    :meth:`Simulation.trial`). Releases the GIL."""
+    return _simulation(robot, scene)._trial(_trajectory(trajectory, robot), options)
+
+
+@_with_options("robustness")
 def robustness(trajectory: Union[Trajectory, Grasp, PathLike], *,
                robot: Optional[Robot] = None, scene: Optional[Scene] = None,
-               **options: Any) -> dict:
-    """Perturbed replays of a trajectory: ``graspsynth simulate --perturb N``. ``options``:
-    trials, seed, threads, physics, noise_scale, fidelity (see :meth:`Simulation.robustness`).
-    Releases the GIL."""
-    return _simulation(robot, scene).robustness(_trajectory(trajectory, robot), **options)
+               options: dict) -> dict:
+    """Perturbed replays of a trajectory: ``graspsynth simulate --perturb N`` (see
+    :meth:`Simulation.robustness`). Releases the GIL."""
+    return _simulation(robot, scene)._robustness(_trajectory(trajectory, robot), options)
 
 
 class Table(list):

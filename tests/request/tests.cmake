@@ -2,3 +2,4 @@
 # file, and the mapping onto the library's options.
 graspsynth_test(request/option_test.cpp LIBS graspsynth::request)
 graspsynth_test(request/requests_test.cpp LIBS graspsynth::request)
+graspsynth_test(request/simulate_request_test.cpp LIBS graspsynth::request)
