@@ -10,6 +10,7 @@
 #include "common/errors.hpp"
 #include "common/format.hpp"
 #include "common/text_input.hpp"
+#include "request/analyze_request.hpp"
 #include "request/generalize_request.hpp"
 #include "request/simulate_request.hpp"
 #include "request/synthesize_request.hpp"
@@ -53,7 +54,7 @@ int64_t IntegerOf(py::handle value, const std::string& where) {
 }
 
 // The requests request_options knows, for its message.
-constexpr const char* kRequestNames = "synthesize, generalize, simulate, robustness";
+constexpr const char* kRequestNames = "synthesize, generalize, simulate, robustness, analyze";
 
 }  // namespace
 
@@ -144,10 +145,11 @@ void BindRequests(py::module_& m) {
         if (name == "generalize") return OptionDescriptions(request::GeneralizeOptions());
         if (name == "simulate") return OptionDescriptions(request::TrialRequestOptions());
         if (name == "robustness") return OptionDescriptions(request::RobustnessRequestOptions());
+        if (name == "analyze") return OptionDescriptions(request::AnalyzeOptions());
         throw InputError("no request '" + name + "' (" + kRequestNames + ")");
       },
       py::arg("request"), R"doc(
-The options of a request ("synthesize", "generalize", "simulate", "robustness"): a list of dicts with name, kind,
+The options of a request ("synthesize", "generalize", "simulate", "robustness", "analyze"): a list of dicts with name, kind,
 default, help, choices and required, the one description the command's flags, the Python
 keyword arguments and --config files are made from.)doc");
 }

@@ -60,7 +60,6 @@ from ._core import (
     Trajectory,
     TrialOutcome,
     TrialResult,
-    analyze_demonstrations,
     branch_of,
     default_robot,
     default_scene,
@@ -190,11 +189,24 @@ def _with_options(request: str):
 
 def request_options(request: str) -> list[dict]:
     """The options of a request (``"synthesize"``, ``"generalize"``, ``"simulate"``,
-    ``"robustness"``): name, kind, default, help, choices and required, as the command's flags
+    ``"robustness"``, ``"analyze"``): name, kind, default, help, choices and required, as the command's flags
     and the keyword arguments of :meth:`Synthesizer.synthesize`, :func:`synthesize`,
-    :func:`generalize`, :func:`simulate`, :func:`robustness` and the methods of
+    :func:`generalize`, :func:`simulate`, :func:`robustness`, :func:`analyze_demonstrations` and
+    the methods of
     :class:`Simulation` show them."""
     return _core.request_options(request)
+
+
+@_with_options("analyze")
+def analyze_demonstrations(directory: Optional[PathLike] = None,
+                           scene: Optional[Scene] = None, *, options: dict) -> dict:
+    """The Table I analysis of a folder of demonstrations (the scene object's shipped ones by
+    default): per orientation the mean pre-grasp and grasp wrist positions relative to the
+    object centre (d, eta), the comparison with the paper's Table I (the paper's pan only), the
+    wrist-line fit and the radial model: ``graspsynth analyze``. Returns the dict that the
+    command writes as JSON."""
+    return _core._analyze_demonstrations(None if directory is None else os.fspath(directory),
+                                         scene, options)
 
 
 @_with_options("synthesize")

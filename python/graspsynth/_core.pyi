@@ -119,7 +119,8 @@ def read_demo_log(path: PathLike) -> DemoLog: ...
 def read_demo_directory(directory: Optional[PathLike] = None) -> tuple[list[DemoLog], list[dict[str, str]]]:
     """-> (logs, rejected [{"file", "reason"}])"""
 def segment(log: DemoLog, scene: Optional[Scene] = None, success_lift: float = 0.05) -> dict[str, Any]: ...
-def analyze_demonstrations(directory: Optional[PathLike] = None, scene: Optional[Scene] = None) -> dict[str, Any]:
+def _analyze_demonstrations(directory: Optional[str], scene: Optional[Scene],
+                            options: dict[str, Any]) -> dict[str, Any]:
     """-> the graspsynth-analysis/1 report: Table I, the wrist line, the radial model"""
 def fit_wrist_line(points: ArrayLike, loss: str = "none", loss_scale: float = 0.01) -> dict[str, Any]: ...
 

@@ -75,10 +75,11 @@ def test_the_stub_of_synthesize_has_the_options_of_the_request(gs):
 @pytest.mark.parametrize("name, functions, methods", [
     ("simulate", ["simulate"], ["trial"]),
     ("robustness", ["robustness"], ["robustness"]),
+    ("analyze", ["analyze_demonstrations"], []),
 ])
-def test_simulation_functions_list_the_options_of_their_request(gs, name, functions, methods):
-    # simulate, robustness and Simulation's methods take the options of one C++ description
-    # each, as explicit keyword arguments with its defaults; the stubs say the same.
+def test_functions_list_the_options_of_their_request(gs, name, functions, methods):
+    # simulate, robustness, Simulation's methods and analyze_demonstrations take the options
+    # of one C++ description each, as explicit keyword arguments with its defaults; the stubs say the same.
     described = [(o["name"], o["default"]) for o in gs.request_options(name)]
     stub = Path(gs._core.__file__).with_name("_core.pyi")
     callables = [getattr(gs, f) for f in functions]

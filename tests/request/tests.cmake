@@ -3,3 +3,4 @@
 graspsynth_test(request/option_test.cpp LIBS graspsynth::request)
 graspsynth_test(request/requests_test.cpp LIBS graspsynth::request)
 graspsynth_test(request/simulate_request_test.cpp LIBS graspsynth::request)
+graspsynth_test(request/analyze_request_test.cpp LIBS graspsynth::request)
