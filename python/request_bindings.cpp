@@ -60,6 +60,7 @@ constexpr const char* kRequestNames = "synthesize, generalize, simulate, robustn
 
 request::Value ValueFromPython(const request::OptionInfo& info, py::handle value,
                                const std::string& where) {
+  if (info.optional && value.is_none()) return std::monostate{};
   switch (info.kind) {
     case OptionKind::kBool:
       if (!py::isinstance<py::bool_>(value)) {
@@ -115,7 +116,9 @@ py::object ValueToPython(const request::OptionInfo& info, const request::Value& 
   return std::visit(
       [&](const auto& v) -> py::object {
         using T = std::decay_t<decltype(v)>;
-        if constexpr (std::is_same_v<T, std::vector<double>>) {
+        if constexpr (std::is_same_v<T, std::monostate>) {
+          return py::none();
+        } else if constexpr (std::is_same_v<T, std::vector<double>>) {
           if (info.kind == OptionKind::kNumbers && v.empty()) return py::none();
           return py::tuple(py::cast(v));
         } else if constexpr (std::is_same_v<T, std::vector<std::string>>) {

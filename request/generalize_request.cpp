@@ -26,14 +26,6 @@ void CheckMethods(const Value& value, const std::string& where) {
   }
 }
 
-// A check that a text is a list of numbers and ranges of `unit` (common/orientation_list.hpp).
-std::function<void(const Value&, const std::string&)> NumberListCheck(const char* unit) {
-  return [unit](const Value& value, const std::string& where) {
-    const std::string& text = std::get<std::string>(value);
-    if (!text.empty()) ParseNumberList(text, where, unit);
-  };
-}
-
 OptionList<R> MakeOptions() {
   OptionList<R> list;
   OptionInfo orientations =

@@ -146,6 +146,12 @@ _OPTION_TYPES = ["bool", "int", "int", "float", "str", "Sequence[str]",
                  "Optional[Sequence[float]]", "tuple[float, float]"]
 
 
+def _annotation(option: dict) -> str:
+    """The Python type of an option: its kind's, Optional[...] where it may be None."""
+    kind = _OPTION_TYPES[option["kind"]]
+    return f"Optional[{kind}]" if option["optional"] else kind
+
+
 def _with_options(request: str):
     """Gives the decorated function the options of ``request`` (:func:`request_options`) as
     explicit keyword arguments: their names, defaults and help come from the
@@ -164,7 +170,7 @@ def _with_options(request: str):
                                       annotation=_OPTION_TYPES[o["kind"]])
                     for o in described if o["required"]]
         optional = [inspect.Parameter(o["name"], inspect.Parameter.KEYWORD_ONLY,
-                                      default=o["default"], annotation=_OPTION_TYPES[o["kind"]])
+                                      default=o["default"], annotation=_annotation(o))
                     for o in described if not o["required"]]
         signature = inspect.Signature(leading + required + trailing + optional,
                                       return_annotation=inspect.signature(function)

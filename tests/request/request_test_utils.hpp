@@ -9,6 +9,8 @@
 #include <set>
 #include <string>
 
+#include <unistd.h>
+
 #include "request/option.hpp"
 
 namespace graspsynth::request {
@@ -31,9 +33,11 @@ void ExpectWellDescribed(const OptionList<R>& options) {
   }
 }
 
-// Writes `text` to a file of the test's temporary folder and returns its path.
+// Writes `text` to a file of the temporary folder, named after this process and `name` (the
+// tests run in parallel), and returns its path.
 inline std::filesystem::path WriteConfig(const std::string& name, const std::string& text) {
-  const std::filesystem::path path = std::filesystem::path(::testing::TempDir()) / name;
+  const std::filesystem::path path = std::filesystem::path(::testing::TempDir()) /
+                                     ("graspsynth_" + std::to_string(::getpid()) + "_" + name);
   std::ofstream(path) << text;
   return path;
 }
