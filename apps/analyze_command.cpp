@@ -16,9 +16,11 @@
 #include "analysis/analysis_report.hpp"
 #include "apps/cli_helpers.hpp"
 #include "apps/figure8.hpp"
+#include "apps/request_flags.hpp"
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
 #include "learning_data/demo_directory.hpp"
+#include "request/analyze_request.hpp"
 #include "scene/scene_model.hpp"
 
 namespace graspsynth::apps {
@@ -26,42 +28,16 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The command's own options; the analysis's are the request's (request/analyze_request.hpp).
 struct AnalyzeOptions {
   std::string directory;
   std::string out;
   std::string plot;
   std::string table;
   std::string scene;
-  std::string object;          // --object: a shipped object's name or an object file
-  std::string region;          // empty: the scene's grasp region shape
-  double region_radius = 0.0;  // 0: the scene's
-  double region_height = 0.0;  // 0: the scene's
-  double success_lift = 0.05;
-  std::string robust_loss = "none";
-  double loss_scale = 0.01;
-  std::string line_points = "means";
+  std::string object;  // --object: a shipped object's name or an object file
   std::string gnuplot = "gnuplot";
 };
-
-AnalysisOptions MakeAnalysisOptions(const AnalyzeOptions& o, const SceneModel& scene) {
-  AnalysisOptions options;
-  options.segmentation.region = scene.grasp_region;
-  if (o.region == "cylinder")
-    options.segmentation.region.shape = GraspRegionModel::Shape::kCylinder;
-  if (o.region == "sphere") options.segmentation.region.shape = GraspRegionModel::Shape::kSphere;
-  if (o.region_radius > 0.0) options.segmentation.region.radius = o.region_radius;
-  if (o.region_height > 0.0) options.segmentation.region.height = o.region_height;
-  options.segmentation.success_lift = o.success_lift;
-  options.line.loss = o.robust_loss == "huber"    ? LineLoss::kHuber
-                      : o.robust_loss == "cauchy" ? LineLoss::kCauchy
-                                                  : LineLoss::kNone;
-  options.line.loss_scale = o.loss_scale;
-  options.line_points =
-      o.line_points == "trials" ? LinePoints::kTrials : LinePoints::kOrientationMeans;
-  std::string why;
-  if (!options.IsValid(&why)) throw InputError("analyze: " + why);
-  return options;
-}
 
 // The line principle over placements: the model's terms and residuals, with and without the
 // position terms.
@@ -133,9 +109,9 @@ void PrintSummary(const DemonstrationAnalysis& a, const PaperComparisonOptions* 
 }
 
 // Runs the analysis of `o.directory`; the exit status (1 when some files were rejected).
-int RunAnalyze(const AnalyzeOptions& o) {
+int RunAnalyze(const AnalyzeOptions& o, const request::AnalyzeRequest& r) {
   const SceneModel scene = LoadScene(o.scene, o.object);
-  const AnalysisOptions options = MakeAnalysisOptions(o, scene);
+  const AnalysisOptions options = request::ToAnalysisOptions(r, scene.grasp_region);
   const PaperComparisonOptions paper_tolerances;
   // only the paper's pan has a published Table I to compare with.
   const PaperComparisonOptions* comparison =
@@ -180,6 +156,8 @@ void AddAnalyzeCommand(CLI::App& app, int* exit_code) {
       "constant), and writes the graspsynth-analysis/1 report (JSON) to --out.\n"
       "Exit status: 0 on success, 1 when some files were rejected (the report is still\n"
       "written), 2 on an error (missing folder, bad option, gnuplot failure).");
+  auto flags =
+      std::make_shared<RequestFlags<request::AnalyzeRequest>>(cmd, request::AnalyzeOptions());
   cmd->add_option("DIR", opts->directory, "Folder of demonstration logs (*.csv)")->required();
   cmd->add_option("--out", opts->out, "Report file to write (JSON, graspsynth-analysis/1)")
       ->required();
@@ -194,35 +172,10 @@ void AddAnalyzeCommand(CLI::App& app, int* exit_code) {
                   "Scene description (graspsynth-scene/2) for the default grasp region and the "
                   "object outline; default: models/scene.json");
   AddObjectFlag(cmd, &opts->object);
-  cmd->add_option("--region", opts->region, "Grasp region shape (default: the scene's, cylinder)")
-      ->check(CLI::IsMember({"cylinder", "sphere"}));
-  cmd->add_option("--region-radius", opts->region_radius,
-                  "Grasp region radius in metres (default: the scene's, 0.41)")
-      ->check(PositiveValue());
-  cmd->add_option("--region-height", opts->region_height,
-                  "Cylinder height in metres, centred on the object centre (default: the "
-                  "scene's, 1.0)")
-      ->check(PositiveValue());
-  cmd->add_option("--success-lift", opts->success_lift,
-                  "Lift in metres that makes a trial successful")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--robust-loss", opts->robust_loss, "Robust loss of the wrist-line fit")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"none", "huber", "cauchy"}));
-  cmd->add_option("--loss-scale", opts->loss_scale,
-                  "Scale of the robust loss in metres (residual where it turns over)")
-      ->capture_default_str()
-      ->check(PositiveValue());
-  cmd->add_option("--line-points", opts->line_points,
-                  "Fit the wrist line and the radial model to the mean grasp position of each "
-                  "orientation (means, as the paper's Fig. 8) or to every trial's (trials)")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"means", "trials"}));
   cmd->add_option("--gnuplot", opts->gnuplot, "The gnuplot program used by --plot")
       ->capture_default_str();
 
-  cmd->callback([opts, exit_code] { *exit_code = RunAnalyze(*opts); });
+  cmd->callback([opts, flags, exit_code] { *exit_code = RunAnalyze(*opts, flags->Build()); });
 }
 
 }  // namespace graspsynth::apps

@@ -16,11 +16,14 @@
 #include "analysis/analysis_report.hpp"
 #include "analysis/table_analysis.hpp"
 #include "apps/cli_helpers.hpp"
+#include "apps/request_flags.hpp"
 #include "common/errors.hpp"
+#include "common/json_reader.hpp"
 #include "common/orientation_list.hpp"
 #include "kinematics/robot_description.hpp"
 #include "learning_data/segmentation.hpp"
 #include "learning_data/synthetic_operator.hpp"
+#include "request/demos_request.hpp"
 #include "scene/scene_model.hpp"
 #include "simulation/simulation_model.hpp"
 
@@ -29,38 +32,42 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The command's own options; the operator's overrides are the request's
+// (request/demos_request.hpp).
 struct DemosOptions {
   std::string out;
-  std::string config;
+  std::string operator_file;  // --operator: the operator file; empty: the shipped one
   std::string robot;
   std::string scene;
   std::string object;  // --object: a shipped object's name or an object file
-  uint64_t seed = 0;
-  bool seed_given = false;
-  int trials = 0;    // 0: the config's
-  std::string x, y;  // --x, --y: a grid of object positions (both or neither)
-  int threads = 0;
-  int iterations = 3;
-  double damping = 0.7;
   bool quiet = false;
   bool resume = false;
 };
 
-// The operator of --config, or the shipped one of the scene's object.
-OperatorOptions LoadOperator(const DemosOptions& o, const SceneModel& scene) {
-  OperatorOptions options = ReadOperatorOptions(
-      o.config.empty() ? DefaultOperatorOptionsPath(scene.object.name) : fs::path(o.config));
-  if (o.seed_given) options.seed = o.seed;
-  if (o.trials > 0) {  // the same count everywhere
-    options.trials_per_orientation = o.trials;
-    for (OrientationPlan& plan : options.plans) plan.trials = 0;
+// The operator file of --operator, or the shipped one of the scene's object.
+fs::path OperatorPath(const DemosOptions& o, const SceneModel& scene) {
+  return o.operator_file.empty() ? DefaultOperatorOptionsPath(scene.object.name)
+                                 : fs::path(o.operator_file);
+}
+
+// The operator of --operator (or the shipped one) with the request's overrides.
+OperatorOptions LoadOperator(const DemosOptions& o, const request::DemosRequest& r,
+                             const SceneModel& scene) {
+  return request::ApplyToOperator(r, ReadOperatorOptions(OperatorPath(o, scene)));
+}
+
+// --config is a file of options; the operator file it was before is refused, saying where it
+// went.
+void RefuseOperatorConfig(const std::string& config) {
+  if (config.empty()) return;
+  const JsonReader root = JsonReader::Load(config);
+  if (root.IsObject() && root.Field("format").IsString() &&
+      root.Field("format").AsString() == kOperatorFormat) {
+    throw InputError("--config '" + config + "' is an operator file (" +
+                     std::string(kOperatorFormat) +
+                     "): the operator file is now --operator FILE; --config FILE takes a file "
+                     "of this command's options (graspsynth-options/1)");
   }
-  if (!o.x.empty() || !o.y.empty()) {
-    options.positions = ParsePositionGrid(o.x, o.y, "--x", "--y");
-    std::string why;
-    if (!options.IsValid(&why)) throw InputError("--x/--y: " + why);
-  }
-  return options;
 }
 
 std::unique_ptr<SimulationModel> LoadModel(const DemosOptions& o) {
@@ -139,18 +146,17 @@ void PrintPositions(const std::vector<OperatorTrial>& trials) {
   }
 }
 
-int Generate(const DemosOptions& o, const CLI::App& command) {
+int Generate(const DemosOptions& o, const request::DemosRequest& r, const CLI::App& command) {
   const std::unique_ptr<SimulationModel> model = LoadModel(o);
-  const OperatorOptions options = LoadOperator(o, model->scene());
+  const OperatorOptions options = LoadOperator(o, r, model->scene());
   RunIdentity identity = CommandIdentity(command);
-  identity.AddFile("operator file", o.config.empty()
-                                        ? DefaultOperatorOptionsPath(model->scene().object.name)
-                                        : fs::path(o.config));
+  AddRequestIdentity(request::DemosGenerateOptions(), r, &identity);
+  identity.AddFile("operator file", OperatorPath(o, model->scene()));
   AddModelFiles(o.robot, o.scene, o.object, &identity);
   RunCheckpoint checkpoint(fs::path(o.out) / ".demos.resume", identity, o.resume);
   ProgressBar bar;
   const std::vector<OperatorTrial> trials = GenerateDemonstrations(
-      *model, options, o.threads,
+      *model, options, r.threads,
       [&](int done, int total) {
         if (!o.quiet) bar.Update("simulating trials", done, total, "");
       },
@@ -192,7 +198,7 @@ double RowError(const OrientationStats& s, const PaperTableRow& p) {
 // calibrated on its own: after each round, the plan's strategies are shifted by a damped
 // difference between the paper's row and the mean of its successful trials, and the best plan
 // seen (RowError) is kept.
-int Calibrate(const DemosOptions& o) {
+int Calibrate(const DemosOptions& o, const request::DemosRequest& r) {
   const std::unique_ptr<SimulationModel> model = LoadModel(o);
   if (!model->scene().object.paper_object) {
     throw InputError("demos calibrate: the object '" + model->scene().object.name +
@@ -200,15 +206,15 @@ int Calibrate(const DemosOptions& o) {
                      "calibrate to (another object's operator is planned from its geometry: "
                      "experiments/make_operator.py)");
   }
-  OperatorOptions options = LoadOperator(o, model->scene());
+  OperatorOptions options = LoadOperator(o, r, model->scene());
   std::map<double, PaperTableRow> paper;
   for (const PaperTableRow& r : PaperTableI()) paper[r.theta_deg] = r;
   std::vector<OrientationPlan> best = options.plans;
   std::vector<double> best_error(options.plans.size(), 1e300);
   ProgressBar bar;
-  for (int iteration = 1; iteration <= o.iterations; ++iteration) {
+  for (int iteration = 1; iteration <= r.iterations; ++iteration) {
     const std::vector<OperatorTrial> trials =
-        GenerateDemonstrations(*model, options, o.threads, [&](int done, int total) {
+        GenerateDemonstrations(*model, options, r.threads, [&](int done, int total) {
           if (!o.quiet) bar.Update("round " + std::to_string(iteration), done, total, "");
         });
     bar.Finish();
@@ -227,8 +233,8 @@ int Calibrate(const DemosOptions& o) {
         }
         const Eigen::Vector2d target(p.grasp_d * std::cos(p.grasp_eta_deg * kDeg),
                                      p.grasp_d * std::sin(p.grasp_eta_deg * kDeg));
-        Shift(&plan, o.damping * (target - s.grasp.mean_xy));
-        plan.pregrasp_eta_deg += o.damping * (p.pregrasp_eta_deg - s.pregrasp.eta_deg);
+        Shift(&plan, r.damping * (target - s.grasp.mean_xy));
+        plan.pregrasp_eta_deg += r.damping * (p.pregrasp_eta_deg - s.pregrasp.eta_deg);
       }
     }
   }
@@ -242,21 +248,11 @@ int Calibrate(const DemosOptions& o) {
   return 0;
 }
 
+// The flags generate and calibrate share beside the request's.
 void AddCommonOptions(CLI::App* cmd, DemosOptions* o) {
-  cmd->add_option("--config", o->config,
+  cmd->add_option("--operator", o->operator_file,
                   "Operator file (graspsynth-operator/1); default: the shipped, calibrated "
                   "learning_data/demos/operator.json");
-  cmd->add_option("--seed", o->seed, "Seed (default: the config's)")->each([o](const std::string&) {
-    o->seed_given = true;
-  });
-  cmd->add_option(
-         "--trials-per-orientation", o->trials,
-         "Trials at every orientation (default: the config's, which may differ per orientation)")
-      ->check(PositiveValue());
-  cmd->add_option("--threads", o->threads,
-                  "Worker threads (0: all cores); the output does not "
-                  "depend on it")
-      ->check(CLI::Range(0, 1024));
   cmd->add_option("--robot", o->robot, "Robot description (URDF)");
   cmd->add_option("--scene", o->scene, "Scene description (JSON)");
   AddObjectFlag(cmd, &o->object);
@@ -271,40 +267,43 @@ void AddDemosCommand(CLI::App& app, int* exit_code) {
       "The synthetic operator: a model of the paper's human operator that makes teleoperation "
       "trials (60 Hz logs, format graspsynth-demo/1) for the orientations of its config, runs "
       "each one in the ODE simulation through the arm's IK and labels it with what happened to "
-      "the pan there.");
+      "the pan there. --operator FILE is the operator file (graspsynth-operator/1); "
+      "--config FILE a file of the command's options.");
   demos->require_subcommand(1);
   auto o = std::make_shared<DemosOptions>();
 
   auto* generate = demos->add_subcommand(
       "generate",
       "Generate a demonstration set: one CSV log per trial (theta020_trial01.csv, ...) and the "
-      "operator.json that made it, into --out. The same config and seed give the same bytes,\n"
+      "operator.json that made it, into --out. The same operator file and seed give the same "
+      "bytes,\n"
       "whatever --threads is and whatever the number of processes under mpirun (README,\n"
       "\"Running at scale\"). Finished trials are kept in OUT/.demos.resume/ until the end:\n"
       "--resume after a kill runs only the others.\n"
       "Example:\n  graspsynth demos generate --out demos/ --seed 7 --trials-per-orientation 10");
+  auto generate_flags = std::make_shared<RequestFlags<request::DemosRequest>>(
+      generate, request::DemosGenerateOptions());
   generate->add_option("--out", o->out, "Output folder")->required();
-  generate->add_option("--x", o->x,
-                       "Object positions: x of the object centre on the table, m, a list or "
-                       "FROM:TO:STEP (with --y: every x at every y); default: the config's "
-                       "positions, else the scene's object centre");
-  generate->add_option("--y", o->y, "Object positions: y of the object centre, m (see --x)");
   AddCommonOptions(generate, o.get());
   AddResumeFlag(generate, &o->resume);
-  generate->callback([o, exit_code, generate] { *exit_code = Generate(*o, *generate); });
+  generate->callback([o, generate_flags, exit_code, generate] {
+    RefuseOperatorConfig(generate_flags->config());
+    *exit_code = Generate(*o, generate_flags->Build(), *generate);
+  });
 
   auto* calibrate = demos->add_subcommand(
       "calibrate",
       "Shift each orientation's intended grasp positions and entry angle by the difference "
       "between the paper's Table I and the mean of the successful trials, --iterations times, "
       "and write the calibrated operator file.");
+  auto calibrate_flags = std::make_shared<RequestFlags<request::DemosRequest>>(
+      calibrate, request::DemosCalibrateOptions());
   calibrate->add_option("--out", o->out, "Calibrated operator file to write")->required();
-  calibrate->add_option("--iterations", o->iterations, "Generate-and-correct rounds")
-      ->check(PositiveValue());
-  calibrate->add_option("--damping", o->damping, "Fraction of the difference corrected per round")
-      ->check(CLI::Range(0.05, 1.0));
   AddCommonOptions(calibrate, o.get());
-  calibrate->callback([o, exit_code] { *exit_code = Calibrate(*o); });
+  calibrate->callback([o, calibrate_flags, exit_code] {
+    RefuseOperatorConfig(calibrate_flags->config());
+    *exit_code = Calibrate(*o, calibrate_flags->Build());
+  });
 }
 
 }  // namespace graspsynth::apps

@@ -10,12 +10,14 @@
 #include <sstream>
 #include <string>
 
+#include "apps/request_flags.hpp"
 #include "common/errors.hpp"
 #include "common/input_file.hpp"
 #include "common/text_input.hpp"
 #include "kinematics/arm_ik.hpp"
 #include "kinematics/pose_math.hpp"
 #include "kinematics/robot_description.hpp"
+#include "request/kinematics_request.hpp"
 
 namespace graspsynth::apps {
 namespace {
@@ -28,7 +30,6 @@ constexpr double kQuaternionTol = 1e-6;
 struct KinematicsOptions {
   std::string input = "-";
   std::string robot;
-  std::string branch;
 };
 
 // The longest input line taken (a line of 7 or 8 numbers has well under 1 KiB).
@@ -98,15 +99,10 @@ json FkLine(const ArmModel& arm, std::string_view text) {
   return json{{"position", {p.x(), p.y(), p.z()}}, {"quaternion", {q.w(), q.x(), q.y(), q.z()}}};
 }
 
-std::optional<ArmBranch> ParseBranch(const std::string& text) {
-  if (text.empty()) return std::nullopt;
-  const auto values = ParseNumberList(text, 3, nullptr);
-  if (!values ||
-      std::any_of(values->begin(), values->end(), [](double v) { return v != 1.0 && v != -1.0; })) {
-    throw InputError("--branch takes three signs GC2,GC4,GC6, each 1 or -1, got '" + text + "'");
-  }
-  return ArmBranch{static_cast<int>((*values)[0]), static_cast<int>((*values)[1]),
-                   static_cast<int>((*values)[2])};
+// The branch of the request, or none for all.
+std::optional<ArmBranch> BranchOf(const request::IkRequest& r) {
+  if (!r.branch) return std::nullopt;
+  return ArmBranch{(*r.branch)[0], (*r.branch)[1], (*r.branch)[2]};
 }
 
 json IkLine(const ArmModel& arm, std::optional<ArmBranch> only, std::string_view text) {
@@ -187,10 +183,9 @@ void AddKinematicsCommands(CLI::App& app, int* exit_code) {
       "psi_intervals: the arm angles at which the target is feasible (union over the\n"
       "branches considered). A malformed line prints {\"error\":...}; exit status 1 then.");
   AddCommonOptions(ik, opts.get());
-  ik->add_option("--branch", opts->branch,
-                 "Only this branch: the signs of S2, E1, W1 as GC2,GC4,GC6, e.g. 1,1,-1");
-  ik->callback([opts, exit_code] {
-    const std::optional<ArmBranch> only = ParseBranch(opts->branch);
+  auto flags = std::make_shared<RequestFlags<request::IkRequest>>(ik, request::IkOptions());
+  ik->callback([opts, flags, exit_code] {
+    const std::optional<ArmBranch> only = BranchOf(flags->Build());
     const RobotModel robot = LoadRobot(*opts);
     const int bad = ForEachInputLine(
         opts->input, [&](std::string_view text) { return IkLine(robot.arm, only, text); });

@@ -71,6 +71,9 @@ class RequestFlags {
     AddOptionFlags(app, infos_, defaults_, with_config, given_.get());
   }
 
+  /// The file --config gave, or "" (read by Build()).
+  const std::string& config() const { return given_->config; }
+
   /// The request of the defaults, the config file and the flags, in that order. Throws
   /// InputError naming the file and field or the flag at fault.
   R Build() const {

@@ -13,11 +13,13 @@
 #include <string>
 
 #include "apps/cli_helpers.hpp"
+#include "apps/request_flags.hpp"
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
 #include "kinematics/pose_math.hpp"
 #include "motion/joint_trajectory.hpp"
 #include "motion/scripted_grasp.hpp"
+#include "request/simulate_request.hpp"
 #include "simulation/robustness.hpp"
 #include "simulation/trial.hpp"
 #include "solver/grasp_file.hpp"
@@ -30,35 +32,18 @@ using json = nlohmann::ordered_json;
 
 constexpr std::string_view kReportFormat = "graspsynth-simulation/1";
 
+// The command's own options; the simulation's are the request's (request/simulate_request.hpp).
 struct SimulateOptions {
   std::string trajectory;
   std::string out;
   std::string record;
-  double record_interval = 0.01;
-  int perturb = 0;
-  int sensitivity = 0;
-  // the defaults are the library's, so that the command and the library cannot drift apart.
-  uint64_t seed = RobustnessOptions{}.seed;
-  int threads = RobustnessOptions{}.threads;
-  std::string fidelity = "fast";
-  double time_step = TrialOptions{}.time_step;
-  double hold = TrialOptions{}.hold;
-  double time_scale_min = PerturbationOptions{}.time_scale_min;
-  double time_scale_max = PerturbationOptions{}.time_scale_max;
-  double position_noise = PerturbationOptions{}.position_sigma;
-  double orientation_noise_deg = PerturbationOptions{}.orientation_sigma / kDeg;
-  double finger_noise_deg = PerturbationOptions{}.finger_sigma / kDeg;
-  std::string at;  // --at X,Y: the object elsewhere than the file says
   std::string robot;
   std::string scene;
   std::string object;  // --object: a shipped object's name or an object file
-  PhysicsPerturbationOptions physics = PerturbationOptions{}.physics;
 };
 
+// The scripted grasp's own options; the grasp's are the request's.
 struct ScriptedOptions {
-  double theta = 60.0;
-  double grasp_radius = ScriptedGraspOptions{}.grasp_radius;
-  bool keep_open = false;
   std::string out;
   std::string robot;
   std::string scene;
@@ -106,29 +91,11 @@ std::string StatesCsv(const std::vector<TrialState>& states) {
   return s.str();
 }
 
-// The perturbed replays' options from the flags; throws InputError for invalid ones.
-RobustnessOptions RobustnessOptionsOf(const SimulateOptions& o, const TrialOptions& trial) {
-  RobustnessOptions ro;
-  ro.trials = std::max(o.perturb, 1);
-  ro.seed = o.seed;
-  ro.threads = o.threads;
-  ro.trial = trial;
-  ro.perturbation.time_scale_min = o.time_scale_min;
-  ro.perturbation.time_scale_max = o.time_scale_max;
-  ro.perturbation.position_sigma = o.position_noise;
-  ro.perturbation.orientation_sigma = o.orientation_noise_deg * kDeg;
-  ro.perturbation.finger_sigma = o.finger_noise_deg * kDeg;
-  ro.perturbation.physics = o.physics;
-  std::string why;
-  if (!ro.IsValid(&why)) throw InputError("bad perturbation option: " + why);
-
-  return ro;
-}
-
 // Runs the perturbed replays (when --perturb > 0) and adds `robustness` and `trials` to the
 // report; prints their summary on stderr.
 void AddPerturbedTrials(const SimulationModel& model, const JointTrajectory& trajectory,
-                        const RobustnessOptions& ro, const SimulateOptions& o, json* report_out) {
+                        const RobustnessOptions& ro, const request::SimulateRequest& o,
+                        json* report_out) {
   json& report = *report_out;
   json trials = json::array();
   if (o.perturb > 0) {
@@ -171,7 +138,7 @@ void AddPerturbedTrials(const SimulationModel& model, const JointTrajectory& tra
 
 // Runs the sensitivity table (when --sensitivity > 0), adds it to the report and prints it.
 void AddSensitivity(const SimulationModel& model, const JointTrajectory& trajectory,
-                    RobustnessOptions ro, const SimulateOptions& o, json* report) {
+                    RobustnessOptions ro, const request::SimulateRequest& o, json* report) {
   if (o.sensitivity <= 0) return;
   ro.trials = o.sensitivity;
   ProgressBar bar;
@@ -188,27 +155,17 @@ void AddSensitivity(const SimulationModel& model, const JointTrajectory& traject
   (*report)["sensitivity"] = SensitivityJson<json>(s, ro.trial.step());
 }
 
-int RunSimulate(const SimulateOptions& o) {
-  if (o.fidelity != "fast" && o.fidelity != "full" && o.fidelity != "fast-wrist") {
-    throw InputError("--fidelity must be 'fast', 'fast-wrist' or 'full', not '" + o.fidelity + "'");
-  }
+int RunSimulate(const SimulateOptions& o, const request::SimulateRequest& r) {
+  const TrialOptions trial = request::ToTrialOptions(r);
+  const RobustnessOptions ro = request::ToRobustnessOptions(r);  // every option checked first
   const SimulationModel model = LoadModel(o.robot, o.scene, o.object);
   // a graspsynth-trajectory/1 file, or the "trajectory" member of a graspsynth-grasp/1 file.
   JointTrajectory trajectory =
       LoadTrajectoryOrGraspFile(o.trajectory, model.robot().arm, model.robot().hand);
-  PlaceTrajectoryObject(model.scene(), ParseAt(o.at), o.trajectory, &trajectory);
+  PlaceTrajectoryObject(model.scene(), r.at, o.trajectory, &trajectory);
 
-  TrialOptions trial;
-  trial.fidelity = o.fidelity == "full"         ? Fidelity::kFull
-                   : o.fidelity == "fast-wrist" ? Fidelity::kFastWristDynamic
-                                                : Fidelity::kFast;
-  trial.time_step = o.time_step;
-  trial.hold = o.hold;
-  std::string why;
-  if (!trial.IsValid(&why)) throw InputError("bad simulation option: " + why);
-  const RobustnessOptions ro = RobustnessOptionsOf(o, trial);  // every flag checked first
   TrialOptions nominal_options = trial;
-  if (!o.record.empty()) nominal_options.record_interval = o.record_interval;
+  if (!o.record.empty()) nominal_options.record_interval = r.record_interval;
   const TrialResult nominal = RunTrial(model, trajectory, nominal_options);
   std::cerr << "nominal trial: " << nominal.BriefReport() << "\n";
 
@@ -219,7 +176,7 @@ int RunSimulate(const SimulateOptions& o) {
   if (trajectory.object_xy) {
     report["object_xy"] = {trajectory.object_xy->x(), trajectory.object_xy->y()};
   }
-  report["settings"] = {{"fidelity", o.fidelity},
+  report["settings"] = {{"fidelity", r.trial.fidelity},
                         {"time_step_s", trial.step()},
                         {"hold_s", trial.hold},
                         {"lift_threshold_m", trial.lift_threshold}};
@@ -232,22 +189,19 @@ int RunSimulate(const SimulateOptions& o) {
                        {"simulated_s", Round(nominal.simulated_time)},
                        {"final_object_pose", PoseJson(nominal.final_object_pose)},
                        {"hold", HoldQualityJson<json>(nominal.hold)}};
-  AddPerturbedTrials(model, trajectory, ro, o, &report);
-  AddSensitivity(model, trajectory, ro, o, &report);
+  AddPerturbedTrials(model, trajectory, ro, r, &report);
+  AddSensitivity(model, trajectory, ro, r, &report);
   WriteFileAtomically(o.out, report.dump(2) + "\n");
   if (!o.record.empty()) WriteFileAtomically(o.record, StatesCsv(nominal.states));
   return nominal.success() ? 0 : 1;
 }
 
-int RunScripted(const ScriptedOptions& o) {
+int RunScripted(const ScriptedOptions& o, const request::ScriptedGraspRequest& request) {
+  const ScriptedGraspOptions g = request::ToScriptedGraspOptions(request);
   const SimulationModel model = LoadModel(o.robot, o.scene, o.object, "the scripted grasp");
-  ScriptedGraspOptions g;
-  g.theta_deg = o.theta;
-  g.grasp_radius = o.grasp_radius;
-  if (o.keep_open) g.closed = g.open;
   const ScriptedGraspResult r = BuildScriptedGrasp(model.robot(), model.scene(), g);
   if (!r.ok)
-    throw InputError("no scripted grasp for theta = " + std::to_string(o.theta) +
+    throw InputError("no scripted grasp for theta = " + std::to_string(request.theta) +
                      " deg: " + r.message);
   WriteJointTrajectory(o.out, r.trajectory);
   std::cerr << "wrote " << o.out << ": " << r.trajectory.samples.size() << " samples, "
@@ -264,18 +218,14 @@ void AddScriptedGraspCommand(CLI::App& app, int* exit_code) {
       "reach from a rest pose, approach from above, close the hand on the handle (fingertips\n"
       "on its far face, thumb on its near face), lift 10 cm. examples/grasp_60deg.json is\n"
       "its output for --theta 60.");
-  scripted->add_option("--theta", sopts->theta, "Object orientation, deg")->capture_default_str();
-  scripted
-      ->add_option("--grasp-radius", sopts->grasp_radius,
-                   "Grasp point along the handle from the object centre, m")
-      ->capture_default_str();
-  scripted->add_flag("--keep-open", sopts->keep_open,
-                     "Keep the hand open (a trajectory that must fail)");
+  auto flags = std::make_shared<RequestFlags<request::ScriptedGraspRequest>>(
+      scripted, request::ScriptedGraspRequestOptions());
   scripted->add_option("--out", sopts->out, "Trajectory file to write")->required();
   scripted->add_option("--robot", sopts->robot, "Robot description (URDF)");
   scripted->add_option("--scene", sopts->scene, "Scene description (JSON)");
   AddObjectFlag(scripted, &sopts->object);
-  scripted->callback([sopts, exit_code] { *exit_code = RunScripted(*sopts); });
+  scripted->callback(
+      [sopts, flags, exit_code] { *exit_code = RunScripted(*sopts, flags->Build()); });
 }
 
 }  // namespace
@@ -305,62 +255,19 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
       "nominal trial succeeds, 1 when it fails, 2 on bad input.\n\n"
       "Example:\n"
       "  graspsynth simulate examples/grasp_60deg.json --perturb 100 --out report.json");
+  auto flags =
+      std::make_shared<RequestFlags<request::SimulateRequest>>(sim, request::SimulateOptions());
   sim->add_option("trajectory", opts->trajectory, "Trajectory file (graspsynth-trajectory/1)")
       ->required()
       ->check(CLI::ExistingFile);
   sim->add_option("--out", opts->out, "Report file to write (JSON)")->required();
-  sim->add_option("--at", opts->at,
-                  "X,Y: play it with the object centre here on the table (world, m) instead of "
-                  "where the file puts it (its \"object_xy\", else the scene's object centre)");
-  sim->add_option("--perturb", opts->perturb, "Number of perturbed replays (0: nominal only)")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
-  sim->add_option("--sensitivity", opts->sensitivity,
-                  "Replays per end of each physics factor's range, that factor alone varied "
-                  "(0: no sensitivity table)")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
-  sim->add_option("--seed", opts->seed, "Seed of the perturbations")->capture_default_str();
-  sim->add_option("--threads", opts->threads, "Worker threads for the replays (0: all cores)")
-      ->capture_default_str()
-      ->check(CLI::Range(0, 1024));
   sim->add_option("--record", opts->record,
                   "Write the nominal trial's simulated states as CSV: t, arm q1..q7 (rad), hand "
                   "f0..f15 (rad), object and wrist pose (m, quaternion w first)");
-  sim->add_option("--record-interval", opts->record_interval, "Seconds between recorded states")
-      ->capture_default_str()
-      ->check(PositiveValue());
-  sim->add_option("--fidelity", opts->fidelity,
-                  "fast: kinematic arm, free space without contact detail, 4 ms steps, early "
-                  "stop; fast-wrist: fast with the wrist joints (E2, W1, W2) dynamic, so that "
-                  "their 10-15 N m motors yield; full: dynamic motor-driven arm, every step "
-                  "simulated at 1 ms")
-      ->capture_default_str();
-  sim->add_option("--time-step", opts->time_step, "Physics step in s (0: the fidelity's default)")
-      ->capture_default_str();
-  sim->add_option("--hold", opts->hold, "Seconds the last command is held after the trajectory")
-      ->capture_default_str();
-  sim->add_option("--time-scale-min", opts->time_scale_min, "Smallest time scale of a replay")
-      ->capture_default_str();
-  sim->add_option("--time-scale-max", opts->time_scale_max, "Largest time scale of a replay")
-      ->capture_default_str();
-  sim->add_option("--position-noise", opts->position_noise,
-                  "Wrist position noise, m (standard deviation per axis)")
-      ->capture_default_str();
-  sim->add_option("--orientation-noise", opts->orientation_noise_deg,
-                  "Wrist orientation noise, deg (standard deviation per axis)")
-      ->capture_default_str();
-  sim->add_option("--finger-noise", opts->finger_noise_deg,
-                  "Finger joint noise, deg (standard deviation per joint)")
-      ->capture_default_str();
   sim->add_option("--robot", opts->robot, "Robot description (URDF); default: the shipped one");
   sim->add_option("--scene", opts->scene, "Scene description (JSON); default: models/scene.json");
   AddObjectFlag(sim, &opts->object);
-  const auto physics = AddPhysicsPerturbationFlags(sim);
-  sim->callback([opts, physics, exit_code] {
-    opts->physics = physics->Build();
-    *exit_code = RunSimulate(*opts);
-  });
+  sim->callback([opts, flags, exit_code] { *exit_code = RunSimulate(*opts, flags->Build()); });
 
   AddScriptedGraspCommand(app, exit_code);
 }

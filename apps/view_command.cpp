@@ -16,12 +16,14 @@
 #include <thread>
 
 #include "apps/cli_helpers.hpp"
+#include "apps/request_flags.hpp"
 #include "apps/stop_signals.hpp"
 #include "common/errors.hpp"
 #include "common/stopwatch.hpp"
 #include "kinematics/robot_description.hpp"
 #include "learning_data/demo_log.hpp"
 #include "motion/joint_trajectory.hpp"
+#include "request/view_request.hpp"
 #include "scene/scene_model.hpp"
 #include "viewer/viewer_replay.hpp"
 #include "viewer/viewer_scene.hpp"
@@ -30,28 +32,19 @@
 namespace graspsynth::apps {
 namespace {
 
-struct ViewOptions {
+// The command's files beside the request's options (request/view_request.hpp).
+struct ViewOptions : request::ViewRequest {
   std::string trajectory;
   std::string log;
   std::string robot;
   std::string scene;
   std::string object;  // --object: a shipped object's name or an object file
-  std::string at;      // --at X,Y: the trajectory's object elsewhere on the table
-  std::string address = "127.0.0.1";
-  int port = 8765;
-  std::string camera;
-  bool loop = false;
-  double speed = 1.0;
-  double rate_hz = 60.0;
-  bool no_wait = false;
-  double hold_s = 1.0;
-  double exit_after_s = 0.0;
 };
 
 // The replay of --trajectory or --log, or the robot at rest with neither.
 viewer::ViewerReplay LoadReplay(const ViewOptions& opts, const RobotModel& robot,
                                 const SceneModel& scene) {
-  const std::optional<Eigen::Vector2d> at = ParseAt(opts.at);
+  const std::optional<Eigen::Vector2d>& at = opts.at;
   if (at && opts.trajectory.empty()) {
     throw InputError(
         "--at moves the object of a --trajectory (a log's object stands where it "
@@ -191,6 +184,7 @@ void AddViewCommand(CLI::App& app, int* exit_code) {
       "neither, the robot is shown at rest. The replay starts when a page first asks for a\n"
       "frame and runs at the file's rate (times --speed) until its end (plus --hold), or for\n"
       "ever with --loop; Ctrl-C or SIGTERM stop it cleanly.");
+  auto flags = std::make_shared<RequestFlags<request::ViewRequest>>(view, request::ViewOptions());
   auto* source = view->add_option_group("source", "What to replay");
   source->add_option("--trajectory", opts->trajectory, "Trajectory file (graspsynth-trajectory/1)")
       ->check(CLI::ExistingFile);
@@ -203,32 +197,10 @@ void AddViewCommand(CLI::App& app, int* exit_code) {
   view->add_option("--scene", opts->scene,
                    "Scene description (graspsynth-scene/2); default: models/scene.json");
   AddObjectFlag(view, &opts->object);
-  view->add_option("--at", opts->at,
-                   "X,Y: the object centre on the table for a --trajectory, world frame, metres "
-                   "(e.g. -0.30,0.90); default: where the file puts it (its \"object_xy\", else "
-                   "the scene's object centre)");
-  view->add_option("--address", opts->address,
-                   "IPv4 address to serve on; 0.0.0.0 opens the viewer to the network")
-      ->capture_default_str();
-  view->add_option("--port", opts->port, "TCP port; 0 picks a free one (printed)")
-      ->check(CLI::Range(0, 65535))
-      ->capture_default_str();
-  view->add_option("--camera", opts->camera,
-                   "Start camera: eye EX,EY,EZ and optionally target TX,TY,TZ (metres, world); "
-                   "default: a side view of the arm and the table");
-  view->add_flag("--loop", opts->loop, "Replay again and again until stopped");
-  view->add_option("--speed", opts->speed, "Replay speed factor (> 0)")->capture_default_str();
-  view->add_option("--rate", opts->rate_hz, "Frames published per second (Hz)")
-      ->capture_default_str();
-  view->add_flag("--no-wait", opts->no_wait,
-                 "Start the replay at once instead of when a page first asks for a frame");
-  view->add_option("--hold", opts->hold_s,
-                   "Seconds to keep serving the last frame after the end of the replay")
-      ->capture_default_str();
-  view->add_option("--exit-after", opts->exit_after_s,
-                   "Stop after this many seconds in any case (0: no limit; for scripts and tests)")
-      ->capture_default_str();
-  view->callback([opts, exit_code] { *exit_code = RunView(*opts); });
+  view->callback([opts, flags, exit_code] {
+    static_cast<request::ViewRequest&>(*opts) = flags->Build();
+    *exit_code = RunView(*opts);
+  });
 }
 
 }  // namespace graspsynth::apps

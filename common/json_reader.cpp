@@ -126,6 +126,7 @@ bool JsonReader::IsString() const {
          Value(node_).get_ref<const std::string&>().rfind(kNonFiniteMark, 0) != 0;
 }
 bool JsonReader::IsNumber() const { return node_ && Value(node_).is_number(); }
+bool JsonReader::IsNull() const { return node_ && Value(node_).is_null(); }
 
 const JsonReader& JsonReader::AsObject() const {
   if (!IsObject()) Fail("an object");

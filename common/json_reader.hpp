@@ -56,6 +56,7 @@ class JsonReader {
   bool IsArray() const;
   bool IsString() const;
   bool IsNumber() const;
+  bool IsNull() const;  ///< present and null
   ///@}
 
   /// @name This value, checked

@@ -22,7 +22,7 @@ reach, so that the thumb tip still meets its near face).
     experiments/make_operator.py --object saucepan --grip-radius 0.15 --side right \\
         --out learning_data/objects/saucepan/demos/operator.json
 
-Then `graspsynth demos generate --object NAME --config OUT --out DIR` makes the trials and
+Then `graspsynth demos generate --object NAME --operator OUT --out DIR` makes the trials and
 labels them in physics (learning_data/README.md, "Other objects").
 """
 

@@ -121,7 +121,7 @@ class Evaluator:
         with open(path, "w") as f:
             json.dump(self.config, f)
         run = lambda args: subprocess.run([self.graspsynth] + args, capture_output=True, text=True)
-        run(["demos", "generate", "--config", path, "--out", demos, "--quiet"])
+        run(["demos", "generate", "--operator", path, "--out", demos, "--quiet"])
         library = os.path.join(self.work, "library.json")
         if os.path.exists(library):
             os.remove(library)

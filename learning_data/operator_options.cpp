@@ -14,7 +14,6 @@
 namespace graspsynth {
 namespace {
 
-constexpr char kOperatorFormat[] = "graspsynth-operator/1";
 constexpr int64_t kMaxCount = std::numeric_limits<int>::max();
 using json = nlohmann::ordered_json;
 

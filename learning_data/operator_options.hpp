@@ -118,6 +118,9 @@ struct OperatorOptions {
   bool IsValid(std::string* why) const;
 };
 
+/// `format` of an operator file.
+inline constexpr char kOperatorFormat[] = "graspsynth-operator/1";
+
 /// Reads operator options (format graspsynth-operator/1, JSON). Fields that are absent keep
 /// their defaults; `plans` is required, `positions` ([[x, y], ...], m) optional. A strategy's
 /// optional `grasp` object holds the fields of its own grip (the GraspStyle fields of the top

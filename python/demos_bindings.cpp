@@ -17,6 +17,8 @@
 #include "learning_data/demo_log.hpp"
 #include "learning_data/segmentation.hpp"
 #include "python/bindings.hpp"
+#include "python/request_bindings.hpp"
+#include "request/analyze_request.hpp"
 #include "scene/scene_model.hpp"
 
 namespace graspsynth::python {
@@ -126,12 +128,12 @@ py::dict FitLine(const DoubleArray& points, const std::string& loss, double loss
 }
 
 py::object Analyze(const std::optional<std::filesystem::path>& directory,
-                   const std::shared_ptr<SceneModel>& scene_arg) {
+                   const std::shared_ptr<SceneModel>& scene_arg, const py::dict& given) {
   const std::shared_ptr<const SceneModel> scene = SceneOrDefault(scene_arg);
+  const AnalysisOptions options = request::ToAnalysisOptions(
+      RequestFromPython(request::AnalyzeOptions(), given), scene->grasp_region);
   const std::filesystem::path folder =
       directory ? *directory : DefaultDemoDirectory(scene->object.name);
-  AnalysisOptions options;
-  options.segmentation.region = scene->grasp_region;
   PaperComparisonOptions comparison;
   std::string text;
   {
@@ -270,12 +272,10 @@ message, success (the object rose >= success_lift m), lift, the sample indices p
 and end, and motion: the grasping motion as arrays (t, position, quaternion, fingers), None
 when the log could not be segmented.)doc");
 
-  m.def("analyze_demonstrations", &Analyze, py::arg("directory") = py::none(),
-        py::arg("scene") = py::none(), R"doc(
-The Table I analysis of a folder of demonstrations (the scene object's shipped ones by default):
-per orientation the mean pre-grasp and grasp wrist positions relative to the object centre
-(d, eta), the comparison with the paper's Table I (the paper's pan only), the wrist-line fit
-and the radial model. Returns the dict that `graspsynth analyze` writes as JSON.)doc");
+  m.def("_analyze_demonstrations", &Analyze, py::arg("directory"), py::arg("scene"),
+        py::arg("options"),
+        "analyze_demonstrations's work, with its options (request_options(\"analyze\")) as a "
+        "dict");
 
   m.def("fit_wrist_line", &FitLine, py::arg("points"), py::arg("loss") = "none",
         py::arg("loss_scale") = 0.01, R"doc(

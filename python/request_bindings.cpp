@@ -10,9 +10,11 @@
 #include "common/errors.hpp"
 #include "common/format.hpp"
 #include "common/text_input.hpp"
+#include "request/analyze_request.hpp"
 #include "request/generalize_request.hpp"
 #include "request/run_request.hpp"
 #include "request/select_request.hpp"
+#include "request/simulate_request.hpp"
 #include "request/synthesize_request.hpp"
 
 namespace graspsynth::python {
@@ -53,10 +55,15 @@ int64_t IntegerOf(py::handle value, const std::string& where) {
   }
 }
 
+// The requests request_options knows, for its message.
+constexpr const char* kRequestNames =
+    "synthesize, generalize, run, select, simulate, robustness, analyze";
+
 }  // namespace
 
 request::Value ValueFromPython(const request::OptionInfo& info, py::handle value,
                                const std::string& where) {
+  if (info.optional && value.is_none()) return std::monostate{};
   switch (info.kind) {
     case OptionKind::kBool:
       if (!py::isinstance<py::bool_>(value)) {
@@ -112,7 +119,9 @@ py::object ValueToPython(const request::OptionInfo& info, const request::Value& 
   return std::visit(
       [&](const auto& v) -> py::object {
         using T = std::decay_t<decltype(v)>;
-        if constexpr (std::is_same_v<T, std::vector<double>>) {
+        if constexpr (std::is_same_v<T, std::monostate>) {
+          return py::none();
+        } else if constexpr (std::is_same_v<T, std::vector<double>>) {
           if (info.kind == OptionKind::kNumbers && v.empty()) return py::none();
           return py::tuple(py::cast(v));
         } else if constexpr (std::is_same_v<T, std::vector<std::string>>) {
@@ -142,12 +151,16 @@ void BindRequests(py::module_& m) {
         if (name == "generalize") return OptionDescriptions(request::GeneralizeOptions());
         if (name == "run") return OptionDescriptions(request::RunOptions());
         if (name == "select") return OptionDescriptions(request::SelectOptions());
-        throw InputError("no request '" + name + "' (synthesize, generalize, run, select)");
+        if (name == "simulate") return OptionDescriptions(request::TrialRequestOptions());
+        if (name == "robustness") return OptionDescriptions(request::RobustnessRequestOptions());
+        if (name == "analyze") return OptionDescriptions(request::AnalyzeOptions());
+        throw InputError("no request '" + name + "' (" + kRequestNames + ")");
       },
       py::arg("request"), R"doc(
-The options of a request ("synthesize", "generalize", "run", "select"): a list of dicts with name, kind,
-default, help, choices and required, the one description the command's flags, the Python
-keyword arguments and --config files are made from.)doc");
+The options of a request (one of: synthesize, generalize, run, select, simulate, robustness,
+analyze): a list of dicts with name, kind, default, help, choices and required, the one
+description the command's flags, the Python keyword arguments and --config files are made
+from.)doc");
 }
 
 }  // namespace graspsynth::python

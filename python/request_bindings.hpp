@@ -46,7 +46,7 @@ R RequestFromPython(const request::OptionList<R>& options, const py::dict& given
   return request;
 }
 
-/// Each option of `options` as a dict: name, kind, default, help, choices, required.
+/// Each option of `options` as a dict: name, kind, default, help, choices, required, optional.
 template <class R>
 py::list OptionDescriptions(const request::OptionList<R>& options) {
   const R defaults{};
@@ -60,6 +60,7 @@ py::list OptionDescriptions(const request::OptionList<R>& options) {
     d["help"] = o.info.help;
     d["choices"] = o.info.choices;
     d["required"] = o.info.required;
+    d["optional"] = o.info.optional;
     list.append(d);
   }
   return list;

@@ -16,7 +16,8 @@
 #include "kinematics/robot_description.hpp"
 #include "motion/joint_trajectory.hpp"
 #include "python/bindings.hpp"
-#include "python/simulation_bindings.hpp"
+#include "python/request_bindings.hpp"
+#include "request/simulate_request.hpp"
 #include "scene/scene_model.hpp"
 #include "simulation/robustness.hpp"
 #include "simulation/trial.hpp"
@@ -49,23 +50,6 @@ const std::vector<TrajectorySample>& Samples(const py::object& self) {
 std::vector<py::ssize_t> MatrixStrides(py::ssize_t rows) {
   return {static_cast<py::ssize_t>(sizeof(double)),
           static_cast<py::ssize_t>(sizeof(double)) * rows};
-}
-
-Fidelity ParseFidelity(const std::string& text) {
-  if (text == "fast") return Fidelity::kFast;
-  if (text == "full") return Fidelity::kFull;
-  if (text == "fast-wrist") return Fidelity::kFastWristDynamic;
-  throw InputError("fidelity must be 'fast', 'fast-wrist' or 'full', not '" + text + "'");
-}
-
-TrialOptions TrialOptionsOf(const std::string& fidelity, double time_step, double hold) {
-  TrialOptions trial;
-  trial.fidelity = ParseFidelity(fidelity);
-  trial.time_step = time_step;
-  trial.hold = hold;
-  std::string why;
-  if (!trial.IsValid(&why)) throw InputError("bad simulation option: " + why);
-  return trial;
 }
 
 std::shared_ptr<JointTrajectory> MakeTrajectory(const DoubleArray& t, const DoubleArray& arm,
@@ -164,26 +148,6 @@ std::shared_ptr<SimulationModel> MakeSimulation(const std::shared_ptr<RobotModel
                                                 const std::shared_ptr<SceneModel>& scene) {
   return std::make_shared<SimulationModel>(*RobotOrDefault(robot), *SceneOrDefault(scene));
 }
-
-}  // namespace
-
-RobustnessOptions RobustnessOptionsOf(int trials, uint64_t seed, int threads, bool physics,
-                                      double noise_scale, const TrialOptions& trial) {
-  CheckThreads(threads);
-  RobustnessOptions ro;
-  ro.trials = trials;
-  ro.seed = seed;
-  ro.threads = threads;
-  ro.trial = trial;
-  ro.perturbation.physics.enabled = physics;
-  if (!(noise_scale >= 0.0)) throw InputError("noise_scale must be >= 0");
-  ro.perturbation.ScaleMotionNoise(noise_scale);
-  std::string why;
-  if (!ro.IsValid(&why)) throw InputError("bad perturbation option: " + why);
-  return ro;
-}
-
-namespace {
 
 void BindTrajectory(py::module_& m) {
   py::class_<JointTrajectory, std::shared_ptr<JointTrajectory>>(m, "Trajectory", R"doc(
@@ -289,34 +253,28 @@ pose and finger noise, and the physics: friction, contact stiffness and damping,
 of mass, servo force, step). Both release the GIL, so Python threads run trials in parallel.)doc")
       .def(py::init(&MakeSimulation), py::arg("robot") = py::none(), py::arg("scene") = py::none())
       .def(
-          "trial",
+          "_trial",
           [](const SimulationModel& model, const JointTrajectory& trajectory,
-             const std::string& fidelity, double time_step, double hold, double record_interval) {
+             const py::dict& options) {
+            const TrialOptions trial =
+                request::ToTrialOptions(RequestFromPython(request::TrialRequestOptions(), options));
             if (trajectory.object_xy) model.scene().CheckOnTable(*trajectory.object_xy);
-            TrialOptions options = TrialOptionsOf(fidelity, time_step, hold);
-            if (!(record_interval >= 0.0)) throw InputError("record_interval must be >= 0");
-            options.record_interval = record_interval;
             auto result = std::make_shared<TrialResult>();
             {
               py::gil_scoped_release release;
-              *result = RunTrial(model, trajectory, options);
+              *result = RunTrial(model, trajectory, trial);
             }
             return result;
           },
-          py::arg("trajectory"), py::arg("fidelity") = "fast", py::arg("time_step") = 0.0,
-          py::arg("hold") = TrialOptions{}.hold, py::arg("record_interval") = 0.0, R"doc(
-One grasp-and-lift trial of the trajectory (then `hold` s holding the object up).
-fidelity: "fast" (the study's), "fast-wrist" or "full"; time_step 0 takes the fidelity's
-step; record_interval > 0 records the states every so many seconds. Returns a TrialResult.)doc")
+          py::arg("trajectory"), py::arg("options"),
+          "Simulation.trial's work, with its options (request_options(\"simulate\")) as a dict")
       .def(
-          "robustness",
-          [](const SimulationModel& model, const JointTrajectory& trajectory, int trials,
-             uint64_t seed, int threads, bool physics, double noise_scale,
-             const std::string& fidelity) {
+          "_robustness",
+          [](const SimulationModel& model, const JointTrajectory& trajectory,
+             const py::dict& options) {
+            const RobustnessOptions ro = request::ToRobustnessOptions(
+                RequestFromPython(request::RobustnessRequestOptions(), options));
             if (trajectory.object_xy) model.scene().CheckOnTable(*trajectory.object_xy);
-            const RobustnessOptions ro =
-                RobustnessOptionsOf(trials, seed, threads, physics, noise_scale,
-                                    TrialOptionsOf(fidelity, 0.0, TrialOptions{}.hold));
             RobustnessResult r;
             {
               py::gil_scoped_release release;
@@ -324,14 +282,9 @@ step; record_interval > 0 records the states every so many seconds. Returns a Tr
             }
             return RobustnessDict(r, ro);
           },
-          py::arg("trajectory"), py::arg("trials") = 20, py::arg("seed") = RobustnessOptions{}.seed,
-          py::arg("threads") = 0, py::arg("physics") = true, py::arg("noise_scale") = 1.0,
-          py::arg("fidelity") = "fast", R"doc(
-The success rate of `trials` perturbed replays of the trajectory (the same replays as
-`graspsynth simulate --perturb TRIALS --seed SEED`; the result does not depend on threads).
-physics=False keeps the modelled physics (motion noise only); noise_scale scales the motion
-noise. Returns a dict: trials, successes, score, ci95 (Wilson), failures, and replays, one
-dict per replay with its outcome and drawn physics.)doc");
+          py::arg("trajectory"), py::arg("options"),
+          "Simulation.robustness's work, with its options (request_options(\"robustness\")) as "
+          "a dict");
 }
 
 }  // namespace

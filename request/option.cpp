@@ -149,6 +149,7 @@ std::string OptionInfo::Placeholder() const {
 }
 
 std::string CheckValue(const OptionInfo& info, const Value& value) {
+  if (std::holds_alternative<std::monostate>(value)) return info.optional ? "" : "needs a value";
   switch (info.kind) {
     case OptionKind::kBool:
       return std::holds_alternative<bool>(value) ? "" : "needs true or false";
@@ -197,7 +198,9 @@ std::string ShowValue(const OptionInfo& info, const Value& value) {
   return std::visit(
       [&](const auto& v) -> std::string {
         using T = std::decay_t<decltype(v)>;
-        if constexpr (std::is_same_v<T, bool>) {
+        if constexpr (std::is_same_v<T, std::monostate>) {
+          return "";
+        } else if constexpr (std::is_same_v<T, bool>) {
           return info.on_off ? (v ? "on" : "off") : (v ? "true" : "false");
         } else if constexpr (std::is_same_v<T, int64_t> || std::is_same_v<T, uint64_t>) {
           return std::to_string(v);
@@ -266,6 +269,7 @@ Value ParseText(const OptionInfo& info, const std::string& text, const std::stri
 }
 
 Value ValueFromJson(const OptionInfo& info, const JsonReader& field) {
+  if (info.optional && field.IsNull()) return std::monostate{};
   switch (info.kind) {
     case OptionKind::kBool:
       return field.AsBool();
@@ -299,6 +303,13 @@ Value ValueFromJson(const OptionInfo& info, const JsonReader& field) {
   return Value();
 }
 
+std::function<void(const Value&, const std::string&)> NumberListCheck(const char* unit) {
+  return [unit](const Value& value, const std::string& where) {
+    const std::string& text = std::get<std::string>(value);
+    if (!text.empty()) ParseNumberList(text, where, unit);
+  };
+}
+
 std::string NearestName(const std::vector<std::string>& names, std::string_view name) {
   std::string best;
   size_t best_distance = name.size() / 3 + 1;
@@ -310,13 +321,6 @@ std::string NearestName(const std::vector<std::string>& names, std::string_view 
     }
   }
   return best;
-}
-
-std::function<void(const Value&, const std::string&)> NumberListCheck(const char* unit) {
-  return [unit](const Value& value, const std::string& where) {
-    const std::string& text = std::get<std::string>(value);
-    if (!text.empty()) ParseNumberList(text, where, unit);
-  };
 }
 
 namespace detail {

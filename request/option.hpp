@@ -47,9 +47,10 @@ enum class OptionKind {
 };
 
 /// The value of an option, by kind: bool; int64_t (kInt); uint64_t (kUnsigned); double
-/// (kNumber); std::string (kText); texts (kTextList); numbers (kNumbers, kNumberPair).
+/// (kNumber); std::string (kText); texts (kTextList); numbers (kNumbers, kNumberPair); and
+/// std::monostate, none, for an optional option (OptionInfo::optional) left unset.
 using Value = std::variant<bool, int64_t, uint64_t, double, std::string, std::vector<std::string>,
-                           std::vector<double>>;
+                           std::vector<double>, std::monostate>;
 
 /// What the front ends show of an option and check of its values.
 struct OptionInfo {
@@ -61,6 +62,9 @@ struct OptionInfo {
   std::vector<std::string> choices;       ///< kText, kTextList: the allowed texts (empty: any)
   int count = 0;                          ///< kNumbers: how many numbers
   bool required = false;                  ///< no default: the front end must give it
+  /// kInt, kUnsigned, kNumber: may be none (std::monostate): the command line leaves the flag
+  /// out, Python gives None, JSON null; its default is none (say in `help` what none means).
+  bool optional = false;
   bool on_off = false;       ///< kBool: the command line spells it --NAME on|off, not a flag
   bool number_list = false;  ///< kText: also a list of numbers (Python, JSON), written "a,b"
   std::string group;         ///< the help's heading for it (empty: the command's options)
@@ -83,8 +87,8 @@ std::string CheckValue(const OptionInfo& info, const Value& value);
 /// "nearest,interp", "0.5 2", "" for no numbers.
 std::string ShowValue(const OptionInfo& info, const Value& value);
 
-/// The value of a command-line text for `info` (a number, a text, "a,b" lists, "on"/"off").
-/// Throws InputError "<where>: <why>" when it does not parse or is out of range.
+/// The value of a command-line text for `info` (never none) (a number, a text, "a,b" lists,
+/// "on"/"off"). Throws InputError "<where>: <why>" when it does not parse or is out of range.
 Value ParseText(const OptionInfo& info, const std::string& text, const std::string& where);
 
 /// The value of a JSON field for `info`; throws InputError naming the file and the field.
@@ -114,6 +118,10 @@ void Apply(const Option<R>& option, const Value& value, const std::string& where
   if (option.check) option.check(value, where);
   option.set(*request, value);
 }
+
+/// A check (Option::check) that a text is empty or a list of numbers and ranges FROM:TO:STEP
+/// of `unit` (common/orientation_list.hpp), for an option with OptionInfo::number_list.
+std::function<void(const Value& value, const std::string& where)> NumberListCheck(const char* unit);
 
 /// The option named `name`, or nullptr.
 template <class R>
@@ -164,9 +172,28 @@ inline OptionInfo MakeInfo(std::string name, OptionKind kind, std::string help) 
   return info;
 }
 
-/// A check (Option::check) of a kText option with number_list: its text, unless empty, is a
-/// list of numbers and ranges FROM:TO:STEP of `unit` (common/orientation_list.hpp).
-std::function<void(const Value&, const std::string&)> NumberListCheck(const char* unit);
+/// `info` with the range from `lo` to `hi` (kInt, kNumber); `lo_open`, `hi_open` leave the ends
+/// out.
+inline OptionInfo WithRange(OptionInfo info, double lo, double hi = INFINITY, bool lo_open = false,
+                            bool hi_open = false) {
+  info.lo = lo;
+  info.hi = hi;
+  info.lo_open = lo_open;
+  info.hi_open = hi_open;
+  return info;
+}
+
+/// `info` with the allowed texts `choices` (kText, kTextList).
+inline OptionInfo WithChoices(OptionInfo info, std::vector<std::string> choices) {
+  info.choices = std::move(choices);
+  return info;
+}
+
+/// The description of the option threads, worker threads in [0, 1024] (0: all cores), with
+/// `help`.
+inline OptionInfo ThreadsInfo(std::string help) {
+  return WithRange(MakeInfo("threads", OptionKind::kInt, std::move(help)), 0, 1024);
+}
 
 /// Makes an option that reads and writes the field `ref` returns, a lambda
 /// `[](R& r) -> T& { return r.gate.robustness.seed; }` (through nested options where they are); T
@@ -189,6 +216,55 @@ Option<R> FieldOption(OptionInfo info, F ref) {
       ref(r) = static_cast<int>(std::get<int64_t>(v));
     } else {
       ref(r) = std::get<T>(v);
+    }
+  };
+  return o;
+}
+
+/// Makes an optional option (OptionInfo::optional) that reads and writes the std::optional<T>
+/// field `ref` returns; T is int, uint64_t or double; none is std::monostate.
+template <class R, class F>
+Option<R> OptionalFieldOption(OptionInfo info, F ref) {
+  using T = typename std::remove_reference_t<std::invoke_result_t<F, R&>>::value_type;
+  using V = std::conditional_t<std::is_same_v<T, int>, int64_t, T>;
+  info.optional = true;
+  Option<R> o;
+  o.info = std::move(info);
+  o.get = [ref](const R& r) -> Value {
+    const std::optional<T>& v = ref(const_cast<R&>(r));
+    if (!v) return std::monostate{};
+    return static_cast<V>(*v);
+  };
+  o.set = [ref](R& r, const Value& v) {
+    if (std::holds_alternative<std::monostate>(v)) {
+      ref(r).reset();
+    } else {
+      ref(r) = static_cast<T>(std::get<V>(v));
+    }
+  };
+  return o;
+}
+
+/// Makes an option of N numbers (OptionKind::kNumbers, `info.count` set to N) held as an
+/// optional fixed-size vector, the field `ref` returns (`[](R& r) -> std::optional<V>& { return
+/// r.at; }`): no numbers is none.
+template <class R, int N, class F>
+Option<R> OptionalVectorOption(OptionInfo info, F ref) {
+  info.count = N;
+  Option<R> o;
+  o.info = std::move(info);
+  o.get = [ref](const R& r) -> Value {
+    const auto& v = ref(const_cast<R&>(r));
+    return v ? std::vector<double>(v->data(), v->data() + N) : std::vector<double>();
+  };
+  o.set = [ref](R& r, const Value& value) {
+    const auto& v = std::get<std::vector<double>>(value);
+    auto& field = ref(r);
+    if (v.empty()) {
+      field.reset();
+    } else {
+      field.emplace();
+      for (int i = 0; i < N; ++i) (*field)[i] = v[static_cast<size_t>(i)];
     }
   };
   return o;

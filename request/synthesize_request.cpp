@@ -17,35 +17,12 @@ OptionInfo Placeholder(OptionInfo info, const char* placeholder) {
   return info;
 }
 
-// `count` numbers held as an optional fixed-size vector (at, start).
-template <int N, class F>
-Option<R> OptionalVectorOption(OptionInfo info, F ref) {
-  info.count = N;
-  Option<R> o;
-  o.info = std::move(info);
-  o.get = [ref](const R& r) -> Value {
-    const auto& v = ref(const_cast<R&>(r));
-    return v ? std::vector<double>(v->data(), v->data() + N) : std::vector<double>();
-  };
-  o.set = [ref](R& r, const Value& value) {
-    const auto& v = std::get<std::vector<double>>(value);
-    auto& field = ref(r);
-    if (v.empty()) {
-      field.reset();
-    } else {
-      field.emplace();
-      for (int i = 0; i < N; ++i) (*field)[i] = v[static_cast<size_t>(i)];
-    }
-  };
-  return o;
-}
-
 OptionList<R> MakeOptions() {
   OptionList<R> list;
   OptionInfo theta = MakeInfo("theta", OptionKind::kNumber, "Object orientation, degrees");
   theta.required = true;
   list.push_back(FieldOption<R>(theta, [](R& r) -> double& { return r.theta; }));
-  list.push_back(OptionalVectorOption<2>(
+  list.push_back(OptionalVectorOption<R, 2>(
       Placeholder(
           MakeInfo("at", OptionKind::kNumbers,
                    "X,Y: the object centre on the table, world frame, metres (e.g. -0.30,0.90); "
@@ -83,7 +60,7 @@ OptionList<R> MakeOptions() {
           "that keeps the refinement's constraints and 2 cm between arm and object is kept; a "
           "slid grip whose nominal trial fails gives way to the unslid one)"),
       [](R& r) -> bool& { return r.grip_slide; }));
-  list.push_back(OptionalVectorOption<kArmDof>(
+  list.push_back(OptionalVectorOption<R, kArmDof>(
       Placeholder(MakeInfo("start", OptionKind::kNumbers,
                            "Start arm configuration q1,...,q7, radians (default: the rest pose for "
                            "the grasp orientation)"),

@@ -61,7 +61,6 @@ from ._core import (
     Trajectory,
     TrialOutcome,
     TrialResult,
-    analyze_demonstrations,
     branch_of,
     default_robot,
     default_scene,
@@ -147,11 +146,17 @@ _OPTION_TYPES = ["bool", "int", "int", "float", "str", "Sequence[str]",
                  "Optional[Sequence[float]]", "tuple[float, float]"]
 
 
+def _annotation(option: dict) -> str:
+    """The Python type of an option: its kind's, Optional[...] where it may be None."""
+    kind = _OPTION_TYPES[option["kind"]]
+    return f"Optional[{kind}]" if option["optional"] else kind
+
+
 def _with_options(request: str):
-    """Gives the decorated function the options of ``request`` (``"synthesize"``,
-    ``"generalize"``, ``"run"``, ``"select"``) as explicit keyword arguments: their names,
-    defaults and help come from the one description the command's flags and ``--config`` files
-    are made from (C++ request/option.hpp, :func:`request_options`). A required option (``theta``) is a
+    """Gives the decorated function the options of ``request`` (:func:`request_options`) as
+    explicit keyword arguments: their names, defaults and help come from the
+    one description the command's flags and ``--config`` files are made from (C++
+    request/option.hpp, :func:`request_options`). A required option (``theta``) is a
     positional argument after the function's own. The function gets the options its caller
     gave as one dict, ``options``; the extension checks them."""
     described = _core.request_options(request)
@@ -165,7 +170,7 @@ def _with_options(request: str):
                                       annotation=_OPTION_TYPES[o["kind"]])
                     for o in described if o["required"]]
         optional = [inspect.Parameter(o["name"], inspect.Parameter.KEYWORD_ONLY,
-                                      default=o["default"], annotation=_OPTION_TYPES[o["kind"]])
+                                      default=o["default"], annotation=_annotation(o))
                     for o in described if not o["required"]]
         signature = inspect.Signature(leading + required + trailing + optional,
                                       return_annotation=inspect.signature(function)
@@ -189,11 +194,25 @@ def _with_options(request: str):
 
 
 def request_options(request: str) -> list[dict]:
-    """The options of a request (``"synthesize"``, ``"generalize"``, ``"run"``, ``"select"``):
-    name, kind, default, help, choices and required, as the command's flags and the keyword
-    arguments of :meth:`Synthesizer.synthesize`, :func:`synthesize`, :func:`generalize`,
-    :func:`run` and :func:`select_representatives` show them."""
+    """The options of a request (``"synthesize"``, ``"generalize"``, ``"run"``, ``"select"``,
+    ``"simulate"``, ``"robustness"``, ``"analyze"``): name, kind, default, help, choices and
+    required, as the command's flags and the keyword arguments of
+    :meth:`Synthesizer.synthesize`, :func:`synthesize`, :func:`generalize`, :func:`run`,
+    :func:`select_representatives`, :func:`simulate`, :func:`robustness`,
+    :func:`analyze_demonstrations` and the methods of :class:`Simulation` show them."""
     return _core.request_options(request)
+
+
+@_with_options("analyze")
+def analyze_demonstrations(directory: Optional[PathLike] = None,
+                           scene: Optional[Scene] = None, *, options: dict) -> dict:
+    """The Table I analysis of a folder of demonstrations (the scene object's shipped ones by
+    default): per orientation the mean pre-grasp and grasp wrist positions relative to the
+    object centre (d, eta), the comparison with the paper's Table I (the paper's pan only), the
+    wrist-line fit and the radial model: ``graspsynth analyze``. Returns the dict that the
+    command writes as JSON."""
+    return _core._analyze_demonstrations(None if directory is None else os.fspath(directory),
+                                         scene, options)
 
 
 @_with_options("synthesize")
@@ -235,22 +254,47 @@ def _simulation(robot: Optional[Robot], scene: Optional[Scene]) -> Simulation:
     return Simulation(robot or default_robot(), scene or default_scene())
 
 
-def simulate(trajectory: Union[Trajectory, Grasp, PathLike], *, robot: Optional[Robot] = None,
-             scene: Optional[Scene] = None, **options: Any) -> TrialResult:
-    """One grasp-and-lift trial in ODE of a :class:`Trajectory`, a :class:`Grasp` or a
-    trajectory or grasp file: the nominal trial of ``graspsynth simulate``. ``options``:
-    fidelity, time_step, hold, record_interval (see :meth:`Simulation.trial`). Releases the
+@_with_options("simulate")
+def _simulation_trial(self: Simulation, trajectory: Trajectory, options: dict) -> TrialResult:
+    """One grasp-and-lift trial of the trajectory (then ``hold`` s holding the object up):
+    the nominal trial of ``graspsynth simulate``. ``fidelity``: "fast" (the study's),
+    "fast-wrist" or "full"; ``time_step`` 0 takes the fidelity's step; ``record_interval`` > 0
+    records the states every so many seconds. Returns a :class:`TrialResult`. Releases the
     GIL."""
-    return _simulation(robot, scene).trial(_trajectory(trajectory, robot), **options)
+    return self._trial(trajectory, options)
 
 
+@_with_options("robustness")
+def _simulation_robustness(self: Simulation, trajectory: Trajectory, options: dict) -> dict:
+    """The success rate of ``trials`` perturbed replays of the trajectory (the same replays as
+    ``graspsynth simulate --perturb TRIALS --seed SEED``; the result does not depend on
+    ``threads``). ``physics=False`` keeps the modelled physics (motion noise only);
+    ``noise_scale`` scales the motion noise. Returns a dict: trials, successes, score, ci95
+    (Wilson), failures, and replays, one dict per replay with its outcome and drawn physics.
+    Releases the GIL."""
+    return self._robustness(trajectory, options)
+
+
+Simulation.trial = _simulation_trial
+Simulation.robustness = _simulation_robustness
+
+
+@_with_options("simulate")
+def simulate(trajectory: Union[Trajectory, Grasp, PathLike], *, robot: Optional[Robot] = None,
+             scene: Optional[Scene] = None, options: dict) -> TrialResult:
+    """One grasp-and-lift trial in ODE of a :class:`Trajectory`, a :class:`Grasp` or a
+    trajectory or grasp file: the nominal trial of ``graspsynth simulate`` (see
+    :meth:`Simulation.trial`). Releases the GIL."""
+    return _simulation(robot, scene)._trial(_trajectory(trajectory, robot), options)
+
+
+@_with_options("robustness")
 def robustness(trajectory: Union[Trajectory, Grasp, PathLike], *,
                robot: Optional[Robot] = None, scene: Optional[Scene] = None,
-               **options: Any) -> dict:
-    """Perturbed replays of a trajectory: ``graspsynth simulate --perturb N``. ``options``:
-    trials, seed, threads, physics, noise_scale, fidelity (see :meth:`Simulation.robustness`).
-    Releases the GIL."""
-    return _simulation(robot, scene).robustness(_trajectory(trajectory, robot), **options)
+               options: dict) -> dict:
+    """Perturbed replays of a trajectory: ``graspsynth simulate --perturb N`` (see
+    :meth:`Simulation.robustness`). Releases the GIL."""
+    return _simulation(robot, scene)._robustness(_trajectory(trajectory, robot), options)
 
 
 class Table(list):

@@ -119,7 +119,8 @@ def read_demo_log(path: PathLike) -> DemoLog: ...
 def read_demo_directory(directory: Optional[PathLike] = None) -> tuple[list[DemoLog], list[dict[str, str]]]:
     """-> (logs, rejected [{"file", "reason"}])"""
 def segment(log: DemoLog, scene: Optional[Scene] = None, success_lift: float = 0.05) -> dict[str, Any]: ...
-def analyze_demonstrations(directory: Optional[PathLike] = None, scene: Optional[Scene] = None) -> dict[str, Any]:
+def _analyze_demonstrations(directory: Optional[str], scene: Optional[Scene],
+                            options: dict[str, Any]) -> dict[str, Any]:
     """-> the graspsynth-analysis/1 report: Table I, the wrist line, the radial model"""
 def fit_wrist_line(points: ArrayLike, loss: str = "none", loss_scale: float = 0.01) -> dict[str, Any]: ...
 
@@ -170,11 +171,22 @@ class TrialResult:
 class Simulation:
     """The ODE world; trial() and robustness() release the GIL."""
     def __init__(self, robot: Optional[Robot] = None, scene: Optional[Scene] = None) -> None: ...
-    def trial(self, trajectory: Trajectory, fidelity: str = "fast", time_step: float = 0.0,
-              hold: float = ..., record_interval: float = 0.0) -> TrialResult: ...
-    def robustness(self, trajectory: Trajectory, trials: int = 20, seed: int = 1,
-                   threads: int = 0, physics: bool = True, noise_scale: float = 1.0,
-                   fidelity: str = "fast") -> dict[str, Any]: ...
+    # Added by graspsynth/__init__.py from request_options("simulate") and
+    # request_options("robustness"), which these stubs must match (tests/python/test_package.py
+    # checks it).
+    def trial(self, trajectory: Trajectory, *, fidelity: str = "fast", time_step: float = 0.0,
+              hold: float = 1.0, record_interval: float = 0.0) -> TrialResult: ...
+    def robustness(self, trajectory: Trajectory, *, trials: int = 20, seed: int = 1,
+                   threads: int = 0, noise_scale: float = 1.0, fidelity: str = "fast",
+                   time_step: float = 0.0, hold: float = 1.0, physics: bool = True,
+                   friction_spread: float = 0.25,
+                   stiffness_range: tuple[float, float] = (0.5, 2.0),
+                   damping_range: tuple[float, float] = (0.5, 2.0), mass_spread: float = 0.2,
+                   com_offset: float = 0.01, servo_force_spread: float = 0.2,
+                   fine_step: float = 0.001,
+                   fine_step_probability: float = 0.5) -> dict[str, Any]: ...
+    def _trial(self, trajectory: Trajectory, options: dict[str, Any]) -> TrialResult: ...
+    def _robustness(self, trajectory: Trajectory, options: dict[str, Any]) -> dict[str, Any]: ...
 
 # --- the grasp library and the synthesis ---------------------------------------------------
 

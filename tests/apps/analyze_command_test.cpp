@@ -106,6 +106,26 @@ TEST(AnalyzeCommand, OptionsReachTheAnalysis) {
   EXPECT_NEAR(j["orientations"][0].at("pregrasp").at("d").get<double>(), 0.46, 1e-6);
 }
 
+TEST(AnalyzeCommand, AConfigFileSetsTheOptionsAndTheFlagsOverrideIt) {
+  const testing::TestFolder folder;
+  WriteDemoSet(folder.path(), false);
+  const auto config = folder.path() / "options.json";
+  std::ofstream(config) << R"({"robust_loss": "cauchy", "loss_scale": 0.004, "region": "sphere"})";
+  const auto report = folder.path() / "report.json";
+  auto r = RunGraspsynth("analyze " + folder.path().string() + " --out " + report.string() +
+                         " --config " + config.string() + " --loss-scale 0.003");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const json j = json::parse(ReadFileText(report));
+  EXPECT_EQ(j.at("options").at("region").at("shape"), "sphere");
+  EXPECT_EQ(j.at("options").at("robust_loss"), "cauchy");
+  EXPECT_EQ(j.at("options").at("loss_scale_m"), 0.003);
+  std::ofstream(config) << R"({"loss_scale": 0})";
+  r = RunGraspsynth("analyze " + folder.path().string() + " --out " + report.string() +
+                    " --config " + config.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("field 'loss_scale': must be > 0 (got 0)"));
+}
+
 TEST(AnalyzeCommand, PlotsFigure8WithGnuplot) {
   const testing::TestFolder folder;
   WriteDemoSet(folder.path(), false);

@@ -43,7 +43,7 @@ TEST(DemosCommand, GenerateWritesLogsAndTheirConfig) {
   const fs::path dir = TempDir("generate");
   const fs::path config = SmallConfig(dir);
   const testing::CommandOutput r =
-      RunGraspsynth("demos generate --config " + config.string() + " --out " +
+      RunGraspsynth("demos generate --operator " + config.string() + " --out " +
                     (dir / "out").string() + " --trials-per-orientation 2 --seed 5 --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("wrote 2 logs"));
@@ -62,7 +62,7 @@ TEST(DemosCommand, CalibrateWritesAValidOperator) {
   const fs::path dir = TempDir("calibrate");
   const fs::path config = SmallConfig(dir);
   const testing::CommandOutput r = RunGraspsynth(
-      "demos calibrate --config " + config.string() + " --out " +
+      "demos calibrate --operator " + config.string() + " --out " +
       (dir / "calibrated.json").string() + " --trials-per-orientation 2 --iterations 1 --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const OperatorOptions calibrated = ReadOperatorOptions(dir / "calibrated.json");
@@ -79,17 +79,53 @@ TEST(DemosCommand, AnotherObjectIsNotComparedWithThePaper) {
   options.plans.resize(1);  // 20 deg
   WriteOperatorOptions(options, dir / "small.json");
   const testing::CommandOutput r =
-      RunGraspsynth("demos generate --object saucepan --config " + (dir / "small.json").string() +
+      RunGraspsynth("demos generate --object saucepan --operator " + (dir / "small.json").string() +
                     " --out " + (dir / "out").string() + " --trials-per-orientation 2 --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("wrote 2 logs"));
   EXPECT_THAT(r.out, ::testing::Not(HasSubstr("paper")));
   const testing::CommandOutput c =
-      RunGraspsynth("demos calibrate --object saucepan --config " + (dir / "small.json").string() +
-                    " --out " + (dir / "c.json").string());
+      RunGraspsynth("demos calibrate --object saucepan --operator " +
+                    (dir / "small.json").string() + " --out " + (dir / "c.json").string());
   EXPECT_EQ(c.exit_code, 2);
   EXPECT_THAT(c.err, HasSubstr("'saucepan' is not the paper's pan"));
   EXPECT_FALSE(fs::exists(dir / "c.json"));
+  fs::remove_all(dir);
+}
+
+TEST(DemosCommand, ConfigIsAFileOfOptionsAndAnOperatorFileThereIsRefused) {
+  const fs::path dir = TempDir("options");
+  const fs::path config = SmallConfig(dir);
+  // --config sets the options (seed, trials) over the operator file's; the flags override it.
+  std::ofstream(dir / "options.json") << R"({"seed": 9, "trials_per_orientation": 3})";
+  testing::CommandOutput r =
+      RunGraspsynth("demos generate --operator " + config.string() + " --config " +
+                    (dir / "options.json").string() + " --trials-per-orientation 1 --quiet --out " +
+                    (dir / "out").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const OperatorOptions used = ReadOperatorOptions(dir / "out" / "operator.json");
+  EXPECT_EQ(used.seed, 9u);
+  EXPECT_EQ(used.trials_per_orientation, 1);
+  // the operator file where the options go: refused, saying where it went.
+  r = RunGraspsynth("demos generate --config " + config.string() + " --out " +
+                    (dir / "out2").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("is an operator file (graspsynth-operator/1): the operator file "
+                               "is now --operator FILE"));
+  r = RunGraspsynth("demos calibrate --config " + config.string() + " --out " +
+                    (dir / "c.json").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("--operator FILE"));
+  // a seed out of range, or an option of the other subcommand, named.
+  std::ofstream(dir / "bad.json") << R"({"damping": 0.5})";
+  r = RunGraspsynth("demos generate --config " + (dir / "bad.json").string() + " --out " +
+                    (dir / "out3").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("field 'damping' is not an option of this command"));
+  r = RunGraspsynth("demos calibrate --damping 2 --out " + (dir / "c.json").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("--damping: must be [0.05, 1] (got 2)"));
+  EXPECT_FALSE(fs::exists(dir / "out3"));
   fs::remove_all(dir);
 }
 
@@ -97,7 +133,7 @@ TEST(DemosCommand, BadConfigIsAnErrorNamingTheFile) {
   const fs::path dir = TempDir("bad");
   std::ofstream(dir / "bad.json") << R"({"format": "graspsynth-operator/1"})";
   const testing::CommandOutput r =
-      RunGraspsynth("demos generate --config " + (dir / "bad.json").string() + " --out " +
+      RunGraspsynth("demos generate --operator " + (dir / "bad.json").string() + " --out " +
                     (dir / "out").string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("bad.json"));

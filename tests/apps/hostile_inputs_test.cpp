@@ -98,7 +98,7 @@ TEST_F(HostileInputs, EachKindOfInputFileIsRefusedByNameWithoutReadingOrBlocking
     add("teleoperation calibration", "c.json",
         [&](const std::string& p) { return "teleop --port 0 --exit-after 0.1 --config " + p; });
     add("synthetic operator file", "op.json",
-        [&](const std::string& p) { return "demos generate --out " + out + " --config " + p; });
+        [&](const std::string& p) { return "demos generate --out " + out + " --operator " + p; });
     for (const Case& c : cases) {
       SCOPED_TRACE(c.args);
       const testing::CommandOutput r = Run(c.args);

@@ -3,11 +3,13 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <vector>
 
 #include "tests/utils/run_command.hpp"
+#include "tests/utils/test_folder.hpp"
 
 namespace graspsynth {
 namespace {
@@ -70,6 +72,13 @@ TEST(IkCommand, SolvesWhatFkProduced) {
   for (double v : pose["quaternion"]) target << v << " ";
   const auto r = RunGraspsynth("ik --branch 1,1,-1", target.str() + "0.0\n");
   ASSERT_EQ(r.exit_code, 0) << r.err;
+  // the branch from a file of options (--config) is the same as the flag's.
+  const testing::TestFolder folder;
+  std::ofstream(folder.path() / "ik.json") << R"({"branch": [1, 1, -1]})";
+  const auto config =
+      RunGraspsynth("ik --config " + (folder.path() / "ik.json").string(), target.str() + "0.0\n");
+  ASSERT_EQ(config.exit_code, 0) << config.err;
+  EXPECT_EQ(config.out, r.out);
   const json out = json::parse(r.out);
   ASSERT_EQ(out["solutions"].size(), 1u);
   EXPECT_EQ(out["branches"][0], json({1, 1, -1}));

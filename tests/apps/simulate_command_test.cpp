@@ -251,6 +251,23 @@ TEST_F(SimulateCommand, MeshObjectReplaysAreTheSameOnOneAndTwoThreads) {
   EXPECT_EQ(report["nominal"]["outcome"], "success");
 }
 
+TEST_F(SimulateCommand, AConfigFileSetsTheOptionsAndTheFlagsOverrideIt) {
+  std::ofstream(Path("options.json")) << R"({"perturb": 2, "seed": 5, "physics": false})";
+  const auto r = RunGraspsynth("simulate " + Example() + " --config " + Path("options.json") +
+                               " --perturb 1 --out " + Path("report.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json report = json::parse(ReadFileText(Path("report.json")));
+  EXPECT_EQ(report["robustness"]["trials"], 1);
+  EXPECT_EQ(report["robustness"]["seed"], 5);
+  EXPECT_EQ(report["robustness"]["physics"], "off");
+  std::ofstream(Path("bad.json")) << R"({"perturb": -1})";
+  const auto bad = RunGraspsynth("simulate " + Example() + " --config " + Path("bad.json") +
+                                 " --out " + Path("x.json"));
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_THAT(bad.err, HasSubstr("field 'perturb'"));
+  EXPECT_FALSE(fs::exists(Path("x.json")));
+}
+
 TEST_F(SimulateCommand, HelpNamesEveryOption) {
   const auto r = RunGraspsynth("simulate --help");
   EXPECT_EQ(r.exit_code, 0);

@@ -49,7 +49,7 @@ def main():
         tuned, shipped = json.loads(text), json.load(open(args.config))
         # graspsynth reads it and makes a trial with it.
         demos = os.path.join(work, "demos")
-        gen = subprocess.run([args.graspsynth, "demos", "generate", "--config", first, "--out",
+        gen = subprocess.run([args.graspsynth, "demos", "generate", "--operator", first, "--out",
                               demos, "--trials-per-orientation", "1", "--quiet"],
                              capture_output=True, text=True)
         if gen.returncode != 0:

@@ -89,6 +89,41 @@ def test_a_study_functions_keywords_are_the_options_of_its_request(gs, function,
         getattr(gs, function)(no_such_option=1)
 
 
+@pytest.mark.parametrize("name, functions, methods", [
+    ("simulate", ["simulate"], ["trial"]),
+    ("robustness", ["robustness"], ["robustness"]),
+    ("analyze", ["analyze_demonstrations"], []),
+])
+def test_functions_list_the_options_of_their_request(gs, name, functions, methods):
+    # simulate, robustness, Simulation's methods and analyze_demonstrations take the options
+    # of one C++ description each, as explicit keyword arguments with its defaults; the stubs say the same.
+    described = [(o["name"], o["default"]) for o in gs.request_options(name)]
+    stub = Path(gs._core.__file__).with_name("_core.pyi")
+    callables = [getattr(gs, f) for f in functions]
+    callables += [getattr(gs.Simulation, m) for m in methods]
+    for function in callables:
+        options = [(p.name, p.default) for p in inspect.signature(function).parameters.values()
+                   if p.kind is inspect.Parameter.KEYWORD_ONLY and p.name not in ("robot", "scene")]
+        assert options == described, function.__name__
+    for m in methods:
+        f = stub_method(stub, "Simulation", m)
+        stubbed = [(a.arg, ast.literal_eval(d))
+                   for a, d in zip(f.args.kwonlyargs, f.args.kw_defaults)]
+        assert stubbed == described, m
+
+
+def test_a_simulation_option_out_of_range_names_the_option(gs, repo):
+    example = gs.Trajectory.load(str(repo / "examples" / "grasp_60deg.json"))
+    with pytest.raises(gs.InputError, match="fidelity: 'exact' is not one of"):
+        gs.simulate(example, fidelity="exact")
+    with pytest.raises(gs.InputError, match="trials: must be >= 1"):
+        gs.robustness(example, trials=0)
+    with pytest.raises(gs.InputError, match="threads: must be"):
+        gs.Simulation().robustness(example, threads=-1)
+    with pytest.raises(TypeError, match="nois_scale"):
+        gs.Simulation().robustness(example, nois_scale=1.0)
+
+
 def split_top_level(text):
     parts, depth, start = [], 0, 0
     for i, c in enumerate(text):

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <optional>
 
 #include "tests/utils/eigen_matchers.hpp"
 #include "tests/utils/test_folder.hpp"
@@ -131,6 +132,36 @@ TEST(Option, ShowValueIsWhatTheHelpAndPythonShow) {
   EXPECT_EQ(ShowValue(Named("names").info, Value(std::vector<std::string>{"a", "b"})), "a,b");
   EXPECT_EQ(ShowValue(Named("pair").info, Named("pair").get(defaults)), "1 2");
   EXPECT_EQ(ShowValue(Named("fast").info, Value(true)), "true");
+}
+
+// An optional option: none (std::monostate) is its default and a value like any other; a
+// plain option refuses none.
+TEST(Option, AnOptionalOptionHoldsNoneOrAValueInItsRange) {
+  struct Maybe {
+    std::optional<int> count;
+    std::optional<uint64_t> seed;
+  };
+  const Option<Maybe> count =
+      OptionalFieldOption<Maybe>(WithRange(Info("count", OptionKind::kInt), 1),
+                                 [](Maybe& m) -> std::optional<int>& { return m.count; });
+  const Option<Maybe> seed =
+      OptionalFieldOption<Maybe>(Info("seed", OptionKind::kUnsigned),
+                                 [](Maybe& m) -> std::optional<uint64_t>& { return m.seed; });
+  EXPECT_TRUE(count.info.optional);
+  Maybe m;
+  EXPECT_TRUE(std::holds_alternative<std::monostate>(count.get(m)));
+  EXPECT_EQ(CheckValue(count.info, count.get(m)), "");
+  EXPECT_EQ(ShowValue(count.info, count.get(m)), "");
+  Apply(count, ParseText(count.info, "4", "--count"), "--count", &m);
+  Apply(seed, ParseText(seed.info, "9", "--seed"), "--seed", &m);
+  EXPECT_EQ(m.count, 4);
+  EXPECT_EQ(m.seed, 9u);
+  EXPECT_EQ(ShowValue(count.info, count.get(m)), "4");
+  GS_EXPECT_THROW_WITH(Apply(count, Value(int64_t{0}), "--count", &m), InputError,
+                       "--count: must be >= 1 (got 0)");
+  Apply(count, Value(std::monostate{}), "count", &m);
+  EXPECT_FALSE(m.count.has_value());
+  EXPECT_EQ(CheckValue(Info("plain", OptionKind::kInt), Value(std::monostate{})), "needs a value");
 }
 
 TEST(Option, TheNearestNameOfAMistypedOne) {

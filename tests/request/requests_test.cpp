@@ -13,29 +13,12 @@
 #include "request/run_request.hpp"
 #include "request/select_request.hpp"
 #include "request/synthesize_request.hpp"
+#include "tests/request/request_test_utils.hpp"
 #include "tests/utils/eigen_matchers.hpp"
 #include "tests/utils/test_folder.hpp"
 
 namespace graspsynth::request {
 namespace {
-
-// Every option has a name of its own, a help sentence, and a default that passes its own
-// check (a default the front ends show and could not give back would be a trap).
-template <class R>
-void ExpectWellDescribed(const OptionList<R>& options) {
-  const R defaults{};
-  std::set<std::string> names, flags;
-  for (const Option<R>& o : options) {
-    EXPECT_TRUE(names.insert(o.info.name).second) << o.info.name;
-    EXPECT_TRUE(flags.insert(o.info.Flag(o.get(defaults))).second) << o.info.name;
-    EXPECT_FALSE(o.info.help.empty()) << o.info.name;
-    if (!o.info.required) {
-      EXPECT_EQ(CheckValue(o.info, o.get(defaults)), "") << o.info.name;
-      R copy{};
-      EXPECT_NO_THROW(Apply(o, o.get(defaults), o.info.name, &copy)) << o.info.name;
-    }
-  }
-}
 
 TEST(SynthesizeRequest, EveryOptionIsWellDescribed) { ExpectWellDescribed(SynthesizeOptions()); }
 

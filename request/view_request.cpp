@@ -1,0 +1,62 @@
+#include "request/view_request.hpp"
+
+namespace graspsynth::request {
+namespace {
+
+using R = ViewRequest;
+
+Option<R> Number(const char* name, const char* help, double R::*field) {
+  return FieldOption<R>(MakeInfo(name, OptionKind::kNumber, help),
+                        [field](R& r) -> double& { return r.*field; });
+}
+
+Option<R> Switch(const char* name, const char* help, bool R::*field) {
+  return FieldOption<R>(MakeInfo(name, OptionKind::kBool, help),
+                        [field](R& r) -> bool& { return r.*field; });
+}
+
+OptionList<R> MakeOptions() {
+  OptionList<R> list;
+  OptionInfo at = MakeInfo("at", OptionKind::kNumbers,
+                           "X,Y: the object centre on the table for a --trajectory, world frame, "
+                           "metres (e.g. -0.30,0.90); default: where the file puts it (its "
+                           "\"object_xy\", else the scene's object centre)");
+  at.placeholder = "X,Y";
+  list.push_back(
+      OptionalVectorOption<R, 2>(at, [](R& r) -> std::optional<Eigen::Vector2d>& { return r.at; }));
+  list.push_back(
+      FieldOption<R>(MakeInfo("address", OptionKind::kText,
+                              "IPv4 address to serve on; 0.0.0.0 opens the viewer to the network"),
+                     [](R& r) -> std::string& { return r.address; }));
+  list.push_back(FieldOption<R>(
+      WithRange(MakeInfo("port", OptionKind::kInt, "TCP port; 0 picks a free one (printed)"), 0,
+                65535),
+      [](R& r) -> int& { return r.port; }));
+  list.push_back(FieldOption<R>(
+      MakeInfo("camera", OptionKind::kText,
+               "Start camera: eye EX,EY,EZ and optionally target TX,TY,TZ (metres, world); "
+               "default: a side view of the arm and the table"),
+      [](R& r) -> std::string& { return r.camera; }));
+  list.push_back(Switch("loop", "Replay again and again until stopped", &R::loop));
+  list.push_back(Number("speed", "Replay speed factor (> 0)", &R::speed));
+  list.push_back(Number("rate", "Frames published per second (Hz), in (0, 1000]", &R::rate_hz));
+  list.push_back(Switch("no_wait",
+                        "Start the replay at once instead of when a page first asks for a frame",
+                        &R::no_wait));
+  list.push_back(Number(
+      "hold", "Seconds to keep serving the last frame after the end of the replay", &R::hold_s));
+  list.push_back(Number("exit_after",
+                        "Stop after this many seconds in any case (0: no limit; for scripts and "
+                        "tests)",
+                        &R::exit_after_s));
+  return list;
+}
+
+}  // namespace
+
+const OptionList<ViewRequest>& ViewOptions() {
+  static const OptionList<ViewRequest> options = MakeOptions();
+  return options;
+}
+
+}  // namespace graspsynth::request
