@@ -163,8 +163,9 @@ void ReadValue(ByteReader& r, T& value) {
 
 }  // namespace field_detail
 
-/// The bytes of `value`: its fields in its list's order.
-template <HasFields T>
+/// The bytes of `value`: a struct with a field list (its fields in its list's order) or any
+/// value the file comment names, such as a vector of such structs.
+template <class T>
 std::string EncodeFields(const T& value) {
   ByteWriter w;
   field_detail::WriteValue(w, value);
@@ -173,7 +174,7 @@ std::string EncodeFields(const T& value) {
 
 /// The value EncodeFields wrote. Throws InputError naming `source` (and the byte offset) for
 /// bytes that end too soon, hold a value out of range, or go on after the value.
-template <HasFields T>
+template <class T>
 T DecodeFields(std::string_view bytes, const std::string& source) {
   ByteReader r(bytes, source);
   T value;

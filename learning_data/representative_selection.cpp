@@ -10,9 +10,11 @@
 
 #include "common/byte_codec.hpp"
 #include "common/errors.hpp"
+#include "common/field_codec.hpp"
 #include "common/parallel.hpp"
 #include "common/valid_options.hpp"
 #include "learning_data/demo_replay.hpp"
+#include "learning_data/learning_data_fields.hpp"
 #include "simulation/random.hpp"
 #include "simulation/robustness.hpp"
 
@@ -22,7 +24,7 @@ namespace {
 // The layouts of the selection's job results (JobStage::payload): a nominal replay's success,
 // and an orientation's perturbed scores. Change them with EncodeScores and RunNominal.
 constexpr const char* kNominalLayout = "selection-nominal/1";
-constexpr const char* kScoresLayout = "selection-scores/1";
+constexpr const char* kScoresLayout = "selection-scores/2";
 
 std::string FileName(const std::string& source) {
   return std::filesystem::path(source).filename().string();
@@ -179,38 +181,31 @@ bool DecodeNominal(std::string_view bytes, int i) {
   return success;
 }
 
-// The perturbed replays' part of the scores of an orientation's demonstrations (`order`), as
-// a job's result bytes, and back.
+// The scores of an orientation's demonstrations (`order`) after their perturbed replays, as a
+// job's result bytes: every field of each (learning_data/learning_data_fields.hpp).
 std::string EncodeScores(const std::vector<Scored*>& order) {
-  ByteWriter w;
-  for (const Scored* s : order) {
-    const DemoScore& d = s->candidate.score;
-    w.Int(d.trials);
-    w.Int(d.successes);
-    w.Double(d.score);
-    w.Double(d.ci_low);
-    w.Double(d.ci_high);
-    w.String(d.failures);
-    w.String(d.stopped);
-  }
-  return w.Take();
+  std::vector<DemoScore> scores;
+  for (const Scored* s : order) scores.push_back(s->candidate.score);
+  return EncodeFields(scores);
 }
 
-// Decodes into `scores`, one per demonstration of the orientation, in order.
+// Decodes into `scores`, one per demonstration of the orientation, in order. Throws InputError
+// naming `source` for bytes that hold the scores of other demonstrations.
 void DecodeScores(std::string_view bytes, const std::string& source,
                   const std::vector<DemoScore*>& scores) {
-  ByteReader r(bytes, source);
-  for (DemoScore* score : scores) {
-    DemoScore& d = *score;
-    d.trials = r.Int32();
-    d.successes = r.Int32();
-    d.score = r.Double();
-    d.ci_low = r.Double();
-    d.ci_high = r.Double();
-    d.failures = r.String();
-    d.stopped = r.String();
+  const auto read = DecodeFields<std::vector<DemoScore>>(bytes, source);
+  if (read.size() != scores.size()) {
+    throw InputError(source + ": " + std::to_string(read.size()) +
+                     " scores where the orientation has " + std::to_string(scores.size()) +
+                     " demonstrations");
   }
-  r.Finish();
+  for (size_t k = 0; k < read.size(); ++k) {
+    if (read[k].file != scores[k]->file) {
+      throw InputError(source + ": the scores of '" + read[k].file + "' where '" + scores[k]->file +
+                       "' was expected");
+    }
+    *scores[k] = read[k];
+  }
 }
 
 // Scores demonstration `s` by its perturbed replays. With `rival` (a demonstration of the same
@@ -431,7 +426,10 @@ SelectionResult SelectRepresentatives(const SimulationModel& model,
     DecodeScores(bytes, "selection job " + std::to_string(k), scores);
   };
   perturbed.check = [&](int k, std::string_view bytes) {
-    std::vector<DemoScore> scratch(orientations[static_cast<size_t>(k)].size());
+    std::vector<DemoScore> scratch;
+    for (const Scored* s : orientations[static_cast<size_t>(k)]) {
+      scratch.push_back(s->candidate.score);
+    }
     decode(k, bytes, Pointers(&scratch));
   };
   perturbed.finished = [&](int k, bool here) {

@@ -1,10 +1,11 @@
-// graspsynth._core: the study's and the selection's results as typed classes and its outcomes,
-// methods and statuses as enums, all made from the field lists (common/field_list.hpp,
-// studies/study_fields.hpp) by python/field_class.hpp.
+// graspsynth._core: the study's, the selection's and the simulation's results as typed classes and
+// its outcomes, methods and statuses as enums, all made from the field lists
+// (common/field_list.hpp, studies/study_fields.hpp) by python/field_class.hpp.
 
 #include "learning_data/learning_data_fields.hpp"
 #include "python/bindings.hpp"
 #include "python/field_class.hpp"
+#include "simulation/simulation_fields.hpp"
 #include "studies/study_fields.hpp"
 
 namespace graspsynth::python {
@@ -30,6 +31,21 @@ void BindResults(py::module_& m) {
                                  "One factor of a sensitivity table: its low and high end.");
   BindFieldClass<SensitivityResult>(m, "SensitivityResult",
                                     "What a grasp depends on: one row per physics factor.");
+  BindFieldClass<Interval>(m, "Interval", "A closed interval lo..hi.");
+  BindFieldClass<WorldCounts>(m, "WorldCounts", "The bodies, joints and geoms of a trial's world.");
+  BindFieldClass<StepStatistics>(m, "StepStatistics",
+                                 "A trial's steps and where their wall time went (s).");
+  BindFieldClass<RobustnessTrial>(
+      m, "RobustnessTrial",
+      "One perturbed replay: its index, time scaling and drawn physics, and what happened (m, "
+      "s; final_object_pose 4 x 4, world).")
+      .def_property_readonly("success", &RobustnessTrial::success);
+  BindFieldClass<RobustnessResult>(
+      m, "RobustnessResult",
+      "Perturbed replays of a trajectory: each replay (trials), the successes, the score "
+      "(successes / replays) and its Wilson 95% interval (ci95), and the time they took (s).")
+      .def("failure_summary", &FailureSummary,
+           "the failures' outcomes and counts, e.g. \"dropped 3, not_lifted 1\"");
   BindFieldClass<FallbackReason>(m, "FallbackReason",
                                  "Why a method other than the requested one was used.")
       .def("text", &FallbackReason::Text, "the reason in words, as synthesis.json writes it");

@@ -16,18 +16,17 @@
 #include "kinematics/robot_description.hpp"
 #include "motion/joint_trajectory.hpp"
 #include "python/bindings.hpp"
+#include "python/field_class.hpp"
 #include "python/request_bindings.hpp"
 #include "request/simulate_request.hpp"
 #include "scene/scene_model.hpp"
 #include "simulation/robustness.hpp"
+#include "simulation/simulation_fields.hpp"
 #include "simulation/trial.hpp"
 #include "solver/grasp_file.hpp"
-#include "studies/trial_json.hpp"
 
 namespace graspsynth::python {
 namespace {
-
-using ojson = nlohmann::ordered_json;
 
 // A read-only view of one field of every sample of a vector of records: `field` points into
 // the first record; `shape` and `strides` are the field's own (empty for a scalar).
@@ -88,42 +87,6 @@ std::shared_ptr<JointTrajectory> MakeTrajectory(const DoubleArray& t, const Doub
   const std::shared_ptr<const RobotModel> robot = RobotOrDefault(robot_arg);
   CheckJointLimits(*trajectory, robot->arm, robot->hand, "the trajectory");
   return trajectory;
-}
-
-py::dict TrialDict(const TrialResult& r) {
-  ojson j = {{"success", r.success()},
-             {"outcome", ToString(r.outcome)},
-             {"reason", r.reason},
-             {"lift_m", r.lift},
-             {"max_lift_m", r.max_lift},
-             {"max_penetration_m", r.max_penetration},
-             {"simulated_s", r.simulated_time},
-             {"wall_s", r.wall_time},
-             {"hold", HoldQualityJson<ojson>(r.hold)}};
-  py::dict d = ToPython(j);
-  py::array_t<double> pose = NewArray({4, 4});
-  WriteMatrix(r.final_object_pose, pose.mutable_data());
-  d["final_object_pose"] = pose;
-  return d;
-}
-
-py::dict RobustnessDict(const RobustnessResult& r, const RobustnessOptions& options) {
-  ojson trials = ojson::array();
-  for (const RobustnessTrial& t : r.trials) {
-    trials.push_back({{"index", t.index},
-                      {"time_scale", t.time_scale},
-                      {"success", t.success()},
-                      {"outcome", ToString(t.outcome)},
-                      {"reason", t.reason},
-                      {"lift_m", t.lift},
-                      {"physics", PhysicsDrawJson<ojson>(t.physics, options.trial.step())},
-                      {"hold", HoldQualityJson<ojson>(t.hold)}});
-  }
-  const ojson j = {
-      {"trials", options.trials},       {"successes", r.successes},      {"score", r.score},
-      {"ci95", {r.ci95.lo, r.ci95.hi}}, {"seed", options.seed},          {"threads", r.threads},
-      {"wall_s", r.wall_time},          {"failures", FailureSummary(r)}, {"replays", trials}};
-  return ToPython(j);
 }
 
 // The states a trial recorded, as read-only views into its result.
@@ -229,19 +192,15 @@ and hand are read-only views into the trajectory (no copy).)doc")
 }
 
 void BindTrial(py::module_& m) {
-  py::class_<TrialResult, std::shared_ptr<TrialResult>>(m, "TrialResult", R"doc(
-The outcome of one grasp-and-lift trial in ODE.
-
-report: a dict (success, outcome, reason, lift_m, max_lift_m, max_penetration_m, simulated_s,
-wall_s, hold, final_object_pose). states: when the trial recorded (record_interval > 0), the
-time series as read-only arrays: t (N,), arm (N, 7), hand (N, 16), object_pose (N, 4, 4),
-wrist_pose (N, 4, 4).)doc")
-      .def_property_readonly("success", &TrialResult::success)
-      .def_property_readonly("outcome",
-                             [](const TrialResult& r) { return std::string(ToString(r.outcome)); })
-      .def_readonly("reason", &TrialResult::reason)
-      .def_readonly("lift", &TrialResult::lift, "m")
-      .def_property_readonly("report", &TrialDict)
+  BindFieldClass<TrialResult, std::shared_ptr<TrialResult>>(m, "TrialResult", R"doc(
+The outcome of one grasp-and-lift trial in ODE: a property per field of the C++ TrialResult
+(outcome, reason, lift, max_lift, max_penetration (m), simulated_time, planned_time, wall_time,
+cpu_time (s), final_object_pose (4 x 4, world), hold (HoldQuality), statistics, counts),
+success, to_dict(), and states: when the trial recorded (record_interval > 0), the time series
+as read-only arrays: t (N,), arm (N, 7), hand (N, 16), object_pose (N, 4, 4), wrist_pose (N, 4,
+4).)doc")
+      .def_property_readonly("success", &TrialResult::success,
+                             "the outcome is success: lifted and held, touching only the hand")
       .def_property_readonly("states", &StateArrays);
 
   py::class_<SimulationModel, std::shared_ptr<SimulationModel>>(m, "Simulation", R"doc(
@@ -280,7 +239,7 @@ of mass, servo force, step). Both release the GIL, so Python threads run trials 
               py::gil_scoped_release release;
               r = EvaluateRobustness(model, trajectory, ro);
             }
-            return RobustnessDict(r, ro);
+            return r;
           },
           py::arg("trajectory"), py::arg("options"),
           "Simulation.robustness's work, with its options (request_options(\"robustness\")) as "

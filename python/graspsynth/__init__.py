@@ -46,13 +46,17 @@ from ._core import (
     InputError,
     PhysicsDraw,
     PhysicsFactor,
+    Interval,
     PhysicsVariation,
     Robot,
+    RobustnessResult,
+    RobustnessTrial,
     Scene,
     SensitivityCell,
     SensitivityResult,
     SensitivityRow,
     Simulation,
+    StepStatistics,
     StudyMethodSummary,
     StudyRow,
     SynthesisMethod,
@@ -61,6 +65,7 @@ from ._core import (
     Trajectory,
     TrialOutcome,
     TrialResult,
+    WorldCounts,
     branch_of,
     default_robot,
     default_scene,
@@ -76,6 +81,7 @@ __all__ = [
     "TrialResult", "Simulation", "GraspLibrary", "Synthesizer", "Grasp", "Table", "StudyResult",
     "StudyRow", "StudyMethodSummary", "HoldQuality", "FallbackReason", "PhysicsVariation",
     "PhysicsDraw", "SensitivityCell", "SensitivityRow", "SensitivityResult", "TrialOutcome",
+    "RobustnessResult", "RobustnessTrial", "Interval", "StepStatistics", "WorldCounts",
     "SynthesisMethod", "SynthesisStatus", "FallbackKind", "PhysicsFactor",
     "default_robot", "default_scene", "fk", "ik", "feasible_arm_angles", "arm_angle",
     "branch_of", "read_demo_log", "read_demo_directory", "segment", "analyze_demonstrations",
@@ -265,13 +271,14 @@ def _simulation_trial(self: Simulation, trajectory: Trajectory, options: dict) -
 
 
 @_with_options("robustness")
-def _simulation_robustness(self: Simulation, trajectory: Trajectory, options: dict) -> dict:
+def _simulation_robustness(self: Simulation, trajectory: Trajectory,
+                           options: dict) -> RobustnessResult:
     """The success rate of ``trials`` perturbed replays of the trajectory (the same replays as
     ``graspsynth simulate --perturb TRIALS --seed SEED``; the result does not depend on
     ``threads``). ``physics=False`` keeps the modelled physics (motion noise only);
-    ``noise_scale`` scales the motion noise. Returns a dict: trials, successes, score, ci95
-    (Wilson), failures, and replays, one dict per replay with its outcome and drawn physics.
-    Releases the GIL."""
+    ``noise_scale`` scales the motion noise. Returns a :class:`RobustnessResult`: successes,
+    score, ci95 (Wilson), ``failure_summary()``, and ``trials``, one :class:`RobustnessTrial`
+    per replay with its outcome and drawn physics. Releases the GIL."""
     return self._robustness(trajectory, options)
 
 
@@ -291,9 +298,10 @@ def simulate(trajectory: Union[Trajectory, Grasp, PathLike], *, robot: Optional[
 @_with_options("robustness")
 def robustness(trajectory: Union[Trajectory, Grasp, PathLike], *,
                robot: Optional[Robot] = None, scene: Optional[Scene] = None,
-               options: dict) -> dict:
+               options: dict) -> RobustnessResult:
     """Perturbed replays of a trajectory: ``graspsynth simulate --perturb N`` (see
-    :meth:`Simulation.robustness`). Releases the GIL."""
+    :meth:`Simulation.robustness`). Returns a :class:`RobustnessResult`: each replay
+    (:class:`RobustnessTrial`), the successes, the score and its interval. Releases the GIL."""
     return _simulation(robot, scene)._robustness(_trajectory(trajectory, robot), options)
 
 

@@ -153,20 +153,83 @@ class Trajectory:
     def to_json(self) -> str: ...
     def save(self, path: PathLike) -> None: ...
 
+class Interval:
+    lo: float
+    hi: float
+    def to_dict(self) -> dict[str, Any]:
+        """every field; enums as their labels, nested results as dicts"""
+
+class WorldCounts:
+    bodies: int
+    joints: int
+    geoms: int
+    dynamic_bodies: int
+    def to_dict(self) -> dict[str, Any]:
+        """every field; enums as their labels, nested results as dicts"""
+
+class StepStatistics:
+    dynamic_steps: int
+    kinematic_steps: int
+    collision_s: float
+    solver_s: float
+    control_s: float
+    max_contacts: int
+    def to_dict(self) -> dict[str, Any]:
+        """every field; enums as their labels, nested results as dicts"""
+
 class TrialResult:
+    outcome: TrialOutcome
+    reason: str
+    lift: float
+    max_lift: float
+    max_penetration: float
+    simulated_time: float
+    planned_time: float
+    wall_time: float
+    cpu_time: float
+    final_object_pose: FloatArray
+    hold: HoldQuality
+    statistics: StepStatistics
+    counts: WorldCounts
     @property
     def success(self) -> bool: ...
     @property
-    def outcome(self) -> str: ...
-    @property
-    def reason(self) -> str: ...
-    @property
-    def lift(self) -> float: ...
-    @property
-    def report(self) -> dict[str, Any]: ...
-    @property
     def states(self) -> dict[str, FloatArray]:
         """t (N,), arm (N, 7), hand (N, 16), object_pose and wrist_pose (N, 4, 4); {} unless recorded"""
+    def to_dict(self) -> dict[str, Any]:
+        """every field; enums as their labels, nested results as dicts"""
+
+class RobustnessTrial:
+    index: int
+    time_scale: float
+    physics: PhysicsDraw
+    outcome: TrialOutcome
+    reason: str
+    lift: float
+    final_object_pose: FloatArray
+    hold: HoldQuality
+    simulated_time: float
+    wall_time: float
+    cpu_time: float
+    dynamic_steps: int
+    kinematic_steps: int
+    @property
+    def success(self) -> bool: ...
+    def to_dict(self) -> dict[str, Any]:
+        """every field; enums as their labels, nested results as dicts"""
+
+class RobustnessResult:
+    trials: list[RobustnessTrial]
+    successes: int
+    score: float
+    ci95: Interval
+    threads: int
+    wall_time: float
+    simulated_time: float
+    cpu_time: float
+    def failure_summary(self) -> str: ...
+    def to_dict(self) -> dict[str, Any]:
+        """every field; enums as their labels, nested results as dicts"""
 
 class Simulation:
     """The ODE world; trial() and robustness() release the GIL."""
@@ -184,9 +247,9 @@ class Simulation:
                    damping_range: tuple[float, float] = (0.5, 2.0), mass_spread: float = 0.2,
                    com_offset: float = 0.01, servo_force_spread: float = 0.2,
                    fine_step: float = 0.001,
-                   fine_step_probability: float = 0.5) -> dict[str, Any]: ...
+                   fine_step_probability: float = 0.5) -> RobustnessResult: ...
     def _trial(self, trajectory: Trajectory, options: dict[str, Any]) -> TrialResult: ...
-    def _robustness(self, trajectory: Trajectory, options: dict[str, Any]) -> dict[str, Any]: ...
+    def _robustness(self, trajectory: Trajectory, options: dict[str, Any]) -> RobustnessResult: ...
 
 # --- the grasp library and the synthesis ---------------------------------------------------
 

@@ -128,10 +128,17 @@ def test_a_trial_gives_the_command_lines_outcome(gs, cli, cli_grasp, tmp_path):
     cli("simulate", cli_grasp, "--out", out, expect=None)
     expected = load_json(out)["nominal"]
     trial = gs.simulate(str(cli_grasp))
-    assert trial.outcome == expected["outcome"]
+    assert trial.outcome.label == expected["outcome"]
+    assert isinstance(trial.outcome, gs.TrialOutcome)
     assert trial.success == expected["success"]
     assert trial.reason == expected["reason"]
-    assert trial.report["lift_m"] == pytest.approx(expected["lift_m"], abs=1e-8)
+    assert trial.lift == pytest.approx(expected["lift_m"], abs=1e-8)
+    assert trial.max_penetration == pytest.approx(expected["max_penetration_m"], abs=1e-8)
+    assert trial.hold.contacts == expected["hold"]["contacts"]
+    assert trial.final_object_pose.shape == (4, 4)
+    assert trial.statistics.dynamic_steps > 0 and trial.counts.bodies > 0
+    assert trial.to_dict()["outcome"] == expected["outcome"]
+    assert repr(trial).startswith(f"TrialResult(outcome=TrialOutcome.{trial.outcome.name}")
     assert trial.states == {}  # nothing recorded unless asked
 
 
@@ -150,7 +157,7 @@ def test_a_grasp_at_a_moved_placement_equals_the_command_lines(gs, cli, repo, tm
     out = tmp_path / "sim.json"
     cli("simulate", path, "--out", out, expect=None)
     trial = gs.simulate(grasp)
-    assert trial.outcome == load_json(out)["nominal"]["outcome"]
+    assert trial.outcome.label == load_json(out)["nominal"]["outcome"]
     with pytest.raises(gs.InputError, match="not on the table"):
         gs.synthesize(str(library), THETA, at=(3.0, 0.9))
     with pytest.raises(gs.InputError, match="at: needs X,Y"):
@@ -172,7 +179,7 @@ def test_a_recorded_trial_gives_its_time_series(gs, grasp):
     assert states["arm"].shape == (n, 7) and states["hand"].shape == (n, 16)
     assert states["object_pose"].shape == (n, 4, 4)
     np.testing.assert_array_equal(states["object_pose"][:, 3], np.tile([0, 0, 0, 1.0], (n, 1)))
-    np.testing.assert_allclose(states["object_pose"][-1], trial.report["final_object_pose"],
+    np.testing.assert_allclose(states["object_pose"][-1], trial.final_object_pose,
                                atol=0.02)
     rest_z = states["object_pose"][0, 2, 3]
     assert states["object_pose"][-1, 2, 3] - rest_z == pytest.approx(trial.lift, abs=1e-6)
@@ -183,9 +190,14 @@ def test_robustness_equals_the_command_lines_replays(gs, cli, cli_grasp, tmp_pat
     cli("simulate", cli_grasp, "--perturb", "4", "--seed", "3", "--out", out, expect=None)
     expected = load_json(out)["robustness"]
     result = gs.robustness(cli_grasp, trials=4, seed=3, threads=2)
-    assert result["successes"] == expected["successes"]
-    assert [r["outcome"] for r in result["replays"]] == [
+    assert isinstance(result, gs.RobustnessResult)
+    assert result.successes == expected["successes"]
+    assert result.score == pytest.approx(expected["score"], abs=1e-6)
+    assert [result.ci95.lo, result.ci95.hi] == pytest.approx(expected["ci95"], abs=1e-6)
+    assert [r.outcome.label for r in result.trials] == [
         t["outcome"] for t in load_json(out)["trials"]]
+    assert [r.index for r in result.trials] == [0, 1, 2, 3]
+    assert (result.failure_summary() == "") == (result.successes == len(result.trials))
 
 
 def test_selection_equals_the_command_lines_library(gs, cli, repo, tmp_path):
