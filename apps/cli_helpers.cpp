@@ -48,34 +48,6 @@ void AddObjectFlag(CLI::App* app, std::string* object) {
                   "(graspsynth-object/1); default: the object the scene names");
 }
 
-void AddAtFlag(CLI::App* app, std::string* at) {
-  app->add_option("--at", *at,
-                  "X,Y: the object centre on the table, world frame, metres (e.g. -0.30,0.90); "
-                  "default: the scene's object centre (the paper's fixed position)");
-}
-
-std::optional<Eigen::Vector2d> ParseAt(const std::string& text) {
-  if (text.empty()) return std::nullopt;
-  Eigen::Vector2d xy;
-  std::stringstream ss(text);
-  std::string item;
-  int i = 0;
-  while (std::getline(ss, item, ',')) {
-    char* end = nullptr;
-    const double v = std::strtod(item.c_str(), &end);
-    if (i >= 2 || item.empty() || end == item.c_str() || *end != '\0' || !std::isfinite(v)) {
-      i = -1;
-      break;
-    }
-    xy[i++] = v;
-  }
-  if (i != 2 || (!text.empty() && text.back() == ',')) {
-    throw InputError("--at needs X,Y: two finite numbers of metres separated by a comma, got '" +
-                     text + "'");
-  }
-  return xy;
-}
-
 void PlaceTrajectoryObject(const SceneModel& scene, const std::optional<Eigen::Vector2d>& at,
                            const std::string& file, JointTrajectory* trajectory) {
   if (at) trajectory->object_xy = at;

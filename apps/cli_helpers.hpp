@@ -40,14 +40,6 @@ std::shared_ptr<const RequestFlags<PhysicsPerturbationOptions>> AddPhysicsPertur
 /// scene's (a shipped object's name, models/objects/NAME.json, or an object file).
 void AddObjectFlag(CLI::App* app, std::string* object);
 
-/// Adds --at X,Y to a command that takes --theta: where the object stands on the table (its
-/// centre, world, m); without it, at the scene's object centre. Read it with ParseAt.
-void AddAtFlag(CLI::App* app, std::string* at);
-
-/// The position of --at ("X,Y", two finite numbers of metres), or none for an empty text.
-/// Throws InputError naming the flag and the text otherwise.
-std::optional<Eigen::Vector2d> ParseAt(const std::string& text);
-
 /// Puts `trajectory`'s object at `at` (--at) when given, and checks that the object then
 /// stands on the scene's table (SceneModel::CheckOnTable); throws InputError naming --at or
 /// `file` (where the trajectory's "object_xy" came from) otherwise.

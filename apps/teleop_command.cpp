@@ -20,14 +20,16 @@
 #include <string>
 #include <thread>
 
-#include "apps/cli_helpers.hpp"
+#include "apps/request_flags.hpp"
 #include "apps/stop_signals.hpp"
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
+#include "common/json_reader.hpp"
 #include "common/orientation_list.hpp"
 #include "common/stopwatch.hpp"
 #include "kinematics/pose_math.hpp"
 #include "learning_data/demo_log.hpp"
+#include "request/teleop_request.hpp"
 #include "simulation/simulation_model.hpp"
 #include "teleop/calibration.hpp"
 #include "teleop/packet_key.hpp"
@@ -42,25 +44,34 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-struct ServerOptions {
-  int port = 9870;
-  std::string bind = "127.0.0.1";
-  std::string orientations = "20,30,40,50,60,70,80,90,100";
-  std::string at;
+// The server's files beside the request's options (request/teleop_request.hpp).
+struct ServerOptions : request::TeleopRequest {
   std::string record_dir;
-  double rate_hz = 60.0;
-  std::string config;
-  double timeout_ms = 200.0;
-  int viewer_port = -1;
-  std::string camera;
+  std::string calibration;  // --calibration: graspsynth-teleop-config/1; empty: the shipped one
   std::string summary;
   std::string port_file;
-  double end_hold_s = 1.0;
-  std::string operator_name;
-  double exit_after_s = 0.0;
   std::string key_file;
-  bool insecure = false;
 };
+
+// The calibration of --calibration, or the shipped one.
+teleop::TeleopCalibration LoadCalibration(const std::string& calibration) {
+  return teleop::LoadTeleopCalibration(calibration.empty() ? teleop::DefaultTeleopCalibrationPath()
+                                                           : std::filesystem::path(calibration));
+}
+
+// --config is a file of options; the calibration file it was before is refused, saying where it
+// went.
+void RefuseCalibrationConfig(const std::string& config) {
+  if (config.empty()) return;
+  const JsonReader root = JsonReader::Load(config);
+  if (root.IsObject() && root.Field("format").IsString() &&
+      root.Field("format").AsString() == teleop::kTeleopConfigFormat) {
+    throw InputError("--config '" + config + "' is a teleoperation calibration file (" +
+                     std::string(teleop::kTeleopConfigFormat) +
+                     "): the calibration file is now --calibration FILE; --config FILE takes a "
+                     "file of this command's options (graspsynth-options/1)");
+  }
+}
 
 // The link's key of --key-file; none without.
 std::optional<teleop::PacketKey> LoadLinkKey(const std::string& key_file) {
@@ -74,22 +85,17 @@ bool IsLoopback(const std::string& address) {
   return inet_pton(AF_INET, address.c_str(), &a) == 1 && (ntohl(a.s_addr) >> 24) == 127;
 }
 
+// The session's options of the request (its ranges checked when it was built) and the files.
 teleop::TeleopOptions SessionOptions(const ServerOptions& opts) {
-  if (!(opts.timeout_ms > 0.0) || !std::isfinite(opts.timeout_ms)) {
-    throw InputError("--timeout-ms " + std::to_string(opts.timeout_ms) + " is not positive");
-  }
-  if (!(opts.exit_after_s >= 0.0)) throw InputError("--exit-after takes seconds >= 0");
   teleop::TeleopOptions options;
   options.rate_hz = opts.rate_hz;
   options.timeout_s = opts.timeout_ms * 1e-3;
   options.end_hold_s = opts.end_hold_s;
   options.orientations_deg = ParseOrientationList(opts.orientations, "--orientations");
-  options.object_xy = ParseAt(opts.at);
+  options.object_xy = opts.at;
   options.record_dir = opts.record_dir;
   options.operator_name = opts.operator_name;
-  options.calibration =
-      teleop::LoadTeleopCalibration(opts.config.empty() ? teleop::DefaultTeleopCalibrationPath()
-                                                        : std::filesystem::path(opts.config));
+  options.calibration = LoadCalibration(opts.calibration);
   options.key = LoadLinkKey(opts.key_file);
   if (!options.key && !opts.insecure && !IsLoopback(opts.bind)) {
     throw InputError("--bind " + opts.bind +
@@ -215,13 +221,10 @@ int RunServer(const ServerOptions& opts) {
   return 0;
 }
 
-struct ClientOptions {
+// The client's files beside the request's options (request/teleop_request.hpp).
+struct ClientOptions : request::TeleopClientRequest {
   std::string replay;
-  std::string host = "127.0.0.1";
-  int port = 9870;
-  double speed = 1.0;
-  std::string config;
-  double linger_s = 2.0;
+  std::string calibration;  // --calibration: the server's; empty: the shipped one
   std::string key_file;
 };
 
@@ -264,14 +267,8 @@ nlohmann::json ClientReport(uint64_t commands, uint64_t states, uint64_t invalid
 }
 
 int RunClient(const ClientOptions& opts) {
-  if (!(opts.speed > 0.0) || !std::isfinite(opts.speed)) {
-    throw InputError("--speed " + std::to_string(opts.speed) + " is not a positive number");
-  }
-  if (!(opts.linger_s >= 0.0)) throw InputError("--linger takes seconds >= 0");
   const DemoLog log = ReadDemoLog(opts.replay);
-  const teleop::TeleopCalibration calibration =
-      teleop::LoadTeleopCalibration(opts.config.empty() ? teleop::DefaultTeleopCalibrationPath()
-                                                        : std::filesystem::path(opts.config));
+  const teleop::TeleopCalibration calibration = LoadCalibration(opts.calibration);
   const std::optional<teleop::PacketKey> key = LoadLinkKey(opts.key_file);
   const teleop::PacketKey* key_ptr = key ? &*key : nullptr;
   const uint64_t server = teleop::ParsePeer(opts.host, opts.port);
@@ -331,14 +328,23 @@ int RunClient(const ClientOptions& opts) {
   return states > 0 ? 0 : 1;
 }
 
+// --calibration FILE, of the server and of the client.
+void AddCalibrationFlag(CLI::App* command, std::string* calibration) {
+  command
+      ->add_option("--calibration", *calibration,
+                   "Calibration file (graspsynth-teleop-config/1); default: "
+                   "examples/teleop_calibration.json")
+      ->check(CLI::ExistingFile);
+}
+
 void AddServerCommand(CLI::App& app, int* exit_code) {
   auto opts = std::make_shared<ServerOptions>();
   CLI::App* teleop = app.add_subcommand(
       "teleop",
       "Live teleoperation: runs the ODE scene in real time at --rate and takes operator\n"
       "commands over UDP (wire format GSTP, README 'Teleoperation'): a wrist pose in the\n"
-      "tracker's frame, mapped to the robot by the calibration file (--config), and 14 glove\n"
-      "values or 16 finger joints; buttons grasp, end of trial, next orientation. The arm\n"
+      "tracker's frame, mapped to the robot by the calibration file (--calibration), and 14\n"
+      "glove values or 16 finger joints; buttons grasp, end of trial, next orientation. The arm\n"
       "follows through the analytic IK with a continuous arm angle (an unreachable target\n"
       "holds it), the hand through the glove map; every joint moves at most at its velocity\n"
       "cap. The robot and object state goes back to the sender every tick. Bad packets are\n"
@@ -348,62 +354,27 @@ void AddServerCommand(CLI::App& app, int* exit_code) {
       "packet, Ctrl-C or SIGTERM end the session; --summary then gets a\n"
       "graspsynth-teleop-session/1 report (packet counters by reason, trials and outcomes).\n"
       "With --key-file every packet is authenticated (HMAC-SHA256, GSTP v2) and replays are\n"
-      "refused by their sequence numbers; binding beyond 127.0.0.1 needs a key or --insecure.");
-  teleop->add_option("--port", opts->port, "UDP port to listen on; 0 picks a free one")
-      ->check(CLI::Range(0, 65535))
-      ->capture_default_str();
-  teleop
-      ->add_option("--bind", opts->bind,
-                   "IPv4 address to listen on; 0.0.0.0 accepts operators from the network "
-                   "(then with --key-file, or --insecure)")
-      ->capture_default_str();
+      "refused by their sequence numbers; binding beyond 127.0.0.1 needs a key or --insecure.\n"
+      "--config FILE is a file of the options below (graspsynth-options/1), not the\n"
+      "calibration.");
+  auto flags = std::make_shared<RequestFlags<request::TeleopRequest>>(
+      teleop, request::TeleopServerOptions());
   teleop->add_option("--key-file", opts->key_file,
                      "Shared key (graspsynth teleop-keygen): take only packets authenticated "
                      "with it, and authenticate the states sent back");
-  teleop->add_flag("--insecure", opts->insecure,
-                   "Allow --bind beyond this machine without a key (anyone who reaches the port "
-                   "can then drive the robot)");
-  teleop
-      ->add_option("--orientations", opts->orientations,
-                   "Object orientations theta (deg), in the order the session walks through "
-                   "them (the next-orientation button): numbers and ranges FROM:TO:STEP, "
-                   "e.g. 20,30 or 20:100:10")
-      ->capture_default_str();
-  AddAtFlag(teleop, &opts->at);
   teleop->add_option("--record", opts->record_dir,
                      "Folder to write every trial to, as trial_NNN_thetaT.csv (v1 logs)");
-  teleop->add_option("--rate", opts->rate_hz, "Control rate, Hz (1..1000)")->capture_default_str();
-  teleop
-      ->add_option("--config", opts->config,
-                   "Calibration file (graspsynth-teleop-config/1); default: "
-                   "examples/teleop_calibration.json")
-      ->check(CLI::ExistingFile);
-  teleop
-      ->add_option("--timeout-ms", opts->timeout_ms,
-                   "A silence longer than this (ms) holds the robot still")
-      ->capture_default_str();
-  teleop
-      ->add_option("--end-hold", opts->end_hold_s,
-                   "Seconds the robot holds after the end-of-trial button before the judgement")
-      ->capture_default_str();
-  teleop
-      ->add_option("--viewer-port", opts->viewer_port,
-                   "Serve the browser viewer on this TCP port (0: a free one; default: no "
-                   "viewer); the URL is printed")
-      ->check(CLI::Range(-1, 65535));
-  teleop->add_option("--camera", opts->camera,
-                     "Viewer start camera: eye EX,EY,EZ and optionally target TX,TY,TZ (m)");
+  AddCalibrationFlag(teleop, &opts->calibration);
   teleop->add_option(
       "--summary", opts->summary,
       "Write the session summary (graspsynth-teleop-session/1 JSON) here at the end");
-  teleop->add_option("--operator", opts->operator_name, "Operator name written into the logs");
   teleop->add_option("--port-file", opts->port_file,
                      "Write the UDP port listened on into this file once bound (for scripts)");
-  teleop
-      ->add_option("--exit-after", opts->exit_after_s,
-                   "End the session after this many seconds in any case (0: never; scripts)")
-      ->capture_default_str();
-  teleop->callback([opts, exit_code] { *exit_code = RunServer(*opts); });
+  teleop->callback([opts, flags, exit_code] {
+    RefuseCalibrationConfig(flags->config());
+    static_cast<request::TeleopRequest&>(*opts) = flags->Build();
+    *exit_code = RunServer(*opts);
+  });
 }
 
 void AddClientCommand(CLI::App& app, int* exit_code) {
@@ -412,30 +383,24 @@ void AddClientCommand(CLI::App& app, int* exit_code) {
       "teleop-client",
       "Replays a demonstration log (v1) to a 'graspsynth teleop' server over UDP at the log's\n"
       "rate (times --speed), as a tracker and a glove would: each wrist pose is mapped into\n"
-      "the tracker's frame with the inverse of the calibration (--config, the server's), the\n"
-      "fingers are sent as 16 joint values, the grasp and end events as button presses; then\n"
-      "end of session. Prints the count of state packets received (JSON on stdout); exit\n"
-      "status 1 when none came back.");
+      "the tracker's frame with the inverse of the calibration (--calibration, the server's),\n"
+      "the fingers are sent as 16 joint values, the grasp and end events as button presses;\n"
+      "then end of session. Prints the count of state packets received (JSON on stdout); exit\n"
+      "status 1 when none came back. --config FILE is a file of the options below\n"
+      "(graspsynth-options/1), not the calibration.");
+  auto flags = std::make_shared<RequestFlags<request::TeleopClientRequest>>(
+      client, request::TeleopClientOptions());
   client->add_option("--replay", copts->replay, "Demonstration log (graspsynth-demo/1 CSV)")
       ->required()
       ->check(CLI::ExistingFile);
-  client->add_option("--host", copts->host, "Server's IPv4 address")->capture_default_str();
-  client->add_option("--port", copts->port, "Server's UDP port")
-      ->check(CLI::Range(1, 65535))
-      ->capture_default_str();
-  client->add_option("--speed", copts->speed, "Replay speed factor (> 0)")->capture_default_str();
-  client
-      ->add_option("--config", copts->config,
-                   "Calibration file (graspsynth-teleop-config/1); default: "
-                   "examples/teleop_calibration.json")
-      ->check(CLI::ExistingFile);
+  AddCalibrationFlag(client, &copts->calibration);
   client->add_option("--key-file", copts->key_file,
                      "The server's shared key: authenticate every packet with it (GSTP v2)");
-  client
-      ->add_option("--linger", copts->linger_s,
-                   "After the end of session, listen for states until none came for this long (s)")
-      ->capture_default_str();
-  client->callback([copts, exit_code] { *exit_code = RunClient(*copts); });
+  client->callback([copts, flags, exit_code] {
+    RefuseCalibrationConfig(flags->config());
+    static_cast<request::TeleopClientRequest&>(*copts) = flags->Build();
+    *exit_code = RunClient(*copts);
+  });
 }
 
 void AddKeygenCommand(CLI::App& app, int* exit_code) {

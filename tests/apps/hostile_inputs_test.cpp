@@ -95,8 +95,9 @@ TEST_F(HostileInputs, EachKindOfInputFileIsRefusedByNameWithoutReadingOrBlocking
     add("input file", "q.txt", [&](const std::string& p) { return "fk " + p; });
     add("key file", "k.key",
         [&](const std::string& p) { return "teleop --port 0 --exit-after 0.1 --key-file " + p; });
-    add("teleoperation calibration", "c.json",
-        [&](const std::string& p) { return "teleop --port 0 --exit-after 0.1 --config " + p; });
+    add("teleoperation calibration", "c.json", [&](const std::string& p) {
+      return "teleop --port 0 --exit-after 0.1 --calibration " + p;
+    });
     add("synthetic operator file", "op.json",
         [&](const std::string& p) { return "demos generate --out " + out + " --operator " + p; });
     for (const Case& c : cases) {

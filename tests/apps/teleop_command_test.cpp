@@ -69,13 +69,13 @@ TEST(TeleopCommand, HelpExplainsTheLoopAndTheClient) {
   const testing::CommandOutput server = RunGraspsynth("teleop --help");
   EXPECT_EQ(server.exit_code, 0);
   for (const char* word :
-       {"--port", "--bind", "--orientations", "--record", "--rate", "--config", "--timeout-ms",
-        "--viewer-port", "--summary", "graspsynth-teleop-session/1"}) {
+       {"--port", "--bind", "--orientations", "--record", "--rate", "--calibration", "--config",
+        "--timeout-ms", "--viewer-port", "--summary", "graspsynth-teleop-session/1"}) {
     EXPECT_NE(server.out.find(word), std::string::npos) << word;
   }
   const testing::CommandOutput client = RunGraspsynth("teleop-client --help");
   EXPECT_EQ(client.exit_code, 0);
-  for (const char* word : {"--replay", "--port", "--host", "--speed"}) {
+  for (const char* word : {"--replay", "--port", "--host", "--speed", "--calibration"}) {
     EXPECT_NE(client.out.find(word), std::string::npos) << word;
   }
 }
@@ -122,6 +122,53 @@ TEST(TeleopCommand, BindingBeyondLoopbackNeedsAKeyOrInsecure) {
               std::string::npos)
         << r.err;
   }
+  fs::remove_all(dir);
+}
+
+// --config is a file of options (graspsynth-options/1) as for every command; the calibration
+// file it was before is refused with a message that says where it went, and --calibration takes
+// it.
+TEST(TeleopCommand, ConfigIsAFileOfOptionsAndACalibrationThereIsRefused) {
+  const fs::path dir = TempDir("config");
+  const std::string calibration = (dir / "calibration.json").string();
+  fs::copy_file(fs::path(::testing::SourceDir()) / "examples" / "teleop_calibration.json",
+                calibration);
+  const std::string refused =
+      "is a teleoperation calibration file (graspsynth-teleop-config/1): the calibration file is "
+      "now --calibration FILE";
+  const testing::CommandOutput server =
+      RunGraspsynth("teleop --port 0 --exit-after 0.1 --config " + calibration);
+  EXPECT_EQ(server.exit_code, 2);
+  EXPECT_NE(server.err.find("--config '" + calibration + "' " + refused), std::string::npos)
+      << server.err;
+  const testing::CommandOutput client =
+      RunGraspsynth("teleop-client --replay " + calibration + " --config " + calibration);
+  EXPECT_EQ(client.exit_code, 2);
+  EXPECT_NE(client.err.find(refused), std::string::npos) << client.err;
+  // --calibration reads it (a broken one is refused by its name).
+  const testing::CommandOutput ok = RunGraspsynth(
+      "teleop --port 0 --orientations 60 --exit-after 0.2 --calibration " + calibration);
+  EXPECT_EQ(ok.exit_code, 0) << ok.err;
+  std::ofstream(dir / "broken.json") << R"({"format": "graspsynth-teleop-config/1"})";
+  const testing::CommandOutput broken = RunGraspsynth(
+      "teleop --port 0 --exit-after 0.1 --calibration " + (dir / "broken.json").string());
+  EXPECT_EQ(broken.exit_code, 2);
+  EXPECT_NE(broken.err.find((dir / "broken.json").string()), std::string::npos) << broken.err;
+  // the options from --config, a flag over the file's rate.
+  std::ofstream(dir / "options.json")
+      << R"({"format": "graspsynth-options/1", "orientations": [70], "rate": 30, "port": 0,
+             "exit_after": 0.2})";
+  const testing::CommandOutput options =
+      RunGraspsynth("teleop --config " + (dir / "options.json").string() + " --rate 50");
+  EXPECT_EQ(options.exit_code, 0) << options.err;
+  EXPECT_NE(options.err.find(" at 50 Hz ("), std::string::npos) << options.err;
+  EXPECT_NE(options.err.find("theta 70 deg"), std::string::npos) << options.err;
+  std::ofstream(dir / "bad.json") << R"({"rate": 5000})";
+  const testing::CommandOutput bad =
+      RunGraspsynth("teleop --port 0 --config " + (dir / "bad.json").string());
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("field 'rate': must be [1, 1000] (got 5000)"), std::string::npos)
+      << bad.err;
   fs::remove_all(dir);
 }
 
