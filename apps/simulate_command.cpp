@@ -16,11 +16,13 @@
 #include "apps/request_flags.hpp"
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
+#include "common/field_text.hpp"
 #include "kinematics/pose_math.hpp"
 #include "motion/joint_trajectory.hpp"
 #include "motion/scripted_grasp.hpp"
 #include "request/simulate_request.hpp"
 #include "simulation/robustness.hpp"
+#include "simulation/simulation_fields.hpp"
 #include "simulation/trial.hpp"
 #include "solver/grasp_file.hpp"
 #include "studies/trial_json.hpp"
@@ -180,15 +182,15 @@ int RunSimulate(const SimulateOptions& o, const request::SimulateRequest& r) {
                         {"time_step_s", trial.step()},
                         {"hold_s", trial.hold},
                         {"lift_threshold_m", trial.lift_threshold}};
-  report["nominal"] = {{"success", nominal.success()},
-                       {"outcome", ToString(nominal.outcome)},
-                       {"reason", nominal.reason},
-                       {"lift_m", Round(nominal.lift)},
-                       {"max_lift_m", Round(nominal.max_lift)},
-                       {"max_penetration_m", Round(nominal.max_penetration)},
-                       {"simulated_s", Round(nominal.simulated_time)},
-                       {"final_object_pose", PoseJson(nominal.final_object_pose)},
-                       {"hold", HoldQualityJson<json>(nominal.hold)}};
+  // the trial's figures (its field list's, rounded), then this report's own.
+  json& n = report["nominal"] = {{"success", nominal.success()}};
+  struct Rounded {
+    json operator()(double x) const { return Round(x); }
+  };
+  n.update(FieldsJson<json>(nominal, Rounded{}));
+  n["simulated_s"] = Round(nominal.simulated_time);
+  n["final_object_pose"] = PoseJson(nominal.final_object_pose);
+  n["hold"] = HoldQualityJson<json>(nominal.hold);
   AddPerturbedTrials(model, trajectory, ro, r, &report);
   AddSensitivity(model, trajectory, ro, r, &report);
   WriteFileAtomically(o.out, report.dump(2) + "\n");

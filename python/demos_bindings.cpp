@@ -43,15 +43,6 @@ void WriteQuaternion(const Eigen::Quaterniond& q, double* out) {
   out[3] = q.z();
 }
 
-SegmentationOptions SegmentationOf(const std::shared_ptr<SceneModel>& scene, double success_lift) {
-  SegmentationOptions options;
-  options.region = SceneOrDefault(scene)->grasp_region;
-  options.success_lift = success_lift;
-  std::string why;
-  if (!options.IsValid(&why)) throw InputError("segmentation: " + why);
-  return options;
-}
-
 py::dict SegmentDict(const DemoLog& log, const SegmentationOptions& options) {
   const SegmentedTrial s = Segment(log, options);
   py::dict d;
@@ -86,7 +77,9 @@ py::dict LineDict(const Line2d& line, const FitResiduals& residuals) {
   return d;
 }
 
-py::dict FitLine(const DoubleArray& points, const std::string& loss, double loss_scale) {
+py::dict FitLine(const DoubleArray& points, const py::dict& given) {
+  const WristLineOptions options =
+      request::ToWristLineOptions(RequestFromPython(request::WristLineRequestOptions(), given));
   const Batch batch = ReadBatch(points, {2}, "points");
   std::vector<Eigen::Vector2d> p;
   for (py::ssize_t i = 0; i < batch.count; ++i) {
@@ -95,19 +88,6 @@ py::dict FitLine(const DoubleArray& points, const std::string& loss, double loss
       throw InputError("points[" + std::to_string(i) + "] is not finite");
     }
   }
-  WristLineOptions options;
-  if (loss == "none") {
-    options.loss = LineLoss::kNone;
-  } else if (loss == "huber") {
-    options.loss = LineLoss::kHuber;
-  } else if (loss == "cauchy") {
-    options.loss = LineLoss::kCauchy;
-  } else {
-    throw InputError("loss must be 'none', 'huber' or 'cauchy', not '" + loss + "'");
-  }
-  options.loss_scale = loss_scale;
-  std::string why;
-  if (!options.IsValid(&why)) throw InputError("wrist-line fit: " + why);
   WristLineResult r;
   {
     py::gil_scoped_release release;
@@ -259,11 +239,13 @@ Returns (logs, rejected): the good logs sorted by file name, and a list of
 InputError when the folder cannot be read.)doc");
 
   m.def(
-      "segment",
-      [](const DemoLog& log, const std::shared_ptr<SceneModel>& scene, double success_lift) {
-        return SegmentDict(log, SegmentationOf(scene, success_lift));
+      "_segment",
+      [](const DemoLog& log, const std::shared_ptr<SceneModel>& scene, const py::dict& given) {
+        return SegmentDict(
+            log, request::ToSegmentationOptions(RequestFromPython(request::SegmentOptions(), given),
+                                                SceneOrDefault(scene)->grasp_region));
       },
-      py::arg("log"), py::arg("scene") = py::none(), py::arg("success_lift") = 0.05, R"doc(
+      py::arg("log"), py::arg("scene"), py::arg("options"), R"doc(
 Segments a log into reach, grasping motion (pre-grasp to grasp) and lift.
 
 The pre-grasp pose is the first sample with the wrist inside the scene's grasp region around
@@ -277,10 +259,10 @@ when the log could not be segmented.)doc");
         "analyze_demonstrations's work, with its options (request_options(\"analyze\")) as a "
         "dict");
 
-  m.def("fit_wrist_line", &FitLine, py::arg("points"), py::arg("loss") = "none",
-        py::arg("loss_scale") = 0.01, R"doc(
+  m.def("_fit_wrist_line", &FitLine, py::arg("points"), py::arg("options"), R"doc(
 Fits a line to 2-D points (shape (N, 2), m) by total least squares (Ceres), with an optional
-robust loss ("none", "huber", "cauchy"; loss_scale in m), cross-checked with CGAL's fit.
+robust loss (robust_loss "none", "huber", "cauchy"; loss_scale in m), cross-checked with CGAL's
+fit.
 Returns a dict with the termination, the line (point, direction, angle_deg, residuals, rms,
 max), the plain and CGAL lines and whether they agree.)doc");
 }

@@ -57,7 +57,7 @@ int64_t IntegerOf(py::handle value, const std::string& where) {
 
 // The requests request_options knows, for its message.
 constexpr const char* kRequestNames =
-    "synthesize, generalize, run, select, simulate, robustness, analyze";
+    "synthesize, generalize, run, select, simulate, robustness, analyze, segment, fit_wrist_line";
 
 }  // namespace
 
@@ -154,11 +154,15 @@ void BindRequests(py::module_& m) {
         if (name == "simulate") return OptionDescriptions(request::TrialRequestOptions());
         if (name == "robustness") return OptionDescriptions(request::RobustnessRequestOptions());
         if (name == "analyze") return OptionDescriptions(request::AnalyzeOptions());
+        if (name == "segment") return OptionDescriptions(request::SegmentOptions());
+        if (name == "fit_wrist_line") {
+          return OptionDescriptions(request::WristLineRequestOptions());
+        }
         throw InputError("no request '" + name + "' (" + kRequestNames + ")");
       },
       py::arg("request"), R"doc(
 The options of a request (one of: synthesize, generalize, run, select, simulate, robustness,
-analyze): a list of dicts with name, kind, default, help, choices and required, the one
+analyze, segment, fit_wrist_line): a list of dicts with name, kind, default, help, choices and required, the one
 description the command's flags, the Python keyword arguments and --config files are made
 from.)doc");
 }

@@ -30,6 +30,30 @@ struct AnalyzeRequest {
 /// The options of AnalyzeRequest, in the order the front ends list them.
 const OptionList<AnalyzeRequest>& AnalyzeOptions();
 
+/// The request of Python's segment: analyze's segmentation option (the region is the scene's).
+struct SegmentRequest {
+  double success_lift = SegmentationOptions{}.success_lift;  ///< m
+};
+
+/// The options of SegmentRequest (analyze's success_lift).
+const OptionList<SegmentRequest>& SegmentOptions();
+
+/// The request of Python's fit_wrist_line: analyze's options of the wrist-line fit.
+struct WristLineRequest {
+  std::string robust_loss = "none";                   ///< none, huber or cauchy
+  double loss_scale = WristLineOptions{}.loss_scale;  ///< m
+};
+
+/// The options of WristLineRequest (analyze's robust_loss and loss_scale).
+const OptionList<WristLineRequest>& WristLineRequestOptions();
+
+/// The library's options of `request` over the grasp region `region`. Throws InputError.
+SegmentationOptions ToSegmentationOptions(const SegmentRequest& request,
+                                          const GraspRegionModel& region);
+
+/// The library's options of `request`. Throws InputError "wrist-line fit: ...".
+WristLineOptions ToWristLineOptions(const WristLineRequest& request);
+
 /// The library's options of `request` over the grasp region `scene_region` (the scene's).
 /// Throws InputError "analyze: ..." for an invalid combination.
 AnalysisOptions ToAnalysisOptions(const AnalyzeRequest& request,

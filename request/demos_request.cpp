@@ -30,20 +30,11 @@ OptionList<R> CommonOptions() {
 
 OptionList<R> MakeGenerateOptions() {
   OptionList<R> list = CommonOptions();
-  OptionInfo x = MakeInfo("x", OptionKind::kText,
-                          "Object positions: x of the object centre on the table, m, a list or "
-                          "FROM:TO:STEP (with y: every x at every y); default: the operator "
-                          "file's positions, else the scene's object centre");
-  x.number_list = true;
-  Option<R> o = FieldOption<R>(x, [](R& r) -> std::string& { return r.x; });
-  o.check = NumberListCheck("metres");
-  list.push_back(std::move(o));
-  OptionInfo y =
-      MakeInfo("y", OptionKind::kText, "Object positions: y of the object centre, m (see x)");
-  y.number_list = true;
-  o = FieldOption<R>(y, [](R& r) -> std::string& { return r.y; });
-  o.check = NumberListCheck("metres");
-  list.push_back(std::move(o));
+  AppendPositionListOptions<R>(
+      "Object positions: x of the object centre on the table, m, a list or FROM:TO:STEP (with "
+      "y: every x at every y); default: the operator file's positions, else the scene's object "
+      "centre",
+      [](R& r) -> std::string& { return r.x; }, [](R& r) -> std::string& { return r.y; }, &list);
   return list;
 }
 

@@ -28,28 +28,17 @@ void CheckMethods(const Value& value, const std::string& where) {
 
 OptionList<R> MakeOptions() {
   OptionList<R> list;
-  OptionInfo orientations =
-      MakeInfo("orientations", OptionKind::kText,
-               "Orientations, deg: numbers and ranges FROM:TO:STEP, comma-separated");
-  orientations.number_list = true;
-  Option<R> o = FieldOption<R>(orientations, [](R& r) -> std::string& { return r.orientations; });
-  o.check = NumberListCheck("degrees");
-  list.push_back(std::move(o));
-  OptionInfo x = MakeInfo("x", OptionKind::kText,
-                          "Object positions: x of the object centre on the table, m, numbers and "
-                          "ranges FROM:TO:STEP (with y: every orientation at every x at every y); "
-                          "default: the scene's object centre");
-  x.number_list = true;
-  o = FieldOption<R>(x, [](R& r) -> std::string& { return r.x; });
-  o.check = NumberListCheck("metres");
-  list.push_back(std::move(o));
-  OptionInfo y =
-      MakeInfo("y", OptionKind::kText, "Object positions: y of the object centre, m (see x)");
-  y.number_list = true;
-  o = FieldOption<R>(y, [](R& r) -> std::string& { return r.y; });
-  o.check = NumberListCheck("metres");
-  list.push_back(std::move(o));
-  o = FieldOption<R>(MakeInfo("methods", OptionKind::kTextList, "Comma-separated methods"),
+  list.push_back(
+      NumberListOption<R>("orientations", "degrees",
+                          "Orientations, deg: numbers and ranges FROM:TO:STEP, comma-separated",
+                          [](R& r) -> std::string& { return r.orientations; }));
+  AppendPositionListOptions<R>(
+      "Object positions: x of the object centre on the table, m, numbers and ranges "
+      "FROM:TO:STEP (with y: every orientation at every x at every y); default: the scene's "
+      "object centre",
+      [](R& r) -> std::string& { return r.x; }, [](R& r) -> std::string& { return r.y; }, &list);
+  Option<R> o =
+      FieldOption<R>(MakeInfo("methods", OptionKind::kTextList, "Comma-separated methods"),
                      [](R& r) -> std::vector<std::string>& { return r.methods; });
   o.check = CheckMethods;
   list.push_back(std::move(o));

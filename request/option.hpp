@@ -221,6 +221,27 @@ Option<R> FieldOption(OptionInfo info, F ref) {
   return o;
 }
 
+/// Makes a kText option of numbers and ranges FROM:TO:STEP of `unit` (OptionInfo::number_list,
+/// checked by NumberListCheck) named `name` with `help`, that reads and writes the text field
+/// `ref` returns (orientations, x, y).
+template <class R, class F>
+Option<R> NumberListOption(std::string name, const char* unit, std::string help, F ref) {
+  OptionInfo info = MakeInfo(std::move(name), OptionKind::kText, std::move(help));
+  info.number_list = true;
+  Option<R> o = FieldOption<R>(std::move(info), ref);
+  o.check = NumberListCheck(unit);
+  return o;
+}
+
+/// Appends the options x (with `x_help`) and y, object positions on the table in metres
+/// (NumberListOption), reading and writing the texts `x_ref` and `y_ref` return.
+template <class R, class FX, class FY>
+void AppendPositionListOptions(std::string x_help, FX x_ref, FY y_ref, OptionList<R>* list) {
+  list->push_back(NumberListOption<R>("x", "metres", std::move(x_help), x_ref));
+  list->push_back(NumberListOption<R>(
+      "y", "metres", "Object positions: y of the object centre, m (see x)", y_ref));
+}
+
 /// Makes an optional option (OptionInfo::optional) that reads and writes the std::optional<T>
 /// field `ref` returns; T is int, uint64_t or double; none is std::monostate.
 template <class R, class F>

@@ -62,14 +62,11 @@ OptionList<R> MakeOptions() {
                              "Replays per end of each physics factor's range in each synthesized "
                              "grasp's sensitivity table (0: none)",
                              0, &StudyOptions::sensitivity_trials, &R::sensitivity));
-  OptionInfo orientations =
-      MakeInfo("orientations", OptionKind::kText,
-               "Comma-separated object orientations to synthesize, deg, each a number or a range "
-               "FROM:TO:STEP (default: the study's 20:100:5, --quick's 40,45,60,85)");
-  orientations.number_list = true;
-  Option<R> o = FieldOption<R>(orientations, [](R& r) -> std::string& { return r.orientations; });
-  o.check = NumberListCheck("degrees");
-  list.push_back(std::move(o));
+  list.push_back(NumberListOption<R>(
+      "orientations", "degrees",
+      "Comma-separated object orientations to synthesize, deg, each a number or a range "
+      "FROM:TO:STEP (default: the study's 20:100:5, --quick's 40,45,60,85)",
+      [](R& r) -> std::string& { return r.orientations; }));
   list.push_back(PhysicsFallbackOption<R>([](R& r) -> bool& { return r.physics_fallback; }));
   list.push_back(AllReplaysOption<R>([](R& r) -> bool& { return r.all_replays; }, false));
   AppendPhysicsOptions<R>([](R& r) -> PhysicsPerturbationOptions& { return r.physics; }, &list);

@@ -45,15 +45,11 @@ void AddLinkOptions(OptionList<TeleopRequest>* list) {
 // The session: orientations, object position, rate, timeout, hold.
 void AddSessionOptions(OptionList<TeleopRequest>* list) {
   using R = TeleopRequest;
-  OptionInfo orientations =
-      MakeInfo("orientations", OptionKind::kText,
-               "Object orientations theta (deg), in the order the session walks through them (the "
-               "next-orientation button): numbers and ranges FROM:TO:STEP, e.g. 20,30 or "
-               "20:100:10");
-  orientations.number_list = true;
-  Option<R> o = Text<R>(orientations, &R::orientations);
-  o.check = NumberListCheck("degrees");
-  list->push_back(std::move(o));
+  list->push_back(NumberListOption<R>(
+      "orientations", "degrees",
+      "Object orientations theta (deg), in the order the session walks through them (the "
+      "next-orientation button): numbers and ranges FROM:TO:STEP, e.g. 20,30 or 20:100:10",
+      [](R& r) -> std::string& { return r.orientations; }));
   OptionInfo at = MakeInfo("at", OptionKind::kNumbers,
                            "X,Y: the object centre on the table, world frame, metres (e.g. "
                            "-0.30,0.90); default: the scene's object centre (the paper's fixed "

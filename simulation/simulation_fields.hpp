@@ -117,16 +117,18 @@ void VisitFields(V& v, Row& r) {
   v(Field("max_contacts"), r.max_contacts);
 }
 
-/// TrialResult's fields (m, s; the object's final pose in the world). Its recorded states are
-/// not a field: Python shows them as arrays (TrialResult.states).
+/// TrialResult's fields (m, s; the object's final pose in the world), with the keys of the
+/// figures every report of a trial carries (a grasp file's validation, graspsynth simulate's
+/// nominal trial; each report adds `success` and its own). Its recorded states are not a field:
+/// Python shows them as arrays (TrialResult.states).
 template <class V, class Row>
 requires SameStruct<Row, TrialResult>
 void VisitFields(V& v, Row& r) {
-  v(Field("outcome").Brief(), r.outcome);
-  v(Field("reason"), r.reason);
-  v(Field("lift").Brief(), r.lift);
-  v(Field("max_lift"), r.max_lift);
-  v(Field("max_penetration"), r.max_penetration);
+  v(Field("outcome").Json("/outcome").Brief(), r.outcome);
+  v(Field("reason").Json("/reason"), r.reason);
+  v(Field("lift").Json("/lift_m").Brief(), r.lift);
+  v(Field("max_lift").Json("/max_lift_m"), r.max_lift);
+  v(Field("max_penetration").Json("/max_penetration_m"), r.max_penetration);
   v(Field("simulated_time").Brief(), r.simulated_time);
   v(Field("planned_time"), r.planned_time);
   v(Field("wall_time"), r.wall_time);

@@ -7,8 +7,10 @@
 
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
+#include "common/field_text.hpp"
 #include "common/json_reader.hpp"
 #include "kinematics/pose_math.hpp"
+#include "simulation/simulation_fields.hpp"
 
 namespace graspsynth {
 
@@ -124,13 +126,8 @@ json ValidationJson(const PhysicsGateResult& gate, bool forced) {
   json v = {{"passed", gate.passed},
             {"forced", forced},
             {"reason", gate.reason},
-            {"nominal",
-             {{"success", n.success()},
-              {"outcome", ToString(n.outcome)},
-              {"reason", n.reason},
-              {"lift_m", n.lift},
-              {"max_lift_m", n.max_lift},
-              {"max_penetration_m", n.max_penetration}}}};
+            {"nominal", FieldsJson<json>(n)}};
+  v["nominal"]["success"] = n.success();
   if (gate.robustness_run) {
     const RobustnessResult& rb = gate.robustness;
     v["robustness"] = {{"trials", rb.trials.size()},

@@ -69,10 +69,8 @@ from ._core import (
     branch_of,
     default_robot,
     default_scene,
-    fit_wrist_line,
     read_demo_directory,
     read_demo_log,
-    segment,
 )
 from . import _core
 
@@ -219,6 +217,27 @@ def analyze_demonstrations(directory: Optional[PathLike] = None,
     command writes as JSON."""
     return _core._analyze_demonstrations(None if directory is None else os.fspath(directory),
                                          scene, options)
+
+
+@_with_options("segment")
+def segment(log: DemoLog, scene: Optional[Scene] = None, *, options: dict) -> dict:
+    """Segments a log into reach, grasping motion (pre-grasp to grasp) and lift, as ``graspsynth
+    analyze`` does. The pre-grasp pose is the first sample with the wrist inside the scene's
+    grasp region around the object centre; the grasp is the button press. Returns a dict:
+    status ("ok" or why not), message, success (the object rose >= success_lift m), lift, the
+    sample indices pregrasp, grasp and end, and motion: the grasping motion as arrays (t,
+    position, quaternion, fingers), None when the log could not be segmented."""
+    return _core._segment(log, scene, options)
+
+
+@_with_options("fit_wrist_line")
+def fit_wrist_line(points: Any, *, options: dict) -> dict:
+    """Fits a line to 2-D points (shape (N, 2), m) by total least squares (Ceres), with the
+    robust loss of ``graspsynth analyze --robust-loss`` (``robust_loss``: "none", "huber" or
+    "cauchy"; ``loss_scale`` in m), cross-checked with CGAL's fit. Returns a dict with the
+    termination, the line (point, direction, angle_deg, residuals, rms, max), the plain and
+    CGAL lines and whether they agree."""
+    return _core._fit_wrist_line(points, options)
 
 
 @_with_options("synthesize")

@@ -50,6 +50,10 @@ def test_segmentation_finds_the_grasping_motion(gs, demos):
     log = gs.read_demo_log(str(demos / entry["file"]))
     seg = gs.segment(log)
     assert seg["status"] == "ok" and seg["success"]
+    # a lift the pan did not reach; a lift out of range is named.
+    assert not gs.segment(log, success_lift=5.0)["success"]
+    with pytest.raises(gs.InputError, match="success_lift: must be >= 0"):
+        gs.segment(log, success_lift=-1.0)
     motion = seg["motion"]
     assert 0 < seg["pregrasp"] < seg["grasp"] < seg["end"] == len(log) - 1
     assert len(motion["t"]) == seg["grasp"] - seg["pregrasp"] + 1
@@ -78,8 +82,12 @@ def test_the_wrist_line_fit_finds_a_line_through_collinear_points(gs):
     assert fit["usable"] and fit["cgal_agrees"]
     assert fit["line"]["rms"] < 1e-9
     assert fit["line"]["angle_deg"] % 180 == pytest.approx(np.degrees(np.arctan(0.5)), abs=1e-6)
-    with pytest.raises(gs.InputError, match="loss"):
-        gs.fit_wrist_line(points, loss="square")
+    with pytest.raises(gs.InputError, match="robust_loss: 'square' is not one of"):
+        gs.fit_wrist_line(points, robust_loss="square")
+    with pytest.raises(gs.InputError, match="loss_scale: must be > 0"):
+        gs.fit_wrist_line(points, robust_loss="huber", loss_scale=0.0)
+    huber = gs.fit_wrist_line(points, robust_loss="huber", loss_scale=0.02)
+    assert huber["loss"] == "huber" and huber["loss_scale"] == 0.02
     with pytest.raises(gs.InputError,
                        match="points: row 2, field 1 is not a finite number: 'nan'"):
         gs.fit_wrist_line([[0.0, 0.0], [np.nan, 1.0], [1.0, 1.0]])

@@ -93,6 +93,8 @@ def test_a_study_functions_keywords_are_the_options_of_its_request(gs, function,
     ("simulate", ["simulate"], ["trial"]),
     ("robustness", ["robustness"], ["robustness"]),
     ("analyze", ["analyze_demonstrations"], []),
+    ("segment", ["segment"], []),
+    ("fit_wrist_line", ["fit_wrist_line"], []),
 ])
 def test_functions_list_the_options_of_their_request(gs, name, functions, methods):
     # simulate, robustness, Simulation's methods and analyze_demonstrations take the options

@@ -79,5 +79,34 @@ TEST(AnalyzeRequest, AConfigFileSetsOptionsByName) {
       InputError, "field 'line_points'", "'all' is not one of means, trials");
 }
 
+// Python's segment and fit_wrist_line take analyze's options of the same name, described once.
+TEST(AnalyzeRequest, SegmentAndTheLineFitTakeAnalyzesOptions) {
+  ExpectWellDescribed(SegmentOptions());
+  ExpectWellDescribed(WristLineRequestOptions());
+  const auto info = [](const auto& options, const char* name) {
+    const auto* o = FindOption(options, name);
+    EXPECT_NE(o, nullptr) << name;
+    return o ? o->info.help : std::string();
+  };
+  EXPECT_EQ(info(SegmentOptions(), "success_lift"), info(AnalyzeOptions(), "success_lift"));
+  EXPECT_EQ(info(WristLineRequestOptions(), "robust_loss"), info(AnalyzeOptions(), "robust_loss"));
+  EXPECT_EQ(info(WristLineRequestOptions(), "loss_scale"), info(AnalyzeOptions(), "loss_scale"));
+
+  const SegmentationOptions segmentation =
+      ToSegmentationOptions(SegmentRequest{0.07}, SceneRegion());
+  EXPECT_EQ(segmentation.success_lift, 0.07);
+  EXPECT_EQ(segmentation.region.radius, 0.41);
+  EXPECT_EQ(ToSegmentationOptions(SegmentRequest{}, SceneRegion()).success_lift,
+            SegmentationOptions{}.success_lift);
+  const WristLineOptions line = ToWristLineOptions(WristLineRequest{"huber", 0.03});
+  EXPECT_EQ(line.loss, LineLoss::kHuber);
+  EXPECT_EQ(line.loss_scale, 0.03);
+  EXPECT_EQ(ToWristLineOptions(WristLineRequest{}).loss, WristLineOptions{}.loss);
+  WristLineRequest r;
+  GS_EXPECT_THROW_WITH(
+      Apply(*FindOption(WristLineRequestOptions(), "loss_scale"), Value(-1.0), "loss_scale", &r),
+      InputError, "loss_scale: must be > 0 (got -1)");
+}
+
 }  // namespace
 }  // namespace graspsynth::request
