@@ -10,35 +10,24 @@
 
 #include "common/errors.hpp"
 #include "common/format.hpp"
+#include "common/json_reader.hpp"
 #include "kinematics/robot_description.hpp"
 #include "request/physics_options.hpp"
 #include "scene/object_model.hpp"
 
 namespace graspsynth::apps {
 
-std::shared_ptr<const RequestFlags<PhysicsPerturbationOptions>> AddPhysicsPerturbationFlags(
-    CLI::App* app) {
-  using P = PhysicsPerturbationOptions;
-  static const request::OptionList<P> options =
-      request::PhysicsOptions<P>([](P& p) -> P& { return p; });
-  return std::make_shared<const RequestFlags<P>>(app, options, false);
-}
-
-CLI::Validator PositiveValue() {
-  return CLI::Validator(
-      [](std::string& text) -> std::string {
-        double v = 0.0;
-        try {
-          size_t used = 0;
-          v = std::stod(text, &used);
-          if (used != text.size()) return "must be a number (got '" + text + "')";
-        } catch (const std::exception&) {
-          return "must be a number (got '" + text + "')";
-        }
-        if (!(v > 0.0)) return "must be > 0 (got " + text + ")";
-        return "";
-      },
-      "POSITIVE");
+void RefuseFormerConfig(const std::string& config, std::string_view format, const char* what,
+                        const char* name, const char* flag) {
+  if (config.empty()) return;
+  const JsonReader root = JsonReader::Load(config);
+  if (root.IsObject() && root.Field("format").IsString() &&
+      root.Field("format").AsString() == format) {
+    throw InputError("--config '" + config + "' is " + what + " (" + std::string(format) +
+                     "): the " + name + " is now " + flag +
+                     " FILE; --config FILE takes a file of this command's options "
+                     "(graspsynth-options/1)");
+  }
 }
 
 void AddObjectFlag(CLI::App* app, std::string* object) {

@@ -23,18 +23,16 @@
 
 namespace CLI {
 class App;
-class Validator;
 }  // namespace CLI
 
 namespace graspsynth::apps {
 
-/// The flags of the physics perturbation (--physics, --friction-spread, --stiffness-range,
-/// --damping-range, --mass-spread, --com-offset, --servo-force-spread, --fine-step,
-/// --fine-step-probability: request/physics_options.hpp, the description Python's keyword
-/// arguments share) on `app`. After parsing, Build() gives the options: the defaults with the
-/// flags given over them, or InputError naming the flag.
-std::shared_ptr<const RequestFlags<PhysicsPerturbationOptions>> AddPhysicsPerturbationFlags(
-    CLI::App* app);
+/// Refuses a --config `config` (a file of options, graspsynth-options/1) that is a file of the
+/// format `format`, which this command once took as --config and now takes as `flag`: throws
+/// InputError "--config 'FILE' is <what> (<format>): the <name> is now <flag> FILE; ...".
+/// Nothing for an empty `config` or another file.
+void RefuseFormerConfig(const std::string& config, std::string_view format, const char* what,
+                        const char* name, const char* flag);
 
 /// Adds --object NAME|FILE to a command that takes --scene: the object to use in place of the
 /// scene's (a shipped object's name, models/objects/NAME.json, or an object file).
@@ -53,10 +51,6 @@ void PlaceTrajectoryObject(const SceneModel& scene, const std::optional<Eigen::V
 /// solver/synthesis_model.hpp for the commands that synthesize grasps).
 SceneModel LoadScene(const std::string& scene, const std::string& object,
                      std::string_view needs_handle = {});
-
-/// A check for an option that must be a number > 0: "must be > 0 (got VALUE)" (CLI11's
-/// PositiveNumber prints the whole double range instead).
-CLI::Validator PositiveValue();
 
 /// The runner of this process's job stages (common/job_runner.hpp): spread over an MPI job's
 /// processes when main() started one (SetProcessRunner), else this process's threads.

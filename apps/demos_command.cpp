@@ -59,15 +59,7 @@ OperatorOptions LoadOperator(const DemosOptions& o, const request::DemosRequest&
 // --config is a file of options; the operator file it was before is refused, saying where it
 // went.
 void RefuseOperatorConfig(const std::string& config) {
-  if (config.empty()) return;
-  const JsonReader root = JsonReader::Load(config);
-  if (root.IsObject() && root.Field("format").IsString() &&
-      root.Field("format").AsString() == kOperatorFormat) {
-    throw InputError("--config '" + config + "' is an operator file (" +
-                     std::string(kOperatorFormat) +
-                     "): the operator file is now --operator FILE; --config FILE takes a file "
-                     "of this command's options (graspsynth-options/1)");
-  }
+  RefuseFormerConfig(config, kOperatorFormat, "an operator file", "operator file", "--operator");
 }
 
 std::unique_ptr<SimulationModel> LoadModel(const DemosOptions& o) {

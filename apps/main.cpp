@@ -3,12 +3,14 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <iostream>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "apps/analyze_command.hpp"
 #include "apps/cli_helpers.hpp"
@@ -22,6 +24,7 @@
 #include "apps/teleop_command.hpp"
 #include "apps/view_command.hpp"
 #include "collision/library_info.hpp"
+#include "request/option.hpp"
 #ifdef GRASPSYNTH_HAS_MPI
 #include "common/mpi_job_runner.hpp"
 #endif
@@ -46,6 +49,8 @@ struct Mpi {
 };
 #endif
 
+constexpr const char* kVersion = "graspsynth 0.1.0";
+
 constexpr const char* kEmptyValue = "an empty value (leave the option out to take its default)";
 
 // Refuses an empty value for every option that takes one, in `app` and its subcommands: an
@@ -63,6 +68,61 @@ void RefuseEmptyValues(CLI::App* app) {
   for (CLI::App* command : app->get_subcommands({})) RefuseEmptyValues(command);
 }
 
+// The subcommand the command line chose last (`app` when none).
+CLI::App* ChosenCommand(CLI::App* app) {
+  const std::vector<CLI::App*> chosen = app->get_subcommands();
+  return chosen.empty() ? app : ChosenCommand(chosen.front());
+}
+
+// The flags of `command`, as the command line spells them ("--seed").
+std::vector<std::string> FlagNames(const CLI::App* command) {
+  std::vector<std::string> names;
+  for (const CLI::Option* option : command->get_options()) {
+    for (const std::string& name : option->get_lnames()) names.push_back("--" + name);
+  }
+  return names;
+}
+
+// The names of the commands below `app`.
+std::vector<std::string> CommandNames(const CLI::App* app) {
+  std::vector<std::string> names;
+  for (const CLI::App* command : app->get_subcommands({})) names.push_back(command->get_name());
+  return names;
+}
+
+// The exit status of a command line that CLI11 refused or answered: 0 for --help and --version
+// (printed), 2 for every refusal (README, "Exit status": bad input), with the nearest flag for
+// one that is misspelt.
+int ParseErrorExit(CLI::App& app, const CLI::ParseError& e, int argc, char** argv) {
+  const int code = app.exit(e);  // prints the help, the version or the error
+  if (code == 0) return 0;
+  const CLI::App* command = ChosenCommand(&app);
+  const std::vector<std::string> flags = FlagNames(command);
+  for (int i = 1; i < argc; ++i) {
+    std::string arg = argv[i];
+    if (arg == "--") break;
+    if (arg.rfind("--", 0) != 0) continue;
+    arg = arg.substr(0, arg.find('='));
+    if (std::find(flags.begin(), flags.end(), arg) != flags.end()) continue;
+    const std::string nearest = graspsynth::request::NearestName(flags, arg);
+    if (!nearest.empty()) std::cerr << arg << ": did you mean " << nearest << "?\n";
+  }
+  return 2;
+}
+
+// Refuses a first argument that names no command, with the nearest one; true when it did.
+bool RefuseUnknownCommand(const CLI::App& app, int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-' || argv[1][0] == '\0') return false;
+  const std::string name = argv[1];
+  const std::vector<std::string> names = CommandNames(&app);
+  if (std::find(names.begin(), names.end(), name) != names.end()) return false;
+  std::cerr << "graspsynth: '" << name << "' is not a command";
+  const std::string nearest = graspsynth::request::NearestName(names, name);
+  if (!nearest.empty()) std::cerr << " (did you mean '" << nearest << "'?)";
+  std::cerr << "; 'graspsynth --help' lists the commands\n";
+  return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -74,6 +134,7 @@ int main(int argc, char** argv) {
       "graspsynth: demonstration-seeded grasp synthesis for a PA-10 arm with a Gifu Hand III.\n"
       "Run 'graspsynth <command> --help' for the options of one command."};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string(kVersion), "Print the version and exit");
   int exit_code = 0;
 
   graspsynth::apps::AddRunCommand(app, &exit_code);
@@ -89,7 +150,7 @@ int main(int argc, char** argv) {
 
   auto* version = app.add_subcommand("version", "Print the versions of the linked libraries");
   version->callback([] {
-    std::cout << "graspsynth 0.1.0\n"
+    std::cout << kVersion << "\n"
               << "  " << graspsynth::CollisionLibraryInfo() << "\n"
               << "  " << graspsynth::SimulationLibraryInfo() << "\n"
               << "  " << graspsynth::SolverLibraryInfo() << "\n";
@@ -106,10 +167,11 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
+  if (RefuseUnknownCommand(app, argc, argv)) return 2;
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return ParseErrorExit(app, e, argc, argv);
   } catch (const std::exception& e) {
     // a stage's error reaches every rank of an MPI job: rank 0 reports it.
     if (dynamic_cast<const graspsynth::StageFailedElsewhere*>(&e)) return 2;

@@ -20,6 +20,7 @@
 #include <string>
 #include <thread>
 
+#include "apps/cli_helpers.hpp"
 #include "apps/request_flags.hpp"
 #include "apps/stop_signals.hpp"
 #include "common/atomic_file.hpp"
@@ -62,15 +63,8 @@ teleop::TeleopCalibration LoadCalibration(const std::string& calibration) {
 // --config is a file of options; the calibration file it was before is refused, saying where it
 // went.
 void RefuseCalibrationConfig(const std::string& config) {
-  if (config.empty()) return;
-  const JsonReader root = JsonReader::Load(config);
-  if (root.IsObject() && root.Field("format").IsString() &&
-      root.Field("format").AsString() == teleop::kTeleopConfigFormat) {
-    throw InputError("--config '" + config + "' is a teleoperation calibration file (" +
-                     std::string(teleop::kTeleopConfigFormat) +
-                     "): the calibration file is now --calibration FILE; --config FILE takes a "
-                     "file of this command's options (graspsynth-options/1)");
-  }
+  RefuseFormerConfig(config, teleop::kTeleopConfigFormat, "a teleoperation calibration file",
+                     "calibration file", "--calibration");
 }
 
 // The link's key of --key-file; none without.

@@ -121,16 +121,8 @@ PlayFigures PlayReplay(const ViewOptions& opts, const RobotModel& robot, const S
   return figures;
 }
 
+// `opts`' numbers are in their ranges: the request's options checked them (request/view_request).
 int RunView(const ViewOptions& opts) {
-  if (!(opts.speed > 0.0) || !std::isfinite(opts.speed)) {
-    throw InputError("--speed " + std::to_string(opts.speed) + " is not a positive number");
-  }
-  if (!(opts.rate_hz > 0.0 && opts.rate_hz <= 1000.0)) {
-    throw InputError("--rate " + std::to_string(opts.rate_hz) + " is outside (0, 1000] Hz");
-  }
-  if (!(opts.hold_s >= 0.0) || !(opts.exit_after_s >= 0.0)) {
-    throw InputError("--hold and --exit-after take seconds >= 0");
-  }
   const RobotModel robot = LoadRobotModel(opts.robot.empty() ? DefaultRobotDescriptionPath()
                                                              : std::filesystem::path(opts.robot));
   const SceneModel scene = LoadScene(opts.scene, opts.object);

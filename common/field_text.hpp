@@ -97,7 +97,7 @@ struct JsonWriter {
         out[at] = f.null_text ? Json(f.null_text) : Json(nullptr);
       }
     } else if constexpr (std::is_same_v<T, std::string>) {
-      if (!(f.omit_empty && value.empty())) out[at] = value;
+      if (!(f.omit_empty && value.empty())) out[at] = JsonValue<Json>(value, forms);
     } else {
       out[at] = JsonValue<Json>(value, forms);
     }

@@ -3,17 +3,18 @@
 /// @file
 /// Robust representative selection (paper III-C): every successful demonstration is replayed
 /// as the operator made it - reach, grasping motion and lift, through the arm's IK
-/// (demo_replay.hpp) - once unperturbed and options.perturbations times under time scaling,
+/// (demo_replay.hpp) - once unperturbed and options.robustness.trials times under time scaling,
 /// waypoint noise and perturbed physics (simulation/robustness.hpp); its score is the success
-/// fraction. The most
-/// robust demonstration of each orientation becomes that orientation's library entry
-/// (grasp_library.hpp). Demonstrations at several object positions (the logs' object_position)
-/// are grouped by placement (position and orientation): "orientation" below reads "placement".
+/// fraction. The most robust demonstration of each orientation becomes that orientation's library
+/// entry (grasp_library.hpp). Demonstrations at several object positions (the logs'
+/// object_position) are grouped by placement (position and orientation): "orientation" below reads
+/// "placement".
 ///
-/// Determinism: the perturbation stream of a demonstration is seeded by DemoSeed(options.seed,
-/// file name) - a function of the file's name, never of the order in which files are processed
-/// or of the number of threads - and every replay is bit-for-bit independent of the thread
-/// count, so the same options give the same library whatever options.threads is.
+/// Determinism: the perturbation stream of a demonstration is seeded by
+/// DemoSeed(options.robustness.seed, file name) - a function of the file's name, never of the
+/// order in which files are processed or of the number of threads - and every replay is
+/// bit-for-bit independent of the thread count, so the same options give the same library
+/// whatever options.robustness.threads is.
 ///
 /// Tie rule (kTieRule): among the demonstrations of one orientation the representative has the
 /// highest score; on equal scores the higher lower bound of the Wilson interval (it differs

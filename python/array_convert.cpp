@@ -174,12 +174,6 @@ std::optional<Eigen::Vector2d> AtArgument(const py::object& at) {
   return xy;
 }
 
-void CheckThreads(int threads) {
-  if (threads < 0 || threads > 1024) {
-    throw InputError("threads must be in 0..1024 (0: all cores), not " + std::to_string(threads));
-  }
-}
-
 py::object ToPython(const nlohmann::json& value) { return JsonToPython(value); }
 py::object ToPython(const nlohmann::ordered_json& value) { return JsonToPython(value); }
 

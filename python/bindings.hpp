@@ -28,10 +28,6 @@ namespace graspsynth::python {
 
 namespace py = pybind11;
 
-/// Throws InputError unless `threads` is in 0..1024 (0: one per hardware thread), as the
-/// command line's --threads.
-void CheckThreads(int threads);
-
 /// A float64 array argument, converted to C order when it is not already.
 using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
 

@@ -84,6 +84,7 @@ request::Value ValueFromPython(const request::OptionInfo& info, py::handle value
         std::string text;
         for (double x : NumbersOf(value, where))
           text += (text.empty() ? "" : ",") + ShortestNumber(x);
+        if (text.empty()) throw InputError(where + ": no number given (an empty list)");
         return text;
       }
       if (!py::isinstance<py::str>(value)) {

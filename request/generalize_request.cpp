@@ -65,11 +65,8 @@ OptionList<R> MakeOptions() {
   list.push_back(
       FieldOption<R>(MakeInfo("seed", OptionKind::kUnsigned, "Seed of the perturbed replays"),
                      [](R& r) -> uint64_t& { return r.seed; }));
-  OptionInfo threads =
-      MakeInfo("threads", OptionKind::kInt, "Worker threads (0: all cores); changes no result");
-  threads.lo = 0;
-  threads.hi = 1024;
-  list.push_back(FieldOption<R>(threads, [](R& r) -> int& { return r.threads; }));
+  list.push_back(FieldOption<R>(ThreadsInfo("Worker threads (0: all cores); changes no result"),
+                                [](R& r) -> int& { return r.threads; }));
   list.push_back(PhysicsFallbackOption<R>([](R& r) -> bool& { return r.physics_fallback; }));
   AppendPhysicsOptions<R>([](R& r) -> PhysicsPerturbationOptions& { return r.physics; }, &list);
   return list;

@@ -274,8 +274,8 @@ Value ValueFromJson(const OptionInfo& info, const JsonReader& field) {
     case OptionKind::kBool:
       return field.AsBool();
     case OptionKind::kInt:
-      return field.AsInteger(std::isfinite(info.lo) ? static_cast<int64_t>(info.lo) : INT64_MIN,
-                             std::isfinite(info.hi) ? static_cast<int64_t>(info.hi) : INT64_MAX);
+      // an int; its range is the option's check, with the same words as a flag's.
+      return field.AsInteger(INT_MIN, INT_MAX);
     case OptionKind::kUnsigned:
       return field.AsUnsigned();
     case OptionKind::kNumber:
@@ -305,8 +305,8 @@ Value ValueFromJson(const OptionInfo& info, const JsonReader& field) {
 
 std::function<void(const Value&, const std::string&)> NumberListCheck(const char* unit) {
   return [unit](const Value& value, const std::string& where) {
-    const std::string& text = std::get<std::string>(value);
-    if (!text.empty()) ParseNumberList(text, where, unit);
+    const auto* text = std::get_if<std::string>(&value);  // none (an optional list) passes
+    if (text && !text->empty()) ParseNumberList(*text, where, unit);
   };
 }
 

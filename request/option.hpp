@@ -221,27 +221,6 @@ Option<R> FieldOption(OptionInfo info, F ref) {
   return o;
 }
 
-/// Makes a kText option of numbers and ranges FROM:TO:STEP of `unit` (OptionInfo::number_list,
-/// checked by NumberListCheck) named `name` with `help`, that reads and writes the text field
-/// `ref` returns (orientations, x, y).
-template <class R, class F>
-Option<R> NumberListOption(std::string name, const char* unit, std::string help, F ref) {
-  OptionInfo info = MakeInfo(std::move(name), OptionKind::kText, std::move(help));
-  info.number_list = true;
-  Option<R> o = FieldOption<R>(std::move(info), ref);
-  o.check = NumberListCheck(unit);
-  return o;
-}
-
-/// Appends the options x (with `x_help`) and y, object positions on the table in metres
-/// (NumberListOption), reading and writing the texts `x_ref` and `y_ref` return.
-template <class R, class FX, class FY>
-void AppendPositionListOptions(std::string x_help, FX x_ref, FY y_ref, OptionList<R>* list) {
-  list->push_back(NumberListOption<R>("x", "metres", std::move(x_help), x_ref));
-  list->push_back(NumberListOption<R>(
-      "y", "metres", "Object positions: y of the object centre, m (see x)", y_ref));
-}
-
 /// Makes an optional option (OptionInfo::optional) that reads and writes the std::optional<T>
 /// field `ref` returns; T is int, uint64_t or double; none is std::monostate.
 template <class R, class F>
@@ -264,6 +243,34 @@ Option<R> OptionalFieldOption(OptionInfo info, F ref) {
     }
   };
   return o;
+}
+
+/// Makes a kText option of numbers and ranges FROM:TO:STEP of `unit` (OptionInfo::number_list,
+/// checked by NumberListCheck) named `name` with `help`, that reads and writes the text field
+/// `ref` returns (orientations, x, y): a std::string ("" the default), or a
+/// std::optional<std::string> (none the default, an empty text refused).
+template <class R, class F>
+Option<R> NumberListOption(std::string name, const char* unit, std::string help, F ref) {
+  OptionInfo info = MakeInfo(std::move(name), OptionKind::kText, std::move(help));
+  info.number_list = true;
+  using T = std::remove_reference_t<std::invoke_result_t<F, R&>>;
+  Option<R> o;
+  if constexpr (std::is_same_v<T, std::string>) {
+    o = FieldOption<R>(std::move(info), ref);
+  } else {
+    o = OptionalFieldOption<R>(std::move(info), ref);
+  }
+  o.check = NumberListCheck(unit);
+  return o;
+}
+
+/// Appends the options x (with `x_help`) and y, object positions on the table in metres
+/// (NumberListOption), reading and writing the texts `x_ref` and `y_ref` return.
+template <class R, class FX, class FY>
+void AppendPositionListOptions(std::string x_help, FX x_ref, FY y_ref, OptionList<R>* list) {
+  list->push_back(NumberListOption<R>("x", "metres", std::move(x_help), x_ref));
+  list->push_back(NumberListOption<R>(
+      "y", "metres", "Object positions: y of the object centre, m (see x)", y_ref));
 }
 
 /// Makes an option of N numbers (OptionKind::kNumbers, `info.count` set to N) held as an
@@ -289,6 +296,15 @@ Option<R> OptionalVectorOption(OptionInfo info, F ref) {
     }
   };
   return o;
+}
+
+/// Makes the option at, X,Y of the object centre on the table (world, m) or none, with `help`,
+/// reading and writing the std::optional<Eigen::Vector2d> field `ref` returns.
+template <class R, class F>
+Option<R> AtOption(std::string help, F ref) {
+  OptionInfo info = MakeInfo("at", OptionKind::kNumbers, std::move(help));
+  info.placeholder = "X,Y";
+  return OptionalVectorOption<R, 2>(std::move(info), ref);
 }
 
 }  // namespace graspsynth::request

@@ -13,41 +13,29 @@ namespace {
 
 using R = RunRequest;
 
-// " (-1, the default: the study's N, --quick's M)": what the sentinel of a count means.
+// " (default: the study's N, --quick's M)": what a count left out is.
 std::string StudyDefaultText(int StudyOptions::*field) {
   StudyOptions quick;
   quick.UseQuickStudy();
-  return " (-1, the default: the study's " + std::to_string(StudyOptions{}.*field) +
-         ", --quick's " + std::to_string(quick.*field) + ")";
+  return " (default: the study's " + std::to_string(StudyOptions{}.*field) + ", --quick's " +
+         std::to_string(quick.*field) + ")";
 }
 
-// A count that is at least `lo` or -1 (the study's default); `field` gives the help the defaults.
+// A count that is at least `lo`, or none (the study's default); `field` gives the help the
+// defaults.
 Option<R> CountOption(const char* name, std::string help, int lo, int StudyOptions::*field,
-                      int R::*member) {
-  OptionInfo info = MakeInfo(name, OptionKind::kInt, help + StudyDefaultText(field));
-  info.lo = kStudyDefault;
-  Option<R> o = FieldOption<R>(info, [member](R& r) -> int& { return r.*member; });
-  if (lo > 0) {
-    o.check = [lo](const Value& value, const std::string& where) {
-      const int64_t v = std::get<int64_t>(value);
-      if (v != kStudyDefault && v < lo) {
-        throw InputError(where + ": must be >= " + std::to_string(lo) + " or -1 (got " +
-                         std::to_string(v) + ")");
-      }
-    };
-  }
-  return o;
+                      std::optional<int> R::*member) {
+  return OptionalFieldOption<R>(
+      WithRange(MakeInfo(name, OptionKind::kInt, help + StudyDefaultText(field)), lo),
+      [member](R& r) -> std::optional<int>& { return r.*member; });
 }
 
 OptionList<R> MakeOptions() {
   OptionList<R> list;
   list.push_back(FieldOption<R>(MakeInfo("seed", OptionKind::kUnsigned, "Seed of the whole study"),
                                 [](R& r) -> uint64_t& { return r.seed; }));
-  OptionInfo threads =
-      MakeInfo("threads", OptionKind::kInt, "Worker threads (0: all cores); changes no result");
-  threads.lo = 0;
-  threads.hi = 1024;
-  list.push_back(FieldOption<R>(threads, [](R& r) -> int& { return r.threads; }));
+  list.push_back(FieldOption<R>(ThreadsInfo("Worker threads (0: all cores); changes no result"),
+                                [](R& r) -> int& { return r.threads; }));
   list.push_back(FieldOption<R>(
       MakeInfo("quick", OptionKind::kBool,
                "Reduced study: orientations 40,45,60,85, 2 selection and 3 gate replays"),
@@ -66,7 +54,7 @@ OptionList<R> MakeOptions() {
       "orientations", "degrees",
       "Comma-separated object orientations to synthesize, deg, each a number or a range "
       "FROM:TO:STEP (default: the study's 20:100:5, --quick's 40,45,60,85)",
-      [](R& r) -> std::string& { return r.orientations; }));
+      [](R& r) -> std::optional<std::string>& { return r.orientations; }));
   list.push_back(PhysicsFallbackOption<R>([](R& r) -> bool& { return r.physics_fallback; }));
   list.push_back(AllReplaysOption<R>([](R& r) -> bool& { return r.all_replays; }, false));
   AppendPhysicsOptions<R>([](R& r) -> PhysicsPerturbationOptions& { return r.physics; }, &list);
@@ -92,13 +80,11 @@ StudyOptions ToStudyOptions(const RunRequest& request, const SceneModel& scene,
   options.physics_fallback = request.physics_fallback;
   options.selection_early_stop = !request.all_replays;
   if (request.quick) options.UseQuickStudy();
-  if (request.sensitivity != kStudyDefault) options.sensitivity_trials = request.sensitivity;
-  if (request.perturb != kStudyDefault) options.gate_perturbations = request.perturb;
-  if (request.select_perturb != kStudyDefault) {
-    options.selection_perturbations = request.select_perturb;
-  }
-  if (!request.orientations.empty()) {
-    options.orientations = ParseOrientationList(request.orientations, "orientations");
+  if (request.sensitivity) options.sensitivity_trials = *request.sensitivity;
+  if (request.perturb) options.gate_perturbations = *request.perturb;
+  if (request.select_perturb) options.selection_perturbations = *request.select_perturb;
+  if (request.orientations) {
+    options.orientations = ParseOrientationList(*request.orientations, "orientations");
   }
   RequireValid(options, "run");
   if (!std::filesystem::is_directory(options.demos)) {

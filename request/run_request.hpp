@@ -12,25 +12,26 @@
 #include <filesystem>
 #include <string>
 
+#include <optional>
+#include <string>
+
 #include "request/option.hpp"
 #include "scene/scene_model.hpp"
 #include "studies/study.hpp"
 
 namespace graspsynth::request {
 
-/// A count of RunRequest that keeps the study's default (or --quick's).
-inline constexpr int kStudyDefault = -1;
-
 /// How to run the study; the defaults are the command's and Python's.
 struct RunRequest {
   uint64_t seed = StudyOptions{}.seed;   ///< seed of the whole study
   int threads = StudyOptions{}.threads;  ///< 0: all cores; changes no result
   bool quick = false;                    ///< the reduced study (StudyOptions::UseQuickStudy)
-  int perturb = kStudyDefault;           ///< gate replays per grasp; -1: the study's
-  int select_perturb = kStudyDefault;    ///< selection replays per demonstration; -1: the study's
-  int sensitivity = kStudyDefault;       ///< sensitivity replays per factor end; -1: the study's
-  /// Orientations, deg: numbers and ranges FROM:TO:STEP, comma-separated; "": the study's.
-  std::string orientations;
+  // none: the study's default, or --quick's.
+  std::optional<int> perturb;         ///< gate replays per grasp
+  std::optional<int> select_perturb;  ///< selection replays per demonstration
+  std::optional<int> sensitivity;     ///< sensitivity replays per factor end
+  /// Orientations, deg: numbers and ranges FROM:TO:STEP, comma-separated.
+  std::optional<std::string> orientations;
   bool physics_fallback = StudyOptions{}.physics_fallback;
   bool all_replays = !StudyOptions{}.selection_early_stop;
   PhysicsPerturbationOptions physics = StudyOptions{}.perturbation.physics;

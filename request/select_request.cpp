@@ -18,12 +18,8 @@ OptionList<R> MakeOptions() {
   list.push_back(
       FieldOption<R>(MakeInfo("seed", OptionKind::kUnsigned, "Seed of the perturbations"),
                      [](R& r) -> uint64_t& { return r.selection.robustness.seed; }));
-  OptionInfo threads =
-      MakeInfo("threads", OptionKind::kInt, "Worker threads for the replays (0: all cores)");
-  threads.lo = 0;
-  threads.hi = 1024;
-  list.push_back(
-      FieldOption<R>(threads, [](R& r) -> int& { return r.selection.robustness.threads; }));
+  list.push_back(FieldOption<R>(ThreadsInfo("Worker threads for the replays (0: all cores)"),
+                                [](R& r) -> int& { return r.selection.robustness.threads; }));
   list.push_back(AllReplaysOption<R>([](R& r) -> bool& { return r.selection.early_stop; }, true));
   AppendPhysicsOptions<R>(
       [](R& r) -> PhysicsPerturbationOptions& {

@@ -47,13 +47,11 @@ Option<R> NumberOption(OptionInfo info, double R::*field) {
 OptionList<SimulateRequest> MakeSimulateOptions() {
   using R = SimulateRequest;
   OptionList<R> list;
-  OptionInfo at = MakeInfo("at", OptionKind::kNumbers,
-                           "X,Y: play it with the object centre here on the table (world, m) "
-                           "instead of where the file puts it (its \"object_xy\", else the "
-                           "scene's object centre)");
-  at.placeholder = "X,Y";
   list.push_back(
-      OptionalVectorOption<R, 2>(at, [](R& r) -> std::optional<Eigen::Vector2d>& { return r.at; }));
+      AtOption<R>("X,Y: play it with the object centre here on the table (world, m) "
+                  "instead of where the file puts it (its \"object_xy\", else the "
+                  "scene's object centre)",
+                  [](R& r) -> std::optional<Eigen::Vector2d>& { return r.at; }));
   list.push_back(FieldOption<R>(WithRange(MakeInfo("perturb", OptionKind::kInt,
                                                    "Number of perturbed replays (0: nominal only)"),
                                           0),

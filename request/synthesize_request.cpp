@@ -22,13 +22,10 @@ OptionList<R> MakeOptions() {
   OptionInfo theta = MakeInfo("theta", OptionKind::kNumber, "Object orientation, degrees");
   theta.required = true;
   list.push_back(FieldOption<R>(theta, [](R& r) -> double& { return r.theta; }));
-  list.push_back(OptionalVectorOption<R, 2>(
-      Placeholder(
-          MakeInfo("at", OptionKind::kNumbers,
-                   "X,Y: the object centre on the table, world frame, metres (e.g. -0.30,0.90); "
-                   "default: the scene's object centre (the paper's fixed position)"),
-          "X,Y"),
-      [](R& r) -> std::optional<Eigen::Vector2d>& { return r.at; }));
+  list.push_back(
+      AtOption<R>("X,Y: the object centre on the table, world frame, metres (e.g. -0.30,0.90); "
+                  "default: the scene's object centre (the paper's fixed position)",
+                  [](R& r) -> std::optional<Eigen::Vector2d>& { return r.at; }));
   OptionInfo method = MakeInfo("method", OptionKind::kText, "interp, line or nearest");
   method.choices = {"interp", "line", "nearest"};
   list.push_back(FieldOption<R>(method, [](R& r) -> std::string& { return r.method; }));
@@ -73,11 +70,8 @@ OptionList<R> MakeOptions() {
                                 "Perturbed trials of the physics gate (0: nominal only)");
   perturb.lo = 0;
   list.push_back(FieldOption<R>(perturb, [](R& r) -> int& { return r.gate.robustness.trials; }));
-  OptionInfo threads =
-      MakeInfo("threads", OptionKind::kInt, "Worker threads of the gate (0: all cores)");
-  threads.lo = 0;
-  threads.hi = 1024;
-  list.push_back(FieldOption<R>(threads, [](R& r) -> int& { return r.gate.robustness.threads; }));
+  list.push_back(FieldOption<R>(ThreadsInfo("Worker threads of the gate (0: all cores)"),
+                                [](R& r) -> int& { return r.gate.robustness.threads; }));
   OptionInfo robustness = MakeInfo("min_robustness", OptionKind::kNumber,
                                    "Success fraction the gate needs under perturbation");
   robustness.lo = 0.0;

@@ -50,13 +50,11 @@ void AddSessionOptions(OptionList<TeleopRequest>* list) {
       "Object orientations theta (deg), in the order the session walks through them (the "
       "next-orientation button): numbers and ranges FROM:TO:STEP, e.g. 20,30 or 20:100:10",
       [](R& r) -> std::string& { return r.orientations; }));
-  OptionInfo at = MakeInfo("at", OptionKind::kNumbers,
-                           "X,Y: the object centre on the table, world frame, metres (e.g. "
-                           "-0.30,0.90); default: the scene's object centre (the paper's fixed "
-                           "position)");
-  at.placeholder = "X,Y";
   list->push_back(
-      OptionalVectorOption<R, 2>(at, [](R& r) -> std::optional<Eigen::Vector2d>& { return r.at; }));
+      AtOption<R>("X,Y: the object centre on the table, world frame, metres (e.g. "
+                  "-0.30,0.90); default: the scene's object centre (the paper's fixed "
+                  "position)",
+                  [](R& r) -> std::optional<Eigen::Vector2d>& { return r.at; }));
   list->push_back(Number<R>(
       WithRange(MakeInfo("rate", OptionKind::kNumber, "Control rate, Hz (1..1000)"), 1.0, 1000.0),
       &R::rate_hz));

@@ -5,8 +5,10 @@ namespace {
 
 using R = ViewRequest;
 
-Option<R> Number(const char* name, const char* help, double R::*field) {
-  return FieldOption<R>(MakeInfo(name, OptionKind::kNumber, help),
+// A number of at least `lo` (more than `lo` when `lo_open`) and at most `hi`.
+Option<R> Number(const char* name, const char* help, double R::*field, double lo, bool lo_open,
+                 double hi = INFINITY) {
+  return FieldOption<R>(WithRange(MakeInfo(name, OptionKind::kNumber, help), lo, hi, lo_open),
                         [field](R& r) -> double& { return r.*field; });
 }
 
@@ -17,13 +19,11 @@ Option<R> Switch(const char* name, const char* help, bool R::*field) {
 
 OptionList<R> MakeOptions() {
   OptionList<R> list;
-  OptionInfo at = MakeInfo("at", OptionKind::kNumbers,
-                           "X,Y: the object centre on the table for a --trajectory, world frame, "
-                           "metres (e.g. -0.30,0.90); default: where the file puts it (its "
-                           "\"object_xy\", else the scene's object centre)");
-  at.placeholder = "X,Y";
   list.push_back(
-      OptionalVectorOption<R, 2>(at, [](R& r) -> std::optional<Eigen::Vector2d>& { return r.at; }));
+      AtOption<R>("X,Y: the object centre on the table for a --trajectory, world frame, "
+                  "metres (e.g. -0.30,0.90); default: where the file puts it (its "
+                  "\"object_xy\", else the scene's object centre)",
+                  [](R& r) -> std::optional<Eigen::Vector2d>& { return r.at; }));
   list.push_back(
       FieldOption<R>(MakeInfo("address", OptionKind::kText,
                               "IPv4 address to serve on; 0.0.0.0 opens the viewer to the network"),
@@ -38,17 +38,19 @@ OptionList<R> MakeOptions() {
                "default: a side view of the arm and the table"),
       [](R& r) -> std::string& { return r.camera; }));
   list.push_back(Switch("loop", "Replay again and again until stopped", &R::loop));
-  list.push_back(Number("speed", "Replay speed factor (> 0)", &R::speed));
-  list.push_back(Number("rate", "Frames published per second (Hz), in (0, 1000]", &R::rate_hz));
+  list.push_back(Number("speed", "Replay speed factor (> 0)", &R::speed, 0.0, true));
+  list.push_back(Number("rate", "Frames published per second (Hz), in (0, 1000]", &R::rate_hz, 0.0,
+                        true, 1000.0));
   list.push_back(Switch("no_wait",
                         "Start the replay at once instead of when a page first asks for a frame",
                         &R::no_wait));
-  list.push_back(Number(
-      "hold", "Seconds to keep serving the last frame after the end of the replay", &R::hold_s));
+  list.push_back(Number("hold",
+                        "Seconds to keep serving the last frame after the end of the replay",
+                        &R::hold_s, 0.0, false));
   list.push_back(Number("exit_after",
                         "Stop after this many seconds in any case (0: no limit; for scripts and "
                         "tests)",
-                        &R::exit_after_s));
+                        &R::exit_after_s, 0.0, false));
   return list;
 }
 

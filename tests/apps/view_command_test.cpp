@@ -89,7 +89,10 @@ TEST_F(ViewCommand, RejectsBadOptionsWithTheValue) {
   const std::string file = Write("grasp.json", kTrajectory);
   auto r = RunGraspsynth("view --trajectory " + file + " --port 0 --speed 0");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_THAT(r.err, HasSubstr("--speed 0"));
+  EXPECT_THAT(r.err, HasSubstr("--speed: must be > 0 (got 0)"));
+  r = RunGraspsynth("view --trajectory " + file + " --port 0 --rate 5000");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("--rate: must be"));
 
   r = RunGraspsynth("view --trajectory " + file + " --port 0 --camera 1,2");
   EXPECT_EQ(r.exit_code, 2);

@@ -13,4 +13,5 @@ def test_the_synthesis_example_writes_its_figure(repo, tmp_path):
         capture_output=True, text=True, env=dict(os.environ, MPLBACKEND="Agg"), check=False)
     assert done.returncode == 0, done.stdout + done.stderr
     assert "2 of 2 synthesized grasps lifted the pan" in done.stdout
+    assert "trial success" in done.stdout  # the outcome's label, as the files write it
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

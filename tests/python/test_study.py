@@ -101,8 +101,9 @@ def test_leave_one_out_of_a_two_entry_library_names_the_library(gs, tmp_path):
 
 
 @pytest.mark.parametrize("kwargs, message", [
-    ({"select_perturb": 0}, "select_perturb: must be >= 1 or -1"),
-    ({"perturb": -2}, "perturb"),
+    ({"select_perturb": 0}, "select_perturb: must be >= 1"),
+    ({"perturb": -1}, "perturb: must be >= 0"),
+    ({"orientations": []}, "orientations: no number given"),
     ({"orientations": "40,40"}, "given twice"),
     ({"orientations": "20:x"}, "orientations"),
     ({"threads": 5000}, "threads"),

@@ -145,7 +145,7 @@ TEST(RunRequest, TheDefaultsAreTheStudysAndQuickIsTheQuickStudys) {
   quick.quick = true;
   study.UseQuickStudy();
   ExpectSameStudy(ToStudyOptions(quick, scene), study);
-  // a count given wins over --quick's; -1 keeps it.
+  // a count given wins over --quick's; one left out keeps it.
   quick.perturb = 0;
   quick.sensitivity = 1;
   const StudyOptions given = ToStudyOptions(quick, scene);
@@ -168,15 +168,20 @@ TEST(RunRequest, OptionsMapOntoTheStudysAndBadOnesNameTheOption) {
   EXPECT_EQ(study.perturbation.physics.mass, 0.5);
   GS_EXPECT_THROW_WITH(
       Apply(*FindOption(options, "select_perturb"), Value(int64_t{0}), "--select-perturb", &r),
-      InputError, "--select-perturb: must be >= 1 or -1 (got 0)");
-  GS_EXPECT_THROW_WITH(Apply(*FindOption(options, "perturb"), Value(int64_t{-2}), "--perturb", &r),
-                       InputError, "--perturb: must be >= -1 (got -2)");
+      InputError, "--select-perturb: must be >= 1 (got 0)");
+  GS_EXPECT_THROW_WITH(Apply(*FindOption(options, "perturb"), Value(int64_t{-1}), "--perturb", &r),
+                       InputError, "--perturb: must be >= 0 (got -1)");
+  // none is the study's default (Python's None, JSON's null).
+  Apply(*FindOption(options, "perturb"), Value(std::monostate{}), "perturb", &r);
+  EXPECT_FALSE(r.perturb.has_value());
   GS_EXPECT_THROW_WITH(Apply(*FindOption(options, "threads"), Value(int64_t{5000}), "threads", &r),
                        InputError, "threads: must be [0, 1024]");
   r.orientations = "40,40";
   GS_EXPECT_THROW_WITH(ToStudyOptions(r, ShippedScene()), InputError, "run: orientations",
                        "given twice");
-  r.orientations.clear();
+  r.orientations = "";
+  GS_EXPECT_THROW_WITH(ToStudyOptions(r, ShippedScene()), InputError, "orientations");
+  r.orientations.reset();
   GS_EXPECT_THROW_WITH(ToStudyOptions(r, ShippedScene(), "/nonexistent/demos"), InputError,
                        "run: demos '/nonexistent/demos' is not a folder");
 }
@@ -195,7 +200,7 @@ TEST(RunRequest, AFileOfOptionsSetsThem) {
   EXPECT_FALSE(study.perturbation.physics.enabled);
   std::ofstream(file) << R"({"select_perturb": 0})";
   GS_EXPECT_THROW_WITH(ApplyConfig(RunOptions(), file, &r), InputError, "field 'select_perturb'",
-                       "must be >= 1 or -1");
+                       "must be >= 1");
 }
 
 TEST(SelectRequest, TheDefaultsAreTheLibrarysAndOptionsNestInTheSelections) {
