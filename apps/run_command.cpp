@@ -160,7 +160,7 @@ void AddRunCommand(CLI::App& app, int* exit_code) {
       "byte for byte, whatever --threads is (report.md and timing.json hold wall times).\n"
       "Defaults: 20 selection replays, as the shipped library, 20 gate replays and 2 replays\n"
       "per end of each physics factor in the sensitivity tables, 17 orientations, 2 methods,\n"
-      "every replay with the physics perturbed (--physics); 7 min measured on a 2-core\n"
+      "every replay with the physics perturbed (--physics); about 3 min (168 s) on a 2-core\n"
       "machine. With the shipped demonstrations the selection rebuilds\n"
       "learning_data/library.json's choices.\n"
       "--quick runs 40, 45, 60, 85 deg with 2 selection and 3 gate replays.\n"
