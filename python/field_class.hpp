@@ -6,11 +6,8 @@
 // an enum with an EnumRange becomes a pybind11 enum whose members are its ToString() names in
 // capitals (TrialOutcome.NOT_LIFTED, .label "not_lifted").
 
-#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
-
-#include <Eigen/Geometry>
 
 #include <cctype>
 #include <string>
@@ -18,6 +15,7 @@
 
 #include "common/field_codec.hpp"
 #include "common/field_list.hpp"
+#include "python/bindings.hpp"
 
 namespace graspsynth::python {
 
@@ -30,10 +28,8 @@ template <class T>
 py::object FieldToPython(const T& value) {
   using field_detail::FixedEigenVector;
   if constexpr (std::is_same_v<T, Eigen::Isometry3d>) {
-    py::array_t<double> pose({4, 4});
-    for (int i = 0; i < 4; ++i) {
-      for (int j = 0; j < 4; ++j) pose.mutable_at(i, j) = value.matrix()(i, j);
-    }
+    py::array_t<double> pose = NewArray({4, 4});
+    WriteMatrix(value, pose.mutable_data());
     return pose;
   } else if constexpr (field_detail::IsOptional<T>::value) {
     return value ? FieldToPython(*value) : py::none();
