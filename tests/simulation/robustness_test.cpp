@@ -80,7 +80,7 @@ TEST(EvaluateRobustness, TheThreadCountChangesNoBitOfAnyTrial) {
     EXPECT_EQ(many.successes, one.successes);
     EXPECT_EQ(many.score, one.score);
   }
-  // the example is robust (the benchmark's 100-trial figure is in benchmarks/README.md).
+  // the example is robust (its perturbed replays in benchmarks/README.md, "Simulation").
   EXPECT_GE(one.score, 0.75);
   EXPECT_GT(one.ci95.hi, one.score - 1e-12);
   EXPECT_LT(one.ci95.lo, one.score + 1e-12);
