@@ -17,6 +17,10 @@ The same C++ library as the ``graspsynth`` command, with numpy arrays in and out
   their outcomes, methods and statuses are enums (:class:`TrialOutcome`,
   :class:`SynthesisMethod`, :class:`SynthesisStatus`, ...).
 
+Every class has a one-line repr of its essentials (numbers to 6 significant digits); every
+function lists its options as keyword arguments with their defaults (``help()``,
+``inspect.signature``), and a mistyped keyword is a TypeError that names the nearest one.
+
 Units: SI, radians, except object orientations (``theta``, deg). Poses are 4 x 4 homogeneous
 matrices in the world frame (the arm's base, z up). Bad input raises :class:`InputError` (a
 ``ValueError``) with the C++ message, which names the file, field and value at fault.
@@ -185,7 +189,10 @@ def _extension_signature(function: Any) -> Optional[inspect.Signature]:
                 default = _DefaultText(default_text)
         parameters.append(inspect.Parameter(name.strip(), inspect.Parameter.POSITIONAL_OR_KEYWORD,
                                             default=default, annotation=annotation.strip()))
-    return inspect.Signature(parameters, return_annotation=match.group(2))
+    try:
+        return inspect.Signature(parameters, return_annotation=match.group(2))
+    except ValueError:  # a line this reading does not understand: left as pybind11 has it
+        return None
 
 
 def _keywords_checked(function: Any, name: str) -> Any:
