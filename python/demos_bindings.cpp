@@ -17,6 +17,7 @@
 #include "learning_data/demo_log.hpp"
 #include "learning_data/segmentation.hpp"
 #include "python/bindings.hpp"
+#include "python/repr.hpp"
 #include "python/request_bindings.hpp"
 #include "request/analyze_request.hpp"
 #include "scene/scene_model.hpp"
@@ -147,6 +148,13 @@ py::dict MotionArrays(const GraspingMotion& motion) {
 
 namespace {
 
+std::string DemoLogRepr(const DemoLog& l) {
+  std::string text =
+      "DemoLog(source=" + ReprText(l.source) + ", theta_deg=" + ReprNumber(l.metadata.theta_deg);
+  if (l.metadata.trial) text += ", trial=" + ReprText(*l.metadata.trial);
+  return text + ", samples=" + std::to_string(l.samples.size()) + ")";
+}
+
 void BindDemoLog(py::module_& m) {
   py::class_<DemoLog, std::shared_ptr<DemoLog>>(m, "DemoLog", R"doc(
 A demonstration log (format graspsynth-demo/1): one teleoperated trial, sampled.
@@ -154,57 +162,77 @@ A demonstration log (format graspsynth-demo/1): one teleoperated trial, sampled.
 Arrays are copies, one row per sample: t (N,) s; wrist_position (N, 3) m and wrist_quaternion
 (N, 4) (w, x, y, z), world; fingers (N, 16) rad; events (N,) (0 none, 1 grasp button, 2 end);
 object_position (N, 3) m.)doc")
-      .def_readonly("source", &DemoLog::source)
-      .def_property_readonly("theta_deg", [](const DemoLog& l) { return l.metadata.theta_deg; })
-      .def_property_readonly("trial", [](const DemoLog& l) { return l.metadata.trial; })
-      .def_property_readonly("operator_name",
-                             [](const DemoLog& l) { return l.metadata.operator_name; })
-      .def_property_readonly("sample_rate_hz",
-                             [](const DemoLog& l) { return l.metadata.sample_rate_hz; })
-      .def_property_readonly("metadata_extra",
-                             [](const DemoLog& l) {
-                               py::dict d;
-                               for (const auto& [k, v] : l.metadata.extra) d[py::str(k)] = v;
-                               return d;
-                             })
-      .def("__len__", [](const DemoLog& l) { return l.samples.size(); })
-      .def_property_readonly("t",
-                             [](const DemoLog& l) {
-                               return Column(l.samples, 0,
-                                             [](const DemoSample& s, double* o) { *o = s.t; });
-                             })
-      .def_property_readonly("wrist_position",
-                             [](const DemoLog& l) {
-                               return Column(l.samples, 3, [](const DemoSample& s, double* o) {
-                                 std::copy(s.p_WH.data(), s.p_WH.data() + 3, o);
-                               });
-                             })
-      .def_property_readonly("wrist_quaternion",
-                             [](const DemoLog& l) {
-                               return Column(l.samples, 4, [](const DemoSample& s, double* o) {
-                                 WriteQuaternion(s.q_WH, o);
-                               });
-                             })
-      .def_property_readonly("fingers",
-                             [](const DemoLog& l) {
-                               return Column(l.samples, kHandDof,
-                                             [](const DemoSample& s, double* o) {
-                                               std::copy(s.f.data(), s.f.data() + kHandDof, o);
-                                             });
-                             })
-      .def_property_readonly("events",
-                             [](const DemoLog& l) {
-                               py::array_t<int8_t> out(static_cast<py::ssize_t>(l.samples.size()));
-                               for (size_t i = 0; i < l.samples.size(); ++i) {
-                                 out.mutable_data()[i] = static_cast<int8_t>(l.samples[i].event);
-                               }
-                               return out;
-                             })
-      .def_property_readonly("object_position", [](const DemoLog& l) {
-        return Column(l.samples, 3, [](const DemoSample& s, double* o) {
-          std::copy(s.p_WO.data(), s.p_WO.data() + 3, o);
-        });
-      });
+      .def("__repr__", &DemoLogRepr, "one line: the file, orientation, trial and samples")
+      .def_readonly("source", &DemoLog::source, "The log file it was read from")
+      .def_property_readonly(
+          "theta_deg", [](const DemoLog& l) { return l.metadata.theta_deg; },
+          "The object orientation, deg")
+      .def_property_readonly(
+          "trial", [](const DemoLog& l) { return l.metadata.trial; },
+          "The trial's name in the log's metadata, or None")
+      .def_property_readonly(
+          "operator_name", [](const DemoLog& l) { return l.metadata.operator_name; },
+          "The operator's name in the log's metadata, or None")
+      .def_property_readonly(
+          "sample_rate_hz", [](const DemoLog& l) { return l.metadata.sample_rate_hz; },
+          "The nominal sample rate in the log's metadata, Hz, or None")
+      .def_property_readonly(
+          "metadata_extra",
+          [](const DemoLog& l) {
+            py::dict d;
+            for (const auto& [k, v] : l.metadata.extra) d[py::str(k)] = v;
+            return d;
+          },
+          "The log's other metadata, {key: text}")
+      .def(
+          "__len__", [](const DemoLog& l) { return l.samples.size(); }, "the number of samples")
+      .def_property_readonly(
+          "t",
+          [](const DemoLog& l) {
+            return Column(l.samples, 0, [](const DemoSample& s, double* o) { *o = s.t; });
+          },
+          "The samples' times (N,), s")
+      .def_property_readonly(
+          "wrist_position",
+          [](const DemoLog& l) {
+            return Column(l.samples, 3, [](const DemoSample& s, double* o) {
+              std::copy(s.p_WH.data(), s.p_WH.data() + 3, o);
+            });
+          },
+          "The wrist (hand mount) position (N, 3), m, world")
+      .def_property_readonly(
+          "wrist_quaternion",
+          [](const DemoLog& l) {
+            return Column(l.samples, 4,
+                          [](const DemoSample& s, double* o) { WriteQuaternion(s.q_WH, o); });
+          },
+          "The wrist orientation (N, 4), unit quaternions (w, x, y, z), world")
+      .def_property_readonly(
+          "fingers",
+          [](const DemoLog& l) {
+            return Column(l.samples, kHandDof, [](const DemoSample& s, double* o) {
+              std::copy(s.f.data(), s.f.data() + kHandDof, o);
+            });
+          },
+          "The finger joint angles (N, 16), rad")
+      .def_property_readonly(
+          "events",
+          [](const DemoLog& l) {
+            py::array_t<int8_t> out(static_cast<py::ssize_t>(l.samples.size()));
+            for (size_t i = 0; i < l.samples.size(); ++i) {
+              out.mutable_data()[i] = static_cast<int8_t>(l.samples[i].event);
+            }
+            return out;
+          },
+          "The events (N,), int8: 0 none, 1 grasp button, 2 end")
+      .def_property_readonly(
+          "object_position",
+          [](const DemoLog& l) {
+            return Column(l.samples, 3, [](const DemoSample& s, double* o) {
+              std::copy(s.p_WO.data(), s.p_WO.data() + 3, o);
+            });
+          },
+          "The object centre (N, 3), m, world");
 }
 
 void BindDemoAnalysis(py::module_& m) {

@@ -16,6 +16,7 @@
 #include "kinematics/arm_ik.hpp"
 #include "kinematics/robot_description.hpp"
 #include "python/bindings.hpp"
+#include "python/repr.hpp"
 #include "scene/scene_model.hpp"
 
 namespace graspsynth::python {
@@ -260,7 +261,12 @@ Robot() reads the shipped description (models/pa10_gifu3.urdf, or below $GRASPSY
 Robot(path) another one. Raises InputError naming the file and the element at fault.
 Joint values are radians, poses 4 x 4 homogeneous matrices in the world frame (the arm's base),
 metres.)doc")
-      .def(py::init(&LoadRobot), py::arg("path") = py::none())
+      .def(py::init(&LoadRobot), py::arg("path") = py::none(),
+           "Reads the robot description at `path` (the shipped one when None)")
+      .def(
+          "__repr__",
+          [](const RobotModel& r) { return "Robot(source=" + ReprText(r.source) + ")"; },
+          "one line: the description file")
       .def_readonly("source", &RobotModel::source, "The description file it was read from")
       .def_property_readonly(
           "joint_lower", [](const RobotModel& r) { return VectorArray(r.arm.lower().data(), 7); },
@@ -333,10 +339,6 @@ them for a batch.)doc")
       "default_robot", [] { return std::const_pointer_cast<RobotModel>(RobotOrDefault(nullptr)); },
       "The shipped robot (models/pa10_gifu3.urdf, or below $GRASPSYNTH_DATA_DIR), read once and "
       "shared by every call that is given no robot");
-  m.def(
-      "default_scene", [] { return std::const_pointer_cast<SceneModel>(SceneOrDefault(nullptr)); },
-      "The shipped scene (models/scene.json), read once and shared by every call that is given "
-      "no scene");
 
   // the codes of IkStatus, by name: graspsynth.IkStatus (python/graspsynth/__init__.py) is
   // made from them.
@@ -353,10 +355,24 @@ The scene: the table, the object and where it stands (models/scene.json by defau
 
 Scene(path=None, object=None): object replaces the scene's object with a shipped one by name
 (models/objects/NAME.json) or an object file. Raises InputError naming the file at fault.)doc")
-      .def(py::init(&LoadScene), py::arg("path") = py::none(), py::arg("object") = py::none())
-      .def_readonly("source", &SceneModel::source)
-      .def_property_readonly("object_name", [](const SceneModel& s) { return s.object.name; })
-      .def_property_readonly("object_source", [](const SceneModel& s) { return s.object.source; })
+      .def(py::init(&LoadScene), py::arg("path") = py::none(), py::arg("object") = py::none(),
+           "Reads the scene file at `path` (the shipped one when None); `object` replaces its "
+           "object")
+      .def(
+          "__repr__",
+          [](const SceneModel& s) {
+            return "Scene(object_name=" + ReprText(s.object.name) + ", object_centre_xy=(" +
+                   ReprNumber(s.object_centre_xy.x()) + ", " + ReprNumber(s.object_centre_xy.y()) +
+                   "), source=" + ReprText(s.source) + ")";
+          },
+          "one line: the object, where it stands (m), the scene file")
+      .def_readonly("source", &SceneModel::source, "The scene file it was read from")
+      .def_property_readonly(
+          "object_name", [](const SceneModel& s) { return s.object.name; },
+          "The object's name, e.g. \"pan\"")
+      .def_property_readonly(
+          "object_source", [](const SceneModel& s) { return s.object.source; },
+          "The object file it was read from")
       .def_property_readonly(
           "object_mass", [](const SceneModel& s) { return s.object.Inertia().mass; }, "kg")
       .def_property_readonly(
@@ -393,6 +409,12 @@ Scene(path=None, object=None): object replaces the scene's object with a shipped
             return out;
           },
           py::arg("theta_deg"), "Pose of the object resting at orientation theta_deg, 4 x 4");
+
+  // after the class, so that its signature names the Python class
+  m.def(
+      "default_scene", [] { return std::const_pointer_cast<SceneModel>(SceneOrDefault(nullptr)); },
+      "The shipped scene (models/scene.json), read once and shared by every call that is given "
+      "no scene");
 }
 
 }  // namespace

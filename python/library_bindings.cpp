@@ -16,6 +16,7 @@
 #include "learning_data/grasp_library.hpp"
 #include "learning_data/representative_selection.hpp"
 #include "python/bindings.hpp"
+#include "python/repr.hpp"
 #include "python/request_bindings.hpp"
 #include "request/select_request.hpp"
 #include "request/synthesize_request.hpp"
@@ -150,6 +151,32 @@ std::shared_ptr<const GraspLibrary> LibraryArgument(const py::object& library,
 
 namespace {
 
+std::string LibraryRepr(const GraspLibrary& l) {
+  std::string text =
+      "GraspLibrary(source=" + ReprText(l.source) + ", entries=" + std::to_string(l.entries.size());
+  if (!l.entries.empty()) {
+    text += ", theta_deg=" + ReprNumber(l.entries.front().theta_deg) + ".." +
+            ReprNumber(l.entries.back().theta_deg);
+  }
+  return text + ", perturbations=" + std::to_string(l.perturbations) + ")";
+}
+
+std::string GraspRepr(const Grasp& g) {
+  const SynthesisResult& s = g.validated.synthesis;
+  std::string text = "Grasp(theta_deg=" + ReprNumber(s.theta_deg);
+  if (!s.ok()) {
+    return text + ", ok=False, status=" + ReprEnum(py::cast(s.status)) +
+           ", message=" + ReprText(s.message) + ")";
+  }
+  text += ", method_used=" + ReprEnum(py::cast(s.used));
+  if (s.fallback) text += ", fallback=True";
+  text += std::string(", passed=") +
+          (g.validated.gate_run && g.validated.gate.passed ? "True" : "False");
+  const RobustnessResult& r = g.validated.gate.robustness;
+  text += ", robustness=" + (g.validated.gate.robustness_run ? ReprNumber(r.score) : "None");
+  return text + ")";
+}
+
 void BindGraspLibrary(py::module_& m) {
   py::class_<GraspLibrary, std::shared_ptr<GraspLibrary>>(m, "GraspLibrary", R"doc(
 A grasp library (format graspsynth-library/1): the representative demonstration of each
@@ -157,13 +184,20 @@ orientation, chosen by robustness in physics, with every scored demonstration.
 
 GraspLibrary(path=None, object="pan") reads a library file (the object's shipped library by
 default). Raises InputError naming the file and the field at fault.)doc")
-      .def(py::init(&LoadLibrary), py::arg("path") = py::none(), py::arg("object") = "pan")
-      .def_readonly("source", &GraspLibrary::source)
-      .def_readonly("demo_directory", &GraspLibrary::demo_directory)
-      .def_readonly("seed", &GraspLibrary::seed)
-      .def_readonly("perturbations", &GraspLibrary::perturbations)
-      .def_readonly("tie_rule", &GraspLibrary::tie_rule)
-      .def("__len__", [](const GraspLibrary& l) { return l.entries.size(); })
+      .def(py::init(&LoadLibrary), py::arg("path") = py::none(), py::arg("object") = "pan",
+           "Reads the library file at `path` (the object's shipped library when None)")
+      .def("__repr__", &LibraryRepr, "one line: the file, entries, orientations, replays")
+      .def_readonly("source", &GraspLibrary::source, "The library file it was read from")
+      .def_readonly("demo_directory", &GraspLibrary::demo_directory,
+                    "The folder of the demonstrations it was selected from")
+      .def_readonly("seed", &GraspLibrary::seed, "The seed of the selection's perturbations")
+      .def_readonly("perturbations", &GraspLibrary::perturbations,
+                    "Perturbed replays per demonstration in the selection")
+      .def_readonly("tie_rule", &GraspLibrary::tie_rule,
+                    "How the selection broke ties between equal scores")
+      .def(
+          "__len__", [](const GraspLibrary& l) { return l.entries.size(); },
+          "the number of entries (orientations)")
       .def_property_readonly(
           "thetas",
           [](const GraspLibrary& l) {
@@ -217,16 +251,29 @@ Synthesizer(library=None, robot=None, scene=None). library: a GraspLibrary or a 
 (the scene object's shipped library by default). synthesize() is safe to call from several
 threads at once, and releases the GIL.)doc")
       .def(py::init(&MakeSynthesizer), py::arg("library") = py::none(),
-           py::arg("robot") = py::none(), py::arg("scene") = py::none())
-      .def_property_readonly("theta_range",
-                             [](const Synthesizer& s) {
-                               return py::make_tuple(s.model.theta_min_deg(),
-                                                     s.model.theta_max_deg());
-                             })
+           py::arg("robot") = py::none(), py::arg("scene") = py::none(),
+           "Builds the synthesis models of `library` (a GraspLibrary, a path, or None: the "
+           "shipped one) for `robot` and `scene` (the shipped ones when None)")
+      .def(
+          "__repr__",
+          [](const Synthesizer& s) {
+            return "Synthesizer(object_name=" + ReprText(s.model.scene().object.name) +
+                   ", theta_range=(" + ReprNumber(s.model.theta_min_deg()) + ", " +
+                   ReprNumber(s.model.theta_max_deg()) + "))";
+          },
+          "one line: the object and the library's orientations, deg")
+      .def_property_readonly(
+          "theta_range",
+          [](const Synthesizer& s) {
+            return py::make_tuple(s.model.theta_min_deg(), s.model.theta_max_deg());
+          },
+          "(lowest, highest) orientation of the library, deg: interp's range")
       .def("_synthesize", &Synthesize, py::arg("options"), R"doc(
 Synthesizer.synthesize's work (graspsynth/__init__.py gives it its signature): the options of
 request_options("synthesize") as a dict, theta among them.)doc");
+}
 
+void BindGrasp(py::module_& m) {
   py::class_<Grasp, std::shared_ptr<Grasp>>(m, "Grasp", R"doc(
 A synthesized grasp and its physics validation.
 
@@ -235,37 +282,69 @@ passed: it passed the physics gate. trajectory: the robot's Trajectory (reach, g
 lift). motion / unrefined: the grasping motion after / before refinement, as arrays.
 report: the grasp file's content as a dict (graspsynth-grasp/1). save(path) writes the grasp
 file as `graspsynth synthesize --out` does.)doc")
-      .def_property_readonly("ok", [](const Grasp& g) { return g.validated.synthesis.ok(); })
-      .def_property_readonly("message",
-                             [](const Grasp& g) { return g.validated.synthesis.message; })
-      .def_property_readonly("theta_deg",
-                             [](const Grasp& g) { return g.validated.synthesis.theta_deg; })
+      .def("__repr__", &GraspRepr, "one line: orientation, method, gate, robustness")
       .def_property_readonly(
-          "method_used", [](const Grasp& g) { return std::string(ToString(Synthesized(g).used)); })
-      .def_property_readonly("fallback", [](const Grasp& g) { return Synthesized(g).fallback; })
+          "ok", [](const Grasp& g) { return g.validated.synthesis.ok(); },
+          "A grasp was synthesized (status OK); else message says why")
       .def_property_readonly(
-          "passed", [](const Grasp& g) { return g.validated.gate_run && g.validated.gate.passed; })
-      .def_property_readonly("gate_reason", [](const Grasp& g) { return g.validated.gate.reason; })
-      .def_property_readonly("robustness",
-                             [](const Grasp& g) {
-                               const RobustnessResult& r = g.validated.gate.robustness;
-                               return g.validated.gate.robustness_run
-                                          ? py::object(py::float_(r.score))
-                                          : py::object(py::none());
-                             })
-      .def_property_readonly("trajectory",
-                             [](const Grasp& g) {
-                               return std::make_shared<JointTrajectory>(Synthesized(g).trajectory);
-                             })
-      .def_property_readonly("motion",
-                             [](const Grasp& g) { return MotionArrays(Synthesized(g).motion); })
-      .def_property_readonly("unrefined",
-                             [](const Grasp& g) { return MotionArrays(Synthesized(g).unrefined); })
+          "status", [](const Grasp& g) { return g.validated.synthesis.status; },
+          "How the synthesis ended (SynthesisStatus)")
+      .def_property_readonly(
+          "message", [](const Grasp& g) { return g.validated.synthesis.message; },
+          "Why no grasp was synthesized (e.g. no IK solution along the motion); \"\" when ok")
+      .def_property_readonly(
+          "theta_deg", [](const Grasp& g) { return g.validated.synthesis.theta_deg; },
+          "The object orientation asked for, deg")
+      .def_property_readonly(
+          "method", [](const Grasp& g) { return g.requested; },
+          "The method asked for (SynthesisMethod)")
+      .def_property_readonly(
+          "method_used", [](const Grasp& g) { return Synthesized(g).used; },
+          "The method that made the grasp (SynthesisMethod; .label gives \"interp\"); another "
+          "than the one asked for when fallback is True. Raises InputError when not ok")
+      .def_property_readonly(
+          "fallback", [](const Grasp& g) { return Synthesized(g).fallback; },
+          "True when a method other than the requested one made the grasp (the requested one "
+          "could not: an unblendable bracket, a weak demonstration); the grasp file's report "
+          "says why. Raises InputError when not ok")
+      .def_property_readonly(
+          "passed", [](const Grasp& g) { return g.validated.gate_run && g.validated.gate.passed; },
+          "The grasp passed the physics gate: its nominal trial succeeded and its robustness "
+          "reached the threshold")
+      .def_property_readonly(
+          "gate_reason", [](const Grasp& g) { return g.validated.gate.reason; },
+          "The physics gate's verdict in words, e.g. \"nominal trial success (lift 0.12 m), "
+          "robustness 2/2 = 1 >= 0.8\"; \"\" when the gate did not run")
+      .def_property_readonly(
+          "robustness",
+          [](const Grasp& g) {
+            const RobustnessResult& r = g.validated.gate.robustness;
+            return g.validated.gate.robustness_run ? py::object(py::float_(r.score))
+                                                   : py::object(py::none());
+          },
+          "The gate's robustness score (successes / perturbed replays), or "
+          "None when no replay ran (perturb=0, or no grasp)")
+      .def_property_readonly(
+          "trajectory",
+          [](const Grasp& g) {
+            return std::make_shared<JointTrajectory>(Synthesized(g).trajectory);
+          },
+          "The robot's joint Trajectory: reach, grasping motion, lift")
+      .def_property_readonly(
+          "motion", [](const Grasp& g) { return MotionArrays(Synthesized(g).motion); },
+          "The grasping motion after refinement, as arrays: t (N,) s, "
+          "position (N, 3) m, quaternion (N, 4) (w, x, y, z), fingers (N, 16) "
+          "rad")
+      .def_property_readonly(
+          "unrefined", [](const Grasp& g) { return MotionArrays(Synthesized(g).unrefined); },
+          "The grasping motion before refinement (the blend), as motion's "
+          "arrays")
       .def_property_readonly(
           "report",
           [](const Grasp& g) {
             return JsonTextToPython(GraspFileToJson(Synthesized(g), &g.validated.gate, false));
-          })
+          },
+          "The grasp file's content (graspsynth-grasp/1) as a dict")
       .def(
           "to_json",
           [](const Grasp& g, bool force) {
@@ -292,6 +371,7 @@ file as `graspsynth synthesize --out` does.)doc")
 void BindLibrary(py::module_& m) {
   BindGraspLibrary(m);
   BindSynthesis(m);
+  BindGrasp(m);
 }
 
 }  // namespace graspsynth::python

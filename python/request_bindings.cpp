@@ -55,6 +55,15 @@ int64_t IntegerOf(py::handle value, const std::string& where) {
   }
 }
 
+// A member of one of the module's enums (SynthesisMethod.LINE) stands for its label ("line"),
+// so that an option of texts takes either; anything else is returned as it is.
+py::object TextOrLabel(py::handle value) {
+  if (py::hasattr(py::type::of(value), "__members__") && py::hasattr(value, "label")) {
+    return value.attr("label");
+  }
+  return py::reinterpret_borrow<py::object>(value);
+}
+
 // The requests request_options knows, for its message.
 constexpr const char* kRequestNames =
     "synthesize, generalize, run, select, simulate, robustness, analyze, segment, fit_wrist_line";
@@ -79,7 +88,7 @@ request::Value ValueFromPython(const request::OptionInfo& info, py::handle value
     }
     case OptionKind::kNumber:
       return NumberOf(value, where);
-    case OptionKind::kText:
+    case OptionKind::kText: {
       if (info.number_list && !py::isinstance<py::str>(value)) {
         std::string text;
         for (double x : NumbersOf(value, where))
@@ -87,23 +96,29 @@ request::Value ValueFromPython(const request::OptionInfo& info, py::handle value
         if (text.empty()) throw InputError(where + ": no number given (an empty list)");
         return text;
       }
-      if (!py::isinstance<py::str>(value)) {
+      const py::object text = TextOrLabel(value);
+      if (!py::isinstance<py::str>(text)) {
         throw InputError(where + ": needs a text, got " + std::string(py::repr(value)));
       }
-      return value.cast<std::string>();
+      return text.cast<std::string>();
+    }
     case OptionKind::kTextList: {
-      if (py::isinstance<py::str>(value)) {
+      const py::object one = TextOrLabel(value);
+      if (py::isinstance<py::str>(one)) {
         std::vector<std::string> texts;
-        for (std::string_view t : SplitFields(value.cast<std::string>(), ','))
-          texts.emplace_back(t);
+        for (std::string_view t : SplitFields(one.cast<std::string>(), ',')) texts.emplace_back(t);
         return texts;
       }
+      if (!py::isinstance<py::iterable>(value)) {
+        throw InputError(where + ": needs texts, got " + std::string(py::repr(value)));
+      }
       std::vector<std::string> texts;
-      for (py::handle x : value.cast<py::iterable>()) {
-        if (!py::isinstance<py::str>(x)) {
+      for (py::handle x : value) {
+        const py::object text = TextOrLabel(x);
+        if (!py::isinstance<py::str>(text)) {
           throw InputError(where + ": needs texts, got " + std::string(py::repr(x)));
         }
-        texts.push_back(x.cast<std::string>());
+        texts.push_back(text.cast<std::string>());
       }
       return texts;
     }

@@ -17,6 +17,7 @@
 #include "motion/joint_trajectory.hpp"
 #include "python/bindings.hpp"
 #include "python/field_class.hpp"
+#include "python/repr.hpp"
 #include "python/request_bindings.hpp"
 #include "request/simulate_request.hpp"
 #include "scene/scene_model.hpp"
@@ -112,6 +113,17 @@ std::shared_ptr<SimulationModel> MakeSimulation(const std::shared_ptr<RobotModel
   return std::make_shared<SimulationModel>(*RobotOrDefault(robot), *SceneOrDefault(scene));
 }
 
+std::string TrajectoryRepr(const JointTrajectory& tr) {
+  std::string text = "Trajectory(theta_deg=" + ReprNumber(tr.theta_deg) +
+                     ", samples=" + std::to_string(tr.samples.size()) +
+                     ", duration=" + ReprNumber(tr.samples.empty() ? 0.0 : tr.duration());
+  if (tr.object_xy) {
+    text += ", object_xy=(" + ReprNumber(tr.object_xy->x()) + ", " + ReprNumber(tr.object_xy->y()) +
+            ")";
+  }
+  return text + ")";
+}
+
 void BindTrajectory(py::module_& m) {
   py::class_<JointTrajectory, std::shared_ptr<JointTrajectory>>(m, "Trajectory", R"doc(
 A joint trajectory of the robot (format graspsynth-trajectory/1): what `graspsynth simulate`
@@ -125,7 +137,8 @@ Trajectory.load(path) reads a trajectory file or a grasp file's trajectory. The 
 and hand are read-only views into the trajectory (no copy).)doc")
       .def(py::init(&MakeTrajectory), py::arg("t"), py::arg("arm"), py::arg("hand"),
            py::arg("theta_deg") = 0.0, py::arg("robot") = py::none(),
-           py::arg("object_xy") = py::none())
+           py::arg("object_xy") = py::none(),
+           "Builds a trajectory from arrays, checked against the robot's joint limits")
       .def_static(
           "load",
           [](const std::filesystem::path& path, const std::shared_ptr<RobotModel>& robot_arg) {
@@ -135,7 +148,7 @@ and hand are read-only views into the trajectory (no copy).)doc")
           },
           py::arg("path"), py::arg("robot") = py::none(),
           "Reads a graspsynth-trajectory/1 file, or the trajectory of a graspsynth-grasp/1 file")
-      .def_readonly("theta_deg", &JointTrajectory::theta_deg)
+      .def_readonly("theta_deg", &JointTrajectory::theta_deg, "the object orientation, deg")
       .def_property(
           "object_xy",
           [](const JointTrajectory& tr) -> py::object {
@@ -144,25 +157,33 @@ and hand are read-only views into the trajectory (no copy).)doc")
           },
           [](JointTrajectory& tr, const py::object& xy) { tr.object_xy = AtArgument(xy); },
           "The object centre (x, y) on the table, m, or None: the scene's object centre")
-      .def_property_readonly("duration", &JointTrajectory::duration, "s")
-      .def("__len__", [](const JointTrajectory& tr) { return tr.samples.size(); })
-      .def_property_readonly("t",
-                             [](py::object self) {
-                               const auto& s = Samples(self);
-                               return FieldView(s, &s.front().t, {}, {}, self);
-                             })
-      .def_property_readonly("arm",
-                             [](py::object self) {
-                               const auto& s = Samples(self);
-                               return FieldView(s, s.front().arm.data(), {kArmDof},
-                                                {sizeof(double)}, self);
-                             })
-      .def_property_readonly("hand",
-                             [](py::object self) {
-                               const auto& s = Samples(self);
-                               return FieldView(s, s.front().hand.data(), {kHandDof},
-                                                {sizeof(double)}, self);
-                             })
+      .def_property_readonly("duration", &JointTrajectory::duration,
+                             "the time from the first sample to the last, s")
+      .def(
+          "__len__", [](const JointTrajectory& tr) { return tr.samples.size(); },
+          "the number of samples")
+      .def("__repr__", &TrajectoryRepr, "one line: orientation, samples, duration")
+      .def_property_readonly(
+          "t",
+          [](py::object self) {
+            const auto& s = Samples(self);
+            return FieldView(s, &s.front().t, {}, {}, self);
+          },
+          "the samples' times (N,), s, strictly increasing (read-only view)")
+      .def_property_readonly(
+          "arm",
+          [](py::object self) {
+            const auto& s = Samples(self);
+            return FieldView(s, s.front().arm.data(), {kArmDof}, {sizeof(double)}, self);
+          },
+          "the arm's joint angles (N, 7), rad (read-only view)")
+      .def_property_readonly(
+          "hand",
+          [](py::object self) {
+            const auto& s = Samples(self);
+            return FieldView(s, s.front().hand.data(), {kHandDof}, {sizeof(double)}, self);
+          },
+          "the hand's joint angles (N, 16), rad (read-only view)")
       .def_property_readonly(
           "waypoints",
           [](const JointTrajectory& tr) {
@@ -192,16 +213,35 @@ and hand are read-only views into the trajectory (no copy).)doc")
 }
 
 void BindTrial(py::module_& m) {
-  BindFieldClass<TrialResult, std::shared_ptr<TrialResult>>(m, "TrialResult", R"doc(
+  BindFieldClass<TrialResult, std::shared_ptr<TrialResult>>(
+      m, "TrialResult", R"doc(
 The outcome of one grasp-and-lift trial in ODE: a property per field of the C++ TrialResult
 (outcome, reason, lift, max_lift, max_penetration (m), simulated_time, planned_time, wall_time,
 cpu_time (s), final_object_pose (4 x 4, world), hold (HoldQuality), statistics, counts),
 success, to_dict(), and states: when the trial recorded (record_interval > 0), the time series
 as read-only arrays: t (N,), arm (N, 7), hand (N, 16), object_pose (N, 4, 4), wrist_pose (N, 4,
-4).)doc")
+4).)doc",
+      {{"outcome", "how the trial ended (TrialOutcome)"},
+       {"reason", "one sentence, with the figures that decided the outcome"},
+       {"lift", "object centre above its rest height at the end, m"},
+       {"max_lift", "the highest the object got, m"},
+       {"max_penetration", "the deepest contact involving the object, m"},
+       {"simulated_time", "s"},
+       {"planned_time",
+        "the trajectory and the hold, s (more than simulated_time if the trial stopped)"},
+       {"wall_time", "s"},
+       {"cpu_time", "s of the calling thread's CPU time"},
+       {"final_object_pose", "the object's pose at the end, 4 x 4, world"},
+       {"hold", "how the object sat in the hand at the end (HoldQuality)"},
+       {"statistics", "the steps and where their time went (StepStatistics)"},
+       {"counts", "the bodies, joints and geoms of the world (WorldCounts)"}})
       .def_property_readonly("success", &TrialResult::success,
                              "the outcome is success: lifted and held, touching only the hand")
-      .def_property_readonly("states", &StateArrays);
+      .def_property_readonly(
+          "states", &StateArrays,
+          "the recorded time series (record_interval > 0) as a dict of "
+          "read-only arrays: t (N,) s, arm (N, 7) rad, hand (N, 16) rad, "
+          "object_pose and wrist_pose (N, 4, 4), world; empty when not recorded");
 
   py::class_<SimulationModel, std::shared_ptr<SimulationModel>>(m, "Simulation", R"doc(
 The ODE world of the robot, the table and the object: Simulation(robot=None, scene=None)
@@ -210,7 +250,16 @@ The ODE world of the robot, the table and the object: Simulation(robot=None, sce
 trial() plays a trajectory once; robustness() replays it under perturbation (time scaling,
 pose and finger noise, and the physics: friction, contact stiffness and damping, mass, centre
 of mass, servo force, step). Both release the GIL, so Python threads run trials in parallel.)doc")
-      .def(py::init(&MakeSimulation), py::arg("robot") = py::none(), py::arg("scene") = py::none())
+      .def(py::init(&MakeSimulation), py::arg("robot") = py::none(), py::arg("scene") = py::none(),
+           "The world of `robot` and `scene` (Robot, Scene; the shipped ones when None)")
+      .def(
+          "__repr__",
+          [](const SimulationModel& model) {
+            return "Simulation(robot=" + ReprText(model.robot().source) +
+                   ", scene=" + ReprText(model.scene().source) +
+                   ", object=" + ReprText(model.scene().object.name) + ")";
+          },
+          "one line: the robot's and the scene's files, the object")
       .def(
           "_trial",
           [](const SimulationModel& model, const JointTrajectory& trajectory,

@@ -72,7 +72,7 @@ def main():
         lifted += trial.success
         wrist = grasp.motion["position"][-1] - scene.object_pose(theta)[:3, 3]
         rows.append((theta, grasp.robustness or 0.0, grasp.passed, wrist[0], wrist[1]))
-        print(f"{theta:6.1f} deg: {grasp.method_used:8s} robustness {grasp.robustness or 0:.2f}"
+        print(f"{theta:6.1f} deg: {grasp.method_used.label:8s} robustness {grasp.robustness or 0:.2f}"
               f"  gate {'passed' if grasp.passed else 'failed'}  trial {trial.outcome.label}")
     print(f"{lifted} of {len(thetas)} synthesized grasps lifted the pan")
 

@@ -17,6 +17,10 @@ The same C++ library as the ``graspsynth`` command, with numpy arrays in and out
   their outcomes, methods and statuses are enums (:class:`TrialOutcome`,
   :class:`SynthesisMethod`, :class:`SynthesisStatus`, ...).
 
+Every class has a one-line repr of its essentials (numbers to 6 significant digits); every
+function lists its options as keyword arguments with their defaults (``help()``,
+``inspect.signature``), and a mistyped keyword is a TypeError that names the nearest one.
+
 Units: SI, radians, except object orientations (``theta``, deg). Poses are 4 x 4 homogeneous
 matrices in the world frame (the arm's base, z up). Bad input raises :class:`InputError` (a
 ``ValueError``) with the C++ message, which names the file, field and value at fault.
@@ -24,10 +28,13 @@ matrices in the world frame (the arm's base, z up). Bad input raises :class:`Inp
 
 from __future__ import annotations
 
+import ast
+import difflib
 import enum
 import functools
 import inspect
 import os
+import re
 import threading
 from typing import Any, Iterable, Optional, Sequence, Union
 
@@ -90,6 +97,33 @@ __all__ = [
 PathLike = Union[str, "os.PathLike[str]"]
 
 
+def _reject_unknown_keywords(name: str, parameters: Iterable[str], kwargs: dict) -> None:
+    """Raises a short TypeError for a keyword that ``name`` does not take, naming the nearest
+    one it does take (Python's own error names no alternative, pybind11's lists the whole
+    signature)."""
+    known = list(parameters)
+    for key in kwargs:
+        if key not in known:
+            nearest = difflib.get_close_matches(key, known, n=1, cutoff=0.6)
+            hint = f"; did you mean '{nearest[0]}'?" if nearest else ""
+            raise TypeError(f"{name}() got an unexpected keyword argument '{key}'{hint}")
+
+
+def _suggest_keywords(function):
+    """Makes a mistyped keyword argument of ``function`` a short TypeError with the nearest
+    valid keyword (see :func:`_reject_unknown_keywords`)."""
+    parameters = inspect.signature(function).parameters
+    keywords = [n for n, p in parameters.items() if p.kind in (
+        inspect.Parameter.POSITIONAL_OR_KEYWORD, inspect.Parameter.KEYWORD_ONLY)]
+
+    @functools.wraps(function)
+    def call(*args: Any, **kwargs: Any) -> Any:
+        _reject_unknown_keywords(function.__name__, keywords, kwargs)
+        return function(*args, **kwargs)
+
+    return call
+
+
 def _ik_status_enum() -> type:
     # One member per value of the C++ IkStatus, named by its label in capitals (the extension's
     # IK_STATUS_CODES), so that nothing here mirrors the C++ list.
@@ -110,6 +144,101 @@ def _ik_status_enum() -> type:
 
 IkStatus = _ik_status_enum()
 
+
+class _DefaultText:
+    """A default that pybind11 gives as text only (an object's repr): shown as that text."""
+
+    def __init__(self, text: str):
+        self.text = text
+
+    def __repr__(self) -> str:
+        return self.text
+
+
+def _split_parameters(text: str) -> list[str]:
+    """The comma-separated parts of a parameter list, commas inside brackets kept."""
+    parts, depth, start = [], 0, 0
+    for i, c in enumerate(text):
+        depth += c in "([{"
+        depth -= c in ")]}"
+        if c == "," and depth == 0:
+            parts.append(text[start:i].strip())
+            start = i + 1
+    if text[start:].strip():
+        parts.append(text[start:].strip())
+    return parts
+
+
+def _extension_signature(function: Any) -> Optional[inspect.Signature]:
+    """The signature of an extension function, read from the line pybind11 writes at the top of
+    its docstring (``fk(self: Robot, q: numpy.ndarray) -> numpy.ndarray``); None when it has
+    no such line (an overloaded function)."""
+    first = (function.__doc__ or "").lstrip().split("\n", 1)[0]
+    match = re.fullmatch(r"[\w.]+\((.*)\) -> (.*)", first)
+    if not match:
+        return None
+    parameters = []
+    for part in _split_parameters(match.group(1)):
+        name, _, rest = part.partition(":")
+        annotation, _, default_text = rest.partition(" = ")
+        default: Any = inspect.Parameter.empty
+        if default_text:
+            try:
+                default = ast.literal_eval(default_text)
+            except (ValueError, SyntaxError):
+                default = _DefaultText(default_text)
+        parameters.append(inspect.Parameter(name.strip(), inspect.Parameter.POSITIONAL_OR_KEYWORD,
+                                            default=default, annotation=annotation.strip()))
+    try:
+        return inspect.Signature(parameters, return_annotation=match.group(2))
+    except ValueError:  # a line this reading does not understand: left as pybind11 has it
+        return None
+
+
+def _keywords_checked(function: Any, name: str) -> Any:
+    """``function`` (of the extension) behind a check of its keyword arguments: a mistyped one
+    is a short TypeError naming the nearest (pybind11's own lists every signature), and
+    ``inspect.signature`` gives its parameters and defaults. ``__wrapped__`` is the extension's
+    function."""
+    signature = _extension_signature(function)
+    if signature is None:
+        return function
+    keywords = [p for p in signature.parameters if p != "self"]
+
+    @functools.wraps(function)
+    def call(*args: Any, **kwargs: Any) -> Any:
+        if kwargs:
+            _reject_unknown_keywords(name, keywords, kwargs)
+        return function(*args, **kwargs)
+
+    call.__signature__ = signature  # type: ignore[attr-defined]
+    return call
+
+
+def _check_keywords_of_extension_classes() -> None:
+    """Puts _keywords_checked on the constructor, methods and static methods of each class of
+    the extension (the enums aside: theirs are pybind11's own)."""
+    for cls in vars(_core).values():
+        if not isinstance(cls, type) or hasattr(cls, "__members__") or issubclass(
+                cls, BaseException):
+            continue
+        for attribute, value in list(vars(cls).items()):
+            if attribute.startswith("_") and attribute != "__init__":
+                continue
+            static = isinstance(value, staticmethod)
+            function = value.__func__ if static else value
+            if type(function).__name__ not in ("instancemethod", "builtin_function_or_method"):
+                continue  # a property, or a method added in Python
+            checked = _keywords_checked(function, f"{cls.__name__}.{attribute}".replace(
+                ".__init__", ""))
+            setattr(cls, attribute, staticmethod(checked) if static else checked)
+
+
+_check_keywords_of_extension_classes()
+branch_of = _keywords_checked(branch_of, "branch_of")
+read_demo_log = _keywords_checked(read_demo_log, "read_demo_log")
+read_demo_directory = _keywords_checked(read_demo_directory, "read_demo_directory")
+
 _defaults_lock = threading.Lock()
 
 
@@ -118,12 +247,14 @@ def _cached_simulation() -> Simulation:
     return Simulation(default_robot(), default_scene())
 
 
+@_suggest_keywords
 def fk(q: Any, robot: Optional[Robot] = None) -> np.ndarray:
     """Flange poses of arm configurations ``q`` (shape (7,) or (N, 7), rad): shape (4, 4) or
     (N, 4, 4), world frame, metres. ``robot``: the shipped one by default."""
     return (robot or default_robot()).fk(q)
 
 
+@_suggest_keywords
 def ik(X: Any, psi: Any, branch: Any = None, q_near: Any = None,
        robot: Optional[Robot] = None) -> tuple[np.ndarray, np.ndarray]:
     """Analytic IK of flange targets ``X`` (shape (4, 4) or (N, 4, 4)) at arm angles ``psi``
@@ -134,12 +265,14 @@ def ik(X: Any, psi: Any, branch: Any = None, q_near: Any = None,
     return (robot or default_robot()).ik(X, psi, branch, q_near)
 
 
+@_suggest_keywords
 def feasible_arm_angles(X: Any, branch: Any = None, robot: Optional[Robot] = None) -> Any:
     """The arm angles at which each target is reachable within the joint limits: per target an
     array of intervals, shape (K, 2), rad (a list of them for a batch)."""
     return (robot or default_robot()).feasible_arm_angles(X, branch)
 
 
+@_suggest_keywords
 def arm_angle(q: Any, robot: Optional[Robot] = None) -> Any:
     """The arm angle psi of configurations ``q`` (shape (7,) or (N, 7)), rad."""
     return (robot or default_robot()).arm_angle(q)
@@ -150,19 +283,30 @@ _OPTION_TYPES = ["bool", "int", "int", "float", "str", "Sequence[str]",
                  "Optional[Sequence[float]]", "tuple[float, float]"]
 
 
+# Options whose texts name a member of an enum, which they also take (method=SynthesisMethod.LINE).
+_OPTION_ENUMS = {"method": "SynthesisMethod", "methods": "SynthesisMethod"}
+
+
 def _annotation(option: dict) -> str:
-    """The Python type of an option: its kind's, Optional[...] where it may be None."""
+    """The Python type of an option: its kind's (or its enum's as well), Optional[...] where it
+    may be None."""
     kind = _OPTION_TYPES[option["kind"]]
+    enum_name = _OPTION_ENUMS.get(option["name"])
+    if enum_name:
+        kind = (f"Union[str, {enum_name}]" if kind == "str"
+                else f"Union[str, {enum_name}, Sequence[Union[str, {enum_name}]]]")
     return f"Optional[{kind}]" if option["optional"] else kind
 
 
-def _with_options(request: str):
+def _with_options(request: str, name: Optional[str] = None):
     """Gives the decorated function the options of ``request`` (:func:`request_options`) as
     explicit keyword arguments: their names, defaults and help come from the
     one description the command's flags and ``--config`` files are made from (C++
     request/option.hpp, :func:`request_options`). A required option (``theta``) is a
     positional argument after the function's own. The function gets the options its caller
-    gave as one dict, ``options``; the extension checks them."""
+    gave as one dict, ``options``; the extension checks them. ``name``: what errors call it
+    (``"Synthesizer.synthesize"``; the function's name by default). A keyword that names no
+    option is a TypeError naming the nearest option."""
     described = _core.request_options(request)
     names = {o["name"] for o in described}
 
@@ -180,14 +324,20 @@ def _with_options(request: str):
                                       return_annotation=inspect.signature(function)
                                       .return_annotation)
 
+        keywords = list(signature.parameters)
+
         @functools.wraps(function)
         def call(*args: Any, **kwargs: Any) -> Any:
+            _reject_unknown_keywords(name or function.__name__, keywords, kwargs)
             bound = signature.bind(*args, **kwargs)
             given = {k: v for k, v in bound.arguments.items() if k in names}
             rest = {k: v for k, v in bound.arguments.items() if k not in names}
             return function(**rest, options=given)
 
         call.__signature__ = signature  # type: ignore[attr-defined]
+        if name and "." in name:  # a method: help() and errors call it by its own name
+            call.__name__ = name.split(".")[1]
+            call.__qualname__ = name
         lines = [f"    {o['name']}: {o['help']}" + (f" (one of {', '.join(o['choices'])})"
                                                      if o["choices"] else "")
                  for o in described]
@@ -197,6 +347,7 @@ def _with_options(request: str):
     return wrap
 
 
+@_suggest_keywords
 def request_options(request: str) -> list[dict]:
     """The options of a request (``"synthesize"``, ``"generalize"``, ``"run"``, ``"select"``,
     ``"simulate"``, ``"robustness"``, ``"analyze"``): name, kind, default, help, choices and
@@ -240,7 +391,7 @@ def fit_wrist_line(points: Any, *, options: dict) -> dict:
     return _core._fit_wrist_line(points, options)
 
 
-@_with_options("synthesize")
+@_with_options("synthesize", "Synthesizer.synthesize")
 def _synthesizer_synthesize(self: Synthesizer, options: dict) -> Grasp:
     """A grasp for object orientation ``theta`` (deg), checked in physics: ``graspsynth
     synthesize``. ``at=(x, y)`` puts the object centre elsewhere on the table (m, world); a
@@ -279,7 +430,7 @@ def _simulation(robot: Optional[Robot], scene: Optional[Scene]) -> Simulation:
     return Simulation(robot or default_robot(), scene or default_scene())
 
 
-@_with_options("simulate")
+@_with_options("simulate", "Simulation.trial")
 def _simulation_trial(self: Simulation, trajectory: Trajectory, options: dict) -> TrialResult:
     """One grasp-and-lift trial of the trajectory (then ``hold`` s holding the object up):
     the nominal trial of ``graspsynth simulate``. ``fidelity``: "fast" (the study's),
@@ -289,7 +440,7 @@ def _simulation_trial(self: Simulation, trajectory: Trajectory, options: dict) -
     return self._trial(trajectory, options)
 
 
-@_with_options("robustness")
+@_with_options("robustness", "Simulation.robustness")
 def _simulation_robustness(self: Simulation, trajectory: Trajectory,
                            options: dict) -> RobustnessResult:
     """The success rate of ``trials`` perturbed replays of the trajectory (the same replays as
@@ -346,6 +497,7 @@ class StudyResult:
     as :class:`Table`, ``timing``."""
 
     def __init__(self, parts: dict):
+        """Made by :func:`run` from the parts of the study (a dict of the names above)."""
         self.analysis: dict = parts["analysis"]
         self.library: GraspLibrary = parts["library"]
         self.synthesis: dict = parts["synthesis"]

@@ -283,11 +283,16 @@ class Grasp:
     @property
     def ok(self) -> bool: ...
     @property
+    def status(self) -> SynthesisStatus: ...
+    @property
     def message(self) -> str: ...
     @property
     def theta_deg(self) -> float: ...
     @property
-    def method_used(self) -> str: ...
+    def method(self) -> SynthesisMethod:
+        """the method asked for"""
+    @property
+    def method_used(self) -> SynthesisMethod: ...
     @property
     def fallback(self) -> bool: ...
     @property
@@ -316,7 +321,8 @@ class Synthesizer:
     # Added by graspsynth/__init__.py from request_options("synthesize"), which this stub must
     # match (tests/python/test_package.py checks it).
     def synthesize(self, theta: float, *, at: Optional[Sequence[float]] = None,
-                   method: str = "interp", refine: bool = True, reach: str = "auto",
+                   method: Union[str, SynthesisMethod] = "interp", refine: bool = True,
+                   reach: str = "auto",
                    clearance_margin: float = 0.005, strict_thresholds: bool = False,
                    grip_slide: bool = False, start: Optional[Sequence[float]] = None,
                    seed: int = 1, perturb: int = 30, threads: int = 0, min_robustness: float = 0.8,
@@ -330,7 +336,8 @@ class Synthesizer:
 
 # --- results and their enums (made from the C++ field lists; read-only) --------------------
 
-# Results: read-only properties (the C++ field lists); to_dict() for pandas.
+# Results: read-only properties (the C++ field lists); to_dict() for pandas. Every class of the
+# module has a one-line repr (numbers to 6 significant digits, rounding residues as 0).
 
 class TrialOutcome(enum.Enum):
     SUCCESS = 0

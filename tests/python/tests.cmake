@@ -1,7 +1,7 @@
 # The Python package's tests (pytest), one CTest test per file, run with the package of this
 # build (build/python) and the command beside it (the tests compare the two).
 if(GRASPSYNTH_BUILD_PYTHON)
-  foreach(part package kinematics demos synthesis study threads examples)
+  foreach(part package api kinematics demos synthesis study threads examples)
     add_test(NAME python.${part}
              COMMAND ${Python_EXECUTABLE} -m pytest -q -p no:cacheprovider
                      ${CMAKE_CURRENT_LIST_DIR}/test_${part}.py)
