@@ -9,6 +9,7 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -17,6 +18,7 @@
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
 #include "common/field_text.hpp"
+#include "common/format.hpp"
 #include "kinematics/pose_math.hpp"
 #include "motion/joint_trajectory.hpp"
 #include "motion/scripted_grasp.hpp"
@@ -24,6 +26,7 @@
 #include "simulation/robustness.hpp"
 #include "simulation/simulation_fields.hpp"
 #include "simulation/trial.hpp"
+#include "simulation/trial_record.hpp"
 #include "solver/grasp_file.hpp"
 #include "studies/trial_json.hpp"
 
@@ -39,6 +42,7 @@ struct SimulateOptions {
   std::string trajectory;
   std::string out;
   std::string record;
+  std::string trial_record;  // --trial-record: a graspsynth-trial-record/1 file
   std::string robot;
   std::string scene;
   std::string object;  // --object: a shipped object's name or an object file
@@ -157,6 +161,28 @@ void AddSensitivity(const SimulationModel& model, const JointTrajectory& traject
   (*report)["sensitivity"] = SensitivityJson<json>(s, ro.trial.step());
 }
 
+// The report in words, for stdout when there is no --out: the nominal trial's outcome, reason
+// and lift, and the perturbed replays' score.
+std::string ReportSummary(const json& report) {
+  const json& n = report["nominal"];
+  std::string text = report["trajectory"].get<std::string>() + ": nominal trial " +
+                     (n["success"].get<bool>() ? "succeeded" : "FAILED") + " (" +
+                     n["outcome"].get<std::string>() + "): " + n["reason"].get<std::string>() +
+                     "\n" +
+                     Format("  lift %.1f mm (highest %.1f mm), %.2f s simulated\n",
+                            1e3 * n["lift_m"].get<double>(), 1e3 * n["max_lift_m"].get<double>(),
+                            n["simulated_s"].get<double>());
+  const json& rb = report["robustness"];
+  if (rb["trials"].get<int>() > 0) {
+    text += Format(
+        "robustness: %d of %d perturbed trials succeeded, score %.3f, 95%% interval "
+        "[%.3f, %.3f]\n",
+        rb["successes"].get<int>(), rb["trials"].get<int>(), rb["score"].get<double>(),
+        rb["ci95"][0].get<double>(), rb["ci95"][1].get<double>());
+  }
+  return text;
+}
+
 int RunSimulate(const SimulateOptions& o, const request::SimulateRequest& r) {
   const TrialOptions trial = request::ToTrialOptions(r);
   const RobustnessOptions ro = request::ToRobustnessOptions(r);  // every option checked first
@@ -167,8 +193,15 @@ int RunSimulate(const SimulateOptions& o, const request::SimulateRequest& r) {
   PlaceTrajectoryObject(model.scene(), r.at, o.trajectory, &trajectory);
 
   TrialOptions nominal_options = trial;
-  if (!o.record.empty()) nominal_options.record_interval = r.record_interval;
-  const TrialResult nominal = RunTrial(model, trajectory, nominal_options);
+  const bool records = !o.record.empty() || !o.trial_record.empty();
+  if (records) nominal_options.record_interval = r.record_interval;
+  // with --trial-record the same trial, observed (simulation/trial_record.hpp).
+  std::optional<RecordedTrial> recorded;
+  if (!o.trial_record.empty()) {
+    recorded = RunRecordedTrial(model, trajectory, nominal_options, o.trajectory);
+  }
+  const TrialResult nominal =
+      recorded ? recorded->result : RunTrial(model, trajectory, nominal_options);
   std::cerr << "nominal trial: " << nominal.BriefReport() << "\n";
 
   json report;
@@ -193,8 +226,13 @@ int RunSimulate(const SimulateOptions& o, const request::SimulateRequest& r) {
   n["hold"] = HoldQualityJson<json>(nominal.hold);
   AddPerturbedTrials(model, trajectory, ro, r, &report);
   AddSensitivity(model, trajectory, ro, r, &report);
-  WriteFileAtomically(o.out, report.dump(2) + "\n");
+  if (!o.out.empty()) {
+    WriteFileAtomically(o.out, report.dump(2) + "\n");
+  } else {
+    std::cout << ReportSummary(report);
+  }
   if (!o.record.empty()) WriteFileAtomically(o.record, StatesCsv(nominal.states));
+  if (recorded) WriteTrialRecord(o.trial_record, recorded->record);
   return nominal.success() ? 0 : 1;
 }
 
@@ -250,22 +288,33 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
       "--seed gives the same report whatever --threads is.\n\n"
       "TRAJECTORY: graspsynth-trajectory/1 JSON: {\"format\", \"theta_deg\", \"samples\":\n"
       "[{\"t\": s, \"arm\": [7 rad], \"hand\": [16 rad]}, ...], \"waypoints\" (optional)}.\n"
-      "The report (--out, graspsynth-simulation/1 JSON) has \"nominal\" {success, outcome,\n"
-      "reason, lift_m, hold, ...}, \"robustness\" {trials, successes, score, ci95, ...},\n"
-      "\"trials\" [{index, time_scale, success, outcome, reason, lift_m, physics, hold}] and,\n"
+      "TRAJECTORY may also be a graspsynth-grasp/1 file (its \"trajectory\" is played).\n"
+      "The report (--out, graspsynth-simulation/1 JSON; without --out its essentials go to\n"
+      "stdout and no file is written) has \"nominal\" {success, outcome, reason, lift_m,\n"
+      "hold, ...}, \"robustness\" {trials, successes, score, ci95, ...}, \"trials\" [{index,\n"
+      "time_scale, success, outcome, reason, lift_m, physics, hold}] and,\n"
       "with --sensitivity, \"sensitivity\" (docs/formats.md). Exit status: 0 when the\n"
       "nominal trial succeeds, 1 when it fails, 2 on bad input.\n\n"
-      "Example:\n"
-      "  graspsynth simulate examples/grasp_60deg.json --perturb 100 --out report.json");
+      "Examples:\n"
+      "  graspsynth simulate examples/grasp_60deg.json\n"
+      "  graspsynth simulate examples/grasp_60deg.json --perturb 100 --out report.json\n"
+      "  graspsynth simulate examples/grasp_60deg.json --trial-record trial.json");
   auto flags =
       std::make_shared<RequestFlags<request::SimulateRequest>>(sim, request::SimulateOptions());
-  sim->add_option("trajectory", opts->trajectory, "Trajectory file (graspsynth-trajectory/1)")
+  sim->add_option("trajectory", opts->trajectory,
+                  "Trajectory or grasp file (graspsynth-trajectory/1, graspsynth-grasp/1)")
       ->required()
       ->check(CLI::ExistingFile);
-  sim->add_option("--out", opts->out, "Report file to write (JSON)")->required();
+  sim->add_option("--out", opts->out,
+                  "Report file to write (JSON); without it the report's essentials are printed "
+                  "on stdout and no file is written");
   sim->add_option("--record", opts->record,
                   "Write the nominal trial's simulated states as CSV: t, arm q1..q7 (rad), hand "
                   "f0..f15 (rad), object and wrist pose (m, quaternion w first)");
+  sim->add_option("--trial-record", opts->trial_record,
+                  "Write the nominal trial as simulated, for `graspsynth view --trial`: "
+                  "graspsynth-trial-record/1 JSON (joints, object pose and object-hand contacts "
+                  "every --record-interval s, the outcome)");
   sim->add_option("--robot", opts->robot, "Robot description (URDF); default: the shipped one");
   sim->add_option("--scene", opts->scene, "Scene description (JSON); default: models/scene.json");
   AddObjectFlag(sim, &opts->object);

@@ -19,12 +19,17 @@
 #include "apps/request_flags.hpp"
 #include "apps/stop_signals.hpp"
 #include "common/errors.hpp"
+#include "common/json_reader.hpp"
 #include "common/stopwatch.hpp"
 #include "kinematics/robot_description.hpp"
 #include "learning_data/demo_log.hpp"
 #include "motion/joint_trajectory.hpp"
+#include "request/simulate_request.hpp"
 #include "request/view_request.hpp"
 #include "scene/scene_model.hpp"
+#include "simulation/simulation_model.hpp"
+#include "simulation/trial_record.hpp"
+#include "solver/grasp_file.hpp"
 #include "viewer/viewer_replay.hpp"
 #include "viewer/viewer_scene.hpp"
 #include "viewer/viewer_server.hpp"
@@ -35,13 +40,49 @@ namespace {
 // The command's files beside the request's options (request/view_request.hpp).
 struct ViewOptions : request::ViewRequest {
   std::string trajectory;
+  std::string trial;  // --trial: a graspsynth-trial-record/1 file
   std::string log;
   std::string robot;
   std::string scene;
   std::string object;  // --object: a shipped object's name or an object file
 };
 
-// The replay of --trajectory or --log, or the robot at rest with neither.
+// The format of a JSON file when it names one ("" otherwise): to tell a trial record from a
+// trajectory or grasp file.
+std::string FormatOf(const std::string& path) {
+  const JsonReader doc = JsonReader::Load(path, input_kind::kTrajectory);
+  if (!doc.IsObject() || !doc.Field("format").IsString()) return "";
+  return doc.String("format");
+}
+
+// The nominal trial of `trajectory` (simulate's defaults: request::SimulateRequest{}), its states
+// recorded at the viewer's frame rate, as a trial record; its brief report on stderr.
+TrialRecord SimulateForView(const ViewOptions& opts, const RobotModel& robot,
+                            const SceneModel& scene, const JointTrajectory& trajectory) {
+  TrialOptions trial = request::ToTrialOptions(request::SimulateRequest{});
+  trial.record_interval = 1.0 / opts.rate_hz;
+  std::cerr << "graspsynth view: simulating the nominal trial of " << opts.trajectory << std::endl;
+  RecordedTrial trial_run =
+      RunRecordedTrial(SimulationModel(robot, scene), trajectory, trial, opts.trajectory);
+  std::cerr << "graspsynth view: nominal trial: " << trial_run.result.BriefReport() << "\n";
+  return std::move(trial_run.record);
+}
+
+// The replay of a trial record (--trial, or a --trajectory file that is one).
+viewer::ViewerReplay TrialReplay(const ViewOptions& opts, const std::string& path) {
+  if (opts.at) {
+    throw InputError("--at moves the object of a trajectory; the trial record " + path +
+                     " was simulated where it says");
+  }
+  if (opts.joints_only) {
+    throw InputError("--joints-only plays a trajectory's joint commands; the trial record " + path +
+                     " is a simulated trial");
+  }
+  return viewer::ReplayOfTrial(LoadTrialRecord(path), path);
+}
+
+// The replay of --trajectory (a trajectory, grasp or trial record file), --trial or --log, or
+// the robot at rest with none.
 viewer::ViewerReplay LoadReplay(const ViewOptions& opts, const RobotModel& robot,
                                 const SceneModel& scene) {
   const std::optional<Eigen::Vector2d>& at = opts.at;
@@ -50,10 +91,17 @@ viewer::ViewerReplay LoadReplay(const ViewOptions& opts, const RobotModel& robot
         "--at moves the object of a --trajectory (a log's object stands where it "
         "was logged)");
   }
+  if (opts.joints_only && opts.trajectory.empty()) {
+    throw InputError("--joints-only plays a --trajectory's joint commands without the physics");
+  }
+  if (!opts.trial.empty()) return TrialReplay(opts, opts.trial);
   if (!opts.trajectory.empty()) {
-    JointTrajectory trajectory = LoadJointTrajectory(opts.trajectory, robot.arm, robot.hand);
+    if (FormatOf(opts.trajectory) == kTrialRecordFormat) return TrialReplay(opts, opts.trajectory);
+    // a graspsynth-trajectory/1 file, or the "trajectory" member of a graspsynth-grasp/1 file.
+    JointTrajectory trajectory = LoadTrajectoryOrGraspFile(opts.trajectory, robot.arm, robot.hand);
     PlaceTrajectoryObject(scene, at, opts.trajectory, &trajectory);
-    return viewer::ReplayOfTrajectory(std::move(trajectory), opts.trajectory);
+    if (opts.joints_only) return viewer::ReplayOfTrajectory(std::move(trajectory), opts.trajectory);
+    return viewer::ReplayOfTrial(SimulateForView(opts, robot, scene, trajectory), opts.trajectory);
   }
   if (!opts.log.empty()) {
     viewer::ViewerReplay replay = viewer::ReplayOfLog(robot, ReadDemoLog(opts.log));
@@ -81,7 +129,7 @@ template <typename OutOfTime>
 PlayFigures PlayReplay(const ViewOptions& opts, const RobotModel& robot, const SceneModel& scene,
                        const viewer::ViewerReplay& replay, viewer::ViewerServer* server,
                        const OutOfTime& out_of_time) {
-  const bool ends = !opts.trajectory.empty() || !opts.log.empty();
+  const bool ends = !opts.trajectory.empty() || !opts.trial.empty() || !opts.log.empty();
   // replay time runs from the first sample's time to the last one's.
   const double t_first = replay.start_time();
   const double t_last = replay.end_time();
@@ -170,15 +218,27 @@ void AddViewCommand(CLI::App& app, int* exit_code) {
   CLI::App* view = app.add_subcommand(
       "view",
       "Browser viewer: serves a page (three.js) on this machine and replays a file in it.\n"
-      "Open the URL printed on stderr. --trajectory plays a graspsynth-trajectory/1 file (a\n"
-      "grasp's joint trajectory); --log a demonstration log (its wrist poses through the\n"
-      "analytic IK with a continuous arm angle, the object at its logged position); with\n"
-      "neither, the robot is shown at rest. The replay starts when a page first asks for a\n"
-      "frame and runs at the file's rate (times --speed) until its end (plus --hold), or for\n"
-      "ever with --loop; Ctrl-C or SIGTERM stop it cleanly.");
+      "Open the URL printed on stderr. --trajectory takes a graspsynth-trajectory/1 file or a\n"
+      "graspsynth-grasp/1 file (its \"trajectory\"): the command runs its nominal trial in the\n"
+      "ODE simulation (simulate's defaults) and plays it as simulated: the joints and the\n"
+      "object from the physics, the object-hand contacts as dots, the outcome in a banner\n"
+      "(a failed grasp shows FAILED and its reason); --joints-only plays the joint commands\n"
+      "alone, the object standing still. --trial plays a trial record (simulate --trial-record;\n"
+      "--trajectory recognises one too). --log plays a demonstration log (its wrist poses\n"
+      "through the analytic IK with a continuous arm angle, the object at its logged\n"
+      "position); with none, the robot is shown at rest. The replay starts when a page first\n"
+      "asks for a frame and runs at the file's rate (times --speed) until its end (plus\n"
+      "--hold), or for ever with --loop; Ctrl-C or SIGTERM stop it cleanly. docs/viewer.md.");
   auto flags = std::make_shared<RequestFlags<request::ViewRequest>>(view, request::ViewOptions());
   auto* source = view->add_option_group("source", "What to replay");
-  source->add_option("--trajectory", opts->trajectory, "Trajectory file (graspsynth-trajectory/1)")
+  source
+      ->add_option("--trajectory", opts->trajectory,
+                   "Trajectory, grasp or trial record file (graspsynth-trajectory/1, "
+                   "graspsynth-grasp/1, graspsynth-trial-record/1)")
+      ->check(CLI::ExistingFile);
+  source
+      ->add_option("--trial", opts->trial,
+                   "Trial record to play as simulated (graspsynth-trial-record/1)")
       ->check(CLI::ExistingFile);
   source->add_option("--log", opts->log, "Demonstration log (graspsynth-demo/1 CSV)")
       ->check(CLI::ExistingFile);

@@ -64,10 +64,11 @@ OptionList<SimulateRequest> MakeSimulateOptions() {
       [](R& r) -> int& { return r.sensitivity; }));
   list.push_back(SeedOption("Seed of the perturbations", &R::seed));
   list.push_back(ThreadsOption("Worker threads for the replays (0: all cores)", &R::threads));
-  list.push_back(NumberOption(WithRange(MakeInfo("record_interval", OptionKind::kNumber,
-                                                 "Seconds between recorded states (--record)"),
-                                        0.0, INFINITY, true),
-                              &R::record_interval));
+  list.push_back(
+      NumberOption(WithRange(MakeInfo("record_interval", OptionKind::kNumber,
+                                      "Seconds between recorded states (--record, --trial-record)"),
+                             0.0, INFINITY, true),
+                   &R::record_interval));
   AppendTrialSettings<R>([](R& r) -> TrialSettings& { return r.trial; }, &list);
   list.push_back(NumberOption(
       MakeInfo("time_scale_min", OptionKind::kNumber, "Smallest time scale of a replay"),

@@ -39,8 +39,10 @@ OptionList<R> MakeOptions() {
       [](R& r) -> std::string& { return r.camera; }));
   list.push_back(Switch("loop", "Replay again and again until stopped", &R::loop));
   list.push_back(Number("speed", "Replay speed factor (> 0)", &R::speed, 0.0, true));
-  list.push_back(Number("rate", "Frames published per second (Hz), in (0, 1000]", &R::rate_hz, 0.0,
-                        true, 1000.0));
+  list.push_back(Number("rate",
+                        "Frames published per second (Hz), in (0, 1000]; a --trajectory's "
+                        "simulated trial is recorded at this rate",
+                        &R::rate_hz, 0.0, true, 1000.0));
   list.push_back(Switch("no_wait",
                         "Start the replay at once instead of when a page first asks for a frame",
                         &R::no_wait));
@@ -51,6 +53,10 @@ OptionList<R> MakeOptions() {
                         "Stop after this many seconds in any case (0: no limit; for scripts and "
                         "tests)",
                         &R::exit_after_s, 0.0, false));
+  list.push_back(Switch("joints_only",
+                        "Play a --trajectory's joint commands alone, without simulating it (the "
+                        "object stands still)",
+                        &R::joints_only));
   return list;
 }
 

@@ -27,6 +27,7 @@ struct ViewRequest {
   bool no_wait = false;               ///< start at once, not at the first page's request
   double hold_s = 1.0;                ///< s the last frame is served after the end
   double exit_after_s = 0.0;          ///< s; 0: no limit
+  bool joints_only = false;           ///< a trajectory's joint commands, without the physics
 };
 
 /// The options of ViewRequest, in the order the flags list them.

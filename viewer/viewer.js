@@ -9,11 +9,24 @@ import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 // colours by group; the screenshot test (tests/viewer/viewer_screenshot_test.py) looks for
 // these hues, keep them apart.
 const COLOURS = { arm: 0x5b8fd9, hand: 0x1fa38f, object: 0xff7f1f, table: 0xcfcfcf };
+// the contact dots' magenta, apart from those hues too.
+const CONTACT_COLOUR = 0xd01fd0;
 
 const statusBox = document.getElementById('status');
 function showStatus(text, error = false) {
   statusBox.textContent = text;
   statusBox.classList.toggle('error', error);
+}
+
+// a simulated trial's outcome: a banner, green for a success, red for a failure; hidden
+// without one (the live view, a replay of joint commands, a trial not yet decided).
+const outcomeBox = document.getElementById('outcome');
+function showOutcome(outcome) {
+  outcomeBox.hidden = !outcome;
+  if (!outcome) return;
+  outcomeBox.textContent = outcome.text;
+  outcomeBox.classList.toggle('success', outcome.success === true);
+  outcomeBox.classList.toggle('failure', outcome.success !== true);
 }
 
 // a three.js geometry for one primitive or mesh; three's cylinders and capsules run along y,
@@ -142,8 +155,27 @@ async function main() {
     renderer.setSize(window.innerWidth, window.innerHeight);
   });
 
+  // a simulated trial's object-hand contacts: small magenta dots (a pool, hidden when unused).
+  const contactGeometry = new THREE.SphereGeometry(0.006, 12, 8);
+  const contactMaterial = new THREE.MeshBasicMaterial({ color: CONTACT_COLOUR, depthTest: false });
+  const contactDots = [];
+  function showContacts(points) {
+    const list = Array.isArray(points) ? points : [];
+    while (contactDots.length < list.length) {
+      const dot = new THREE.Mesh(contactGeometry, contactMaterial);
+      dot.renderOrder = 1;  // drawn over the hand and the object that hide the contact
+      world.add(dot);
+      contactDots.push(dot);
+    }
+    contactDots.forEach((dot, i) => {
+      dot.visible = i < list.length;
+      if (dot.visible) dot.position.set(list[i][0], list[i][1], list[i][2]);
+    });
+    return list.length;
+  }
+
   // state visible to tests and to the console.
-  const state = { frames: 0, t: null };
+  const state = { frames: 0, t: null, contacts: 0, outcome: null };
   window.graspsynthViewer = state;
 
   function applyFrame(frame) {
@@ -153,6 +185,9 @@ async function main() {
     }
     frame.links.forEach((pose, i) => setPose(links[i], pose));
     setPose(object, frame.object);
+    state.contacts = showContacts(frame.contacts);
+    state.outcome = frame.outcome ?? null;
+    showOutcome(frame.outcome);
     state.frames += 1;
     state.t = frame.t;
     const time = typeof frame.t === 'number' ? `t = ${frame.t.toFixed(2)} s` : '';

@@ -21,6 +21,30 @@ std::optional<Vector7d> RestConfiguration(const RobotModel& robot, const Eigen::
   return s->q;
 }
 
+// The index of the last sample at or before t (t within the samples' span).
+size_t SampleIndexAt(const std::vector<TrajectorySample>& samples, double t) {
+  return std::upper_bound(
+             samples.begin() + 1, samples.end(), t,
+             [](double time, const TrajectorySample& sample) { return time < sample.t; }) -
+         samples.begin() - 1;
+}
+
+// `state` (joints set) with a trial's object pose, contacts and outcome at t.
+ViewerState TrialStateAt(const ViewerReplay& replay, double t, ViewerState state) {
+  const std::vector<TrajectorySample>& samples = replay.trajectory.samples;
+  const size_t i = SampleIndexAt(samples, t);
+  const size_t j = std::min(i + 1, samples.size() - 1);
+  const double span = samples[j].t - samples[i].t;
+  const double a = span > 0.0 ? (t - samples[i].t) / span : 0.0;
+  const Eigen::Quaterniond q = Eigen::Quaterniond(replay.X_WO[i].linear())
+                                   .slerp(a, Eigen::Quaterniond(replay.X_WO[j].linear()));
+  state.X_WO =
+      PoseFrom((1.0 - a) * replay.X_WO[i].translation() + a * replay.X_WO[j].translation(), q);
+  state.contacts = replay.contacts[i];
+  if (i + 1 == samples.size()) state.outcome = replay.outcome;
+  return state;
+}
+
 }  // namespace
 
 ViewerReplay ReplayOfTrajectory(JointTrajectory trajectory, const std::string& source) {
@@ -74,6 +98,29 @@ ViewerReplay ReplayOfLog(const RobotModel& robot, const DemoLog& log) {
   return replay;
 }
 
+ViewerReplay ReplayOfTrial(const TrialRecord& record, const std::string& source) {
+  GS_DEMAND(!record.frames.empty(), "a replay needs at least one frame");
+  ViewerReplay replay;
+  replay.label =
+      "trial " + source + " | " + Format("theta %.1f deg", record.theta_deg) + " | as simulated";
+  replay.trajectory.theta_deg = record.theta_deg;
+  replay.trajectory.object_xy = record.object_xy;
+  for (const TrialRecordFrame& frame : record.frames) {
+    replay.trajectory.samples.push_back({frame.t, frame.arm, frame.hand});
+    replay.X_WO.push_back(PoseFrom(frame.p_WO, frame.q_WO));
+    std::vector<Eigen::Vector3d> points;
+    for (const RecordedContact& c : frame.contacts) points.push_back(c.p_WC);
+    replay.contacts.push_back(std::move(points));
+  }
+  ViewerOutcome outcome;
+  outcome.success = record.success();
+  outcome.text = record.success()
+                     ? "success: " + record.reason
+                     : "FAILED (" + std::string(ToString(record.outcome)) + "): " + record.reason;
+  replay.outcome = outcome;
+  return replay;
+}
+
 ViewerReplay RestReplay() {
   ViewerReplay replay;
   replay.label = "robot at rest";
@@ -91,14 +138,11 @@ ViewerState ReplayStateAt(const ViewerReplay& replay, const SceneModel& scene, d
   state.hand = s.hand;
   state.X_WO = scene.ObjectPose(replay.trajectory.placement());
   state.text = replay.label;
+  if (!replay.X_WO.empty()) return TrialStateAt(replay, t, state);
   if (replay.p_WO.empty()) return state;
 
   // i: the last sample at or before t; the object linear from it to the next.
-  const size_t i = std::upper_bound(samples.begin() + 1, samples.end(), t,
-                                    [](double time, const TrajectorySample& sample) {
-                                      return time < sample.t;
-                                    }) -
-                   samples.begin() - 1;
+  const size_t i = SampleIndexAt(samples, t);
   const size_t j = std::min(i + 1, samples.size() - 1);
   const double span = samples[j].t - samples[i].t;
   const double a = span > 0.0 ? (t - samples[i].t) / span : 0.0;

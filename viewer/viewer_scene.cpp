@@ -222,6 +222,27 @@ std::string ViewerFrameJson(const RobotModel& robot, const ViewerState& state) {
   AppendPose(state.X_WO, &out);
   out.append(",\"text\":");
   out.append(json(state.text).dump(-1, ' ', false, json::error_handler_t::replace));
+  // a physics replay's contacts and outcome; a frame without them has neither key.
+  if (!state.contacts.empty()) {
+    out.append(",\"contacts\":[");
+    for (size_t i = 0; i < state.contacts.size(); ++i) {
+      if (i > 0) out.push_back(',');
+      out.push_back('[');
+      for (int k = 0; k < 3; ++k) {
+        if (k > 0) out.push_back(',');
+        AppendNumber(state.contacts[i][k], &out);
+      }
+      out.push_back(']');
+    }
+    out.push_back(']');
+  }
+  if (state.outcome) {
+    out.append(",\"outcome\":{\"success\":");
+    out.append(state.outcome->success ? "true" : "false");
+    out.append(",\"text\":");
+    out.append(json(state.outcome->text).dump(-1, ' ', false, json::error_handler_t::replace));
+    out.push_back('}');
+  }
   out.push_back('}');
   return out;
 }

@@ -28,11 +28,15 @@
 ///
 /// A frame (ViewerFrameJson) is one compact line of JSON:
 ///
-///     {"t": 1.25, "links": [[x, y, z, qw, qx, qy, qz], ...], "object": [...], "text": "..."}
+///     {"t": 1.25, "links": [[x, y, z, qw, qx, qy, qz], ...], "object": [...], "text": "...",
+///      "contacts": [[x, y, z], ...], "outcome": {"success": false, "text": "..."}}
 ///
 /// with the world pose X_WL of every link in the scene's order, the object's X_WO, the time (s)
-/// and a status line for the operator.
+/// and a status line for the operator; a replay of a simulated trial adds the object-hand
+/// contact points (world, m; the key only when there are some) and, once the trial's outcome is
+/// decided, the outcome (the key only then). The live teleoperation view sends neither.
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -96,6 +100,12 @@ std::vector<Eigen::Isometry3d> ViewerLinkPoses(const RobotModel& robot,
                                                const Eigen::Ref<const Vector7d>& q,
                                                const Eigen::Ref<const HandVector>& f);
 
+/// A trial's outcome as a frame shows it (a banner on the page).
+struct ViewerOutcome {
+  bool success = false;
+  std::string text;  ///< e.g. "success: lifted 120.5 mm ..." or "FAILED (dropped): ..."
+};
+
 /// What one frame shows.
 struct ViewerState {
   double t = 0.0;                                          ///< s (replay or session time)
@@ -103,6 +113,8 @@ struct ViewerState {
   HandVector hand = HandVector::Zero();                    ///< actuated hand joints, rad
   Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();  ///< object pose, world
   std::string text;                                        ///< status line for the operator
+  std::vector<Eigen::Vector3d> contacts;  ///< object-hand contact points, world, m (physics)
+  std::optional<ViewerOutcome> outcome;   ///< the trial's outcome, once decided (physics)
 };
 
 /// The frame of `state` (see the file comment): positions rounded to 1e-6 m, quaternions to

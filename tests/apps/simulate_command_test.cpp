@@ -127,6 +127,76 @@ TEST_F(SimulateCommand, SimulatesTheExampleAndWritesReportAndRecord) {
   EXPECT_NEAR(rows, 631, 2);
 }
 
+// `graspsynth simulate FILE` as the README writes it: without --out the report's essentials go
+// to stdout and no file is written; a grasp file is played as its "trajectory".
+TEST_F(SimulateCommand, WithoutOutPrintsTheResultAndWritesNoFile) {
+  const fs::path before = fs::current_path();
+  fs::current_path(dir_);
+  const auto r = RunGraspsynth("simulate " + Example() + " --perturb 2 --threads 2");
+  fs::current_path(before);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr(Example() + ": nominal trial succeeded (success): lifted"));
+  EXPECT_THAT(r.out, HasSubstr("  lift "));
+  EXPECT_THAT(r.out, HasSubstr("robustness: "));
+  EXPECT_THAT(r.out, HasSubstr(" of 2 perturbed trials succeeded"));
+  EXPECT_TRUE(fs::is_empty(dir_));  // no file written
+
+  // a failed grasp: exit 1, FAILED with its outcome and reason.
+  const std::string open = EditedExample("open.json", [](json& doc) {
+    for (json& s : doc["samples"]) s["hand"] = doc["samples"][0]["hand"];
+  });
+  const auto f = RunGraspsynth("simulate " + open);
+  EXPECT_EQ(f.exit_code, 1) << f.err;
+  EXPECT_THAT(f.out, HasSubstr(open + ": nominal trial FAILED (not_lifted): object not lifted"));
+  EXPECT_THAT(f.out, Not(HasSubstr("robustness")));
+
+  // a grasp file (graspsynth-grasp/1): its "trajectory" is played, the same trial.
+  json grasp = {{"format", "graspsynth-grasp/1"},
+                {"trajectory", json::parse(ReadFileText(Example()))}};
+  std::ofstream(Path("grasp.json")) << grasp.dump();
+  ASSERT_EQ(RunGraspsynth("simulate " + Path("grasp.json") + " --out " + Path("g.json")).exit_code,
+            0);
+  ASSERT_EQ(RunGraspsynth("simulate " + Example() + " --out " + Path("e.json")).exit_code, 0);
+  json g = json::parse(ReadFileText(Path("g.json")));
+  json e = json::parse(ReadFileText(Path("e.json")));
+  EXPECT_EQ(g["nominal"]["lift_m"], e["nominal"]["lift_m"]);
+  EXPECT_EQ(g["nominal"]["reason"], e["nominal"]["reason"]);
+}
+
+// --trial-record writes the nominal trial as simulated (graspsynth-trial-record/1): frames at
+// --record-interval with the object's pose from the physics, contacts, the outcome; and the
+// report of --out is the one without it.
+TEST_F(SimulateCommand, TrialRecordHoldsTheTrialAsSimulated) {
+  const auto r = RunGraspsynth("simulate " + Example() + " --record-interval 0.02 --trial-record " +
+                               Path("trial.json") + " --out " + Path("report.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_EQ(RunGraspsynth("simulate " + Example() + " --out " + Path("plain.json")).exit_code, 0);
+  EXPECT_EQ(ReadFileText(Path("report.json")), ReadFileText(Path("plain.json")));
+  const json report = json::parse(ReadFileText(Path("report.json")));
+  const json record = json::parse(ReadFileText(Path("trial.json")));
+  EXPECT_EQ(record["format"], "graspsynth-trial-record/1");
+  EXPECT_EQ(record["trajectory"], Example());
+  EXPECT_EQ(record["theta_deg"], 60.0);
+  EXPECT_EQ(record["record_interval_s"], 0.02);
+  EXPECT_EQ(record["outcome"], "success");
+  EXPECT_EQ(record["reason"], report["nominal"]["reason"]);
+  const json& frames = record["frames"];
+  ASSERT_GT(frames.size(), 100u);
+  EXPECT_NEAR(frames[1]["t"].get<double>() - frames[0]["t"].get<double>(), 0.02, 1e-6);
+  const double rest = frames[0]["object_position"][2];
+  const double end = frames.back()["object_position"][2];
+  EXPECT_NEAR(end - rest, report["nominal"]["lift_m"].get<double>(), 2e-3);
+  EXPECT_GT(end - rest, 0.05);
+  EXPECT_FALSE(frames.back()["contacts"].empty());  // the hand holds it at the end
+  EXPECT_GT(frames.back()["contacts"][0]["f"].get<double>(), 0.0);
+
+  // a record that cannot be written (its folder is a file) is a clear error.
+  const auto bad =
+      RunGraspsynth("simulate " + Example() + " --trial-record " + Path("report.json/trial.json"));
+  EXPECT_EQ(bad.exit_code, 2) << bad.err;
+  EXPECT_THAT(bad.err, HasSubstr("report.json"));
+}
+
 TEST_F(SimulateCommand, TheSameSeedGivesTheSameBytesWhateverTheThreads) {
   for (const char* threads : {"1", "2"}) {
     const auto r = RunGraspsynth("simulate " + Example() + " --perturb 4 --seed 9 --threads " +
@@ -271,8 +341,9 @@ TEST_F(SimulateCommand, AConfigFileSetsTheOptionsAndTheFlagsOverrideIt) {
 TEST_F(SimulateCommand, HelpNamesEveryOption) {
   const auto r = RunGraspsynth("simulate --help");
   EXPECT_EQ(r.exit_code, 0);
-  for (const char* option : {"--perturb", "--seed", "--threads", "--record", "--out", "--fidelity",
-                             "--position-noise", "--object", "graspsynth-simulation/1"}) {
+  for (const char* option :
+       {"--perturb", "--seed", "--threads", "--record", "--trial-record", "--out", "--fidelity",
+        "--position-noise", "--object", "graspsynth-simulation/1"}) {
     EXPECT_THAT(r.out, HasSubstr(option));
   }
 }

@@ -51,6 +51,64 @@ TEST_F(ViewCommand, ReplaysATrajectoryToItsEndAndExits) {
   EXPECT_EQ(r.out, "");
 }
 
+std::string Example() { return std::string(::testing::SourceDir()) + "/examples/grasp_60deg.json"; }
+
+// A grasp file (graspsynth-grasp/1) is taken as the README says: its "trajectory" is simulated
+// (the nominal trial) and played as simulated; --joints-only plays the joint commands alone.
+TEST_F(ViewCommand, PlaysAGraspFileAsSimulated) {
+  const std::string grasp =
+      Write("grasp.json", R"({"format": "graspsynth-grasp/1", "trajectory": )" +
+                              testing::ReadFileText(Example()) + "}");
+  auto r = RunGraspsynth("view --trajectory " + grasp +
+                         " --port 0 --no-wait --speed 100 --hold 0 --rate 30");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("nominal trial: success"));
+  EXPECT_THAT(r.err, HasSubstr("replay done"));
+
+  r = RunGraspsynth("view --trajectory " + grasp +
+                    " --joints-only --port 0 --no-wait --speed 100 --hold 0");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, ::testing::Not(HasSubstr("nominal trial")));
+  EXPECT_THAT(r.err, HasSubstr("replay done"));
+}
+
+// A trial record of `simulate --trial-record` plays with --trial, and --trajectory recognises
+// one by its format; a broken record, or --at or --joints-only with one, is refused (exit 2).
+TEST_F(ViewCommand, PlaysATrialRecord) {
+  const std::string record = (dir_ / "trial.json").string();
+  ASSERT_EQ(RunGraspsynth("simulate " + Example() + " --trial-record " + record).exit_code, 0);
+  for (const char* flag : {"--trial ", "--trajectory "}) {
+    const auto r = RunGraspsynth("view " + std::string(flag) + record +
+                                 " --port 0 --no-wait --speed 100 --hold 0");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_THAT(r.err, HasSubstr("replay done"));
+    EXPECT_THAT(r.err, ::testing::Not(HasSubstr("nominal trial")));  // not simulated again
+  }
+  auto r = RunGraspsynth("view --trial " + record + " --at -0.3,0.9 --port 0");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("--at"));
+  r = RunGraspsynth("view --trial " + record + " --joints-only --port 0");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("--joints-only"));
+  r = RunGraspsynth("view --joints-only --port 0");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("--joints-only"));
+  r = RunGraspsynth("view --trial " + record + " --trajectory " + record + " --port 0");
+  EXPECT_NE(r.exit_code, 0);
+
+  std::string text = testing::ReadFileText(record);
+  text.replace(text.find("\"outcome\": \"success\""), 20, "\"outcome\": \"great\"  ");
+  const std::string broken = Write("broken.json", text);
+  r = RunGraspsynth("view --trial " + broken + " --port 0");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("broken.json: field 'outcome'"));
+  EXPECT_THAT(r.err, HasSubstr("\"great\""));
+  const std::string trajectory = Write("traj.json", kTrajectory);
+  r = RunGraspsynth("view --trial " + trajectory + " --port 0");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("traj.json: field 'format'"));
+}
+
 TEST_F(ViewCommand, ReplaysADemonstrationLog) {
   // a short log: the wrist 8 cm above the handle at theta = 60 deg, still, then the end key.
   const RobotModel robot = LoadRobotModel(DefaultRobotDescriptionPath());

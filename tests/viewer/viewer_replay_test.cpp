@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "kinematics/pose_math.hpp"
 #include "tests/utils/eigen_matchers.hpp"
 #include "tests/utils/robot_fixtures.hpp"
 
@@ -157,6 +158,54 @@ TEST(ViewerReplay, TrajectoryStatesAreItsSamplesWithTheObjectAtRest) {
   const ViewerState rest = ReplayStateAt(RestReplay(), Scene(), 5.0);
   EXPECT_TRUE(rest.arm.isZero());
   EXPECT_DOUBLE_EQ(rest.t, 0.0);
+}
+
+// A trial record plays as simulated: the joints of its frames, the object where the physics put
+// it (interpolated between frames), the contacts of the frame at or before t, and the outcome
+// from the last frame on.
+TEST(ViewerReplay, TrialStatesAreTheRecordsFramesAndOutcome) {
+  TrialRecord record;
+  record.theta_deg = 65.0;
+  record.record_interval = 0.5;
+  record.outcome = TrialOutcome::kDropped;
+  record.reason = "object slipped or dropped: lifted up to 25.9 mm";
+  const Eigen::Quaterniond q0 = Eigen::Quaterniond::Identity();
+  const Eigen::Quaterniond q1(Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitX()));
+  for (int k = 0; k < 2; ++k) {
+    TrialRecordFrame f;
+    f.t = 0.5 * k;
+    f.arm = PreGrasp() + Vector7d::Constant(0.1 * k);
+    f.p_WO = Eigen::Vector3d(-0.3, 0.9, 0.025 + 0.1 * k);
+    f.q_WO = k == 0 ? q0 : q1;
+    if (k == 0) f.contacts.push_back({Eigen::Vector3d(-0.3, 0.85, 0.04), 1.0, 3});
+    record.frames.push_back(f);
+  }
+  const ViewerReplay replay = ReplayOfTrial(record, "trial.json");
+  EXPECT_DOUBLE_EQ(replay.end_time(), 0.5);
+
+  const ViewerState mid = ReplayStateAt(replay, Scene(), 0.25);
+  EXPECT_TRUE(testing::MatricesNear(mid.arm, PreGrasp() + Vector7d::Constant(0.05), 1e-12));
+  EXPECT_TRUE(
+      testing::MatricesNear(mid.X_WO.translation(), Eigen::Vector3d(-0.3, 0.9, 0.075), 1e-12));
+  EXPECT_NEAR(Eigen::Quaterniond(mid.X_WO.linear()).angularDistance(q0), 0.2, 1e-9);
+  ASSERT_EQ(mid.contacts.size(), 1u);
+  EXPECT_TRUE(testing::MatricesNear(mid.contacts[0], Eigen::Vector3d(-0.3, 0.85, 0.04), 0.0));
+  EXPECT_FALSE(mid.outcome.has_value());  // not decided yet
+  EXPECT_EQ(mid.text, "trial trial.json | theta 65.0 deg | as simulated");
+
+  const ViewerState end = ReplayStateAt(replay, Scene(), 3.0);
+  EXPECT_TRUE(end.contacts.empty());
+  ASSERT_TRUE(end.outcome.has_value());
+  EXPECT_FALSE(end.outcome->success);
+  EXPECT_EQ(end.outcome->text, "FAILED (dropped): object slipped or dropped: lifted up to 25.9 mm");
+  EXPECT_TRUE(testing::PosesNear(end.X_WO, PoseFrom(record.frames[1].p_WO, q1), 1e-12));
+
+  record.outcome = TrialOutcome::kSuccess;
+  record.reason = "lifted 120.0 mm";
+  const ViewerState won = ReplayStateAt(ReplayOfTrial(record, "t.json"), Scene(), 0.5);
+  ASSERT_TRUE(won.outcome.has_value());
+  EXPECT_TRUE(won.outcome->success);
+  EXPECT_EQ(won.outcome->text, "success: lifted 120.0 mm");
 }
 
 }  // namespace

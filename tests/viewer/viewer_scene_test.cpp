@@ -237,6 +237,23 @@ TEST(ViewerScene, FrameIsCompactAndWritesNonFiniteValuesAsNull) {
   EXPECT_TRUE(frame["object"][0].is_null());
 }
 
+// A physics replay's frame carries its contacts and outcome; a frame without them (the live
+// teleoperation view) has neither key.
+TEST(ViewerScene, FrameCarriesContactsAndOutcomeOnlyWhenThereAreSome) {
+  ViewerState state;
+  const std::string plain = ViewerFrameJson(Robot(), state);
+  EXPECT_EQ(plain.find("contacts"), std::string::npos);
+  EXPECT_EQ(plain.find("outcome"), std::string::npos);
+  state.contacts = {Eigen::Vector3d(0.1, 0.2, 0.3), Eigen::Vector3d(-0.25, 0.85, 0.0401234567)};
+  state.outcome = ViewerOutcome{false, "FAILED (dropped): \"slipped\""};
+  const json frame = json::parse(ViewerFrameJson(Robot(), state));
+  ASSERT_EQ(frame["contacts"].size(), 2u);
+  EXPECT_EQ(frame["contacts"][0], json::parse("[0.1, 0.2, 0.3]"));
+  EXPECT_EQ(frame["contacts"][1][2], 0.040123);
+  EXPECT_EQ(frame["outcome"]["success"], false);
+  EXPECT_EQ(frame["outcome"]["text"], "FAILED (dropped): \"slipped\"");
+}
+
 TEST(ViewerScene, ParsesCameraPlacements) {
   ViewerCamera defaults;
   defaults.target = Eigen::Vector3d(0.1, 0.2, 0.3);
