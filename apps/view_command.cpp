@@ -169,13 +169,14 @@ void AddViewCommand(CLI::App& app, int* exit_code) {
   auto opts = std::make_shared<ViewOptions>();
   CLI::App* view = app.add_subcommand(
       "view",
-      "Browser viewer: serves a page (three.js) on this machine and replays a file in it.\n"
+      "Browser viewer: replay a trajectory or a demonstration log in a web page\n"
+      "Serves a page (three.js) on this machine and replays a file in it.\n"
       "Open the URL printed on stderr. --trajectory plays a graspsynth-trajectory/1 file (a\n"
       "grasp's joint trajectory); --log a demonstration log (its wrist poses through the\n"
       "analytic IK with a continuous arm angle, the object at its logged position); with\n"
-      "neither, the robot is shown at rest. The replay starts when a page first asks for a\n"
-      "frame and runs at the file's rate (times --speed) until its end (plus --hold), or for\n"
-      "ever with --loop; Ctrl-C or SIGTERM stop it cleanly.");
+      "neither, the robot is shown at rest. The replay starts with the first page (or at once\n"
+      "with --no-wait) and runs at the file's rate (times --speed) until its end (plus --hold),\n"
+      "or for ever with --loop; Ctrl-C or SIGTERM stop it cleanly.");
   auto flags = std::make_shared<RequestFlags<request::ViewRequest>>(view, request::ViewOptions());
   auto* source = view->add_option_group("source", "What to replay");
   source->add_option("--trajectory", opts->trajectory, "Trajectory file (graspsynth-trajectory/1)")
