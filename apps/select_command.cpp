@@ -163,7 +163,8 @@ void AddSelectCommand(CLI::App& app, int* exit_code) {
       "orientation was selected, 1 when\n"
       "none was (the library is written all the same), 2 on bad input.\n\n"
       "Example:\n"
-      "  graspsynth select learning_data/demos --out learning_data/library.json --threads 8");
+      "  graspsynth select learning_data/demos --out out/library.json\n"
+      "(learning_data/library.json, the shipped library, is this with --all-replays.)");
   select->add_option("directory", opts->directory, "Folder of demonstration logs (*.csv, v1)")
       ->required()
       ->check(CLI::ExistingDirectory);
