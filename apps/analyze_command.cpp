@@ -145,7 +145,7 @@ void AddAnalyzeCommand(CLI::App& app, int* exit_code) {
   auto opts = std::make_shared<AnalyzeOptions>();
   CLI::App* cmd = app.add_subcommand(
       "analyze",
-      "Analyze a folder of demonstration logs (paper section III-D).\n"
+      "Analyze a folder of demonstration logs: Table I, the wrist line (paper III-D)\n"
       "Reads every *.csv log (format graspsynth-demo/1) in DIR; a malformed file is named on\n"
       "stderr with the reason (file, line, column) and the others are analyzed. Each trial is\n"
       "labelled (success: the object centre ends >= --success-lift above its first sample) and\n"

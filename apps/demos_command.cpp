@@ -256,6 +256,7 @@ void AddCommonOptions(CLI::App* cmd, DemosOptions* o) {
 void AddDemosCommand(CLI::App& app, int* exit_code) {
   auto* demos = app.add_subcommand(
       "demos",
+      "Make demonstrations with the synthetic operator (generate, calibrate)\n"
       "The synthetic operator: a model of the paper's human operator that makes teleoperation "
       "trials (60 Hz logs, format graspsynth-demo/1) for the orientations of its config, runs "
       "each one in the ODE simulation through the arm's IK and labels it with what happened to "
@@ -266,10 +267,10 @@ void AddDemosCommand(CLI::App& app, int* exit_code) {
 
   auto* generate = demos->add_subcommand(
       "generate",
-      "Generate a demonstration set: one CSV log per trial (theta020_trial01.csv, ...) and the "
-      "operator.json that made it, into --out. The same operator file and seed give the same "
-      "bytes,\n"
-      "whatever --threads is and whatever the number of processes under mpirun (README,\n"
+      "Generate a demonstration set, one log per trial, into --out\n"
+      "Writes one CSV log per trial (theta020_trial01.csv, ...) and the operator.json that made\n"
+      "it into --out. The same operator file and seed give the same bytes, whatever --threads is "
+      "and whatever the number of processes under mpirun (README,\n"
       "\"Running at scale\"). Finished trials are kept in OUT/.demos.resume/ until the end:\n"
       "--resume after a kill runs only the others.\n"
       "Example:\n  graspsynth demos generate --out demos/ --seed 7 --trials-per-orientation 10");
@@ -285,6 +286,7 @@ void AddDemosCommand(CLI::App& app, int* exit_code) {
 
   auto* calibrate = demos->add_subcommand(
       "calibrate",
+      "Calibrate an operator file against the paper's Table I\n"
       "Shift each orientation's intended grasp positions and entry angle by the difference "
       "between the paper's Table I and the mean of the successful trials, --iterations times, "
       "and write the calibrated operator file.");

@@ -121,7 +121,8 @@ void AddGeneralizeCommand(CLI::App& app, int* exit_code) {
   auto opts = std::make_shared<GeneralizeOptions>();
   CLI::App* cmd = app.add_subcommand(
       "generalize",
-      "Synthesize a grasp for every orientation of --orientations by every method of\n"
+      "Synthesize and validate grasps for many orientations, positions and methods\n"
+      "Synthesizes a grasp for every orientation of --orientations by every method of\n"
       "--methods from a grasp library, and validate each in physics (a nominal trial and\n"
       "--perturb perturbed replays; the gate: nominal success and robustness >= 0.8).\n"
       "With --leave-one-out, each inner orientation of the library is synthesized from the\n"

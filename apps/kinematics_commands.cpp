@@ -12,9 +12,11 @@
 
 #include "apps/request_flags.hpp"
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "common/input_file.hpp"
 #include "common/text_input.hpp"
 #include "kinematics/arm_ik.hpp"
+#include "kinematics/arm_reach.hpp"
 #include "kinematics/pose_math.hpp"
 #include "kinematics/robot_description.hpp"
 #include "request/kinematics_request.hpp"
@@ -53,8 +55,17 @@ bool NextLine(std::istream& in, const std::string& source, int number, std::stri
   return !line->empty();
 }
 
-// Calls `handle(line_text)` for every non-blank, non-comment line of the input and reports
-// malformed lines; returns the number of malformed lines.
+// What a command makes of one input line: its JSON object, a warning for stderr ("" for none),
+// and whether the line is a result that failed (the exit status is then 1).
+struct LineResult {
+  json out;
+  std::string warning;
+  bool failed = false;
+};
+
+// Calls `handle(line_text)` (a LineResult) for every non-blank, non-comment line of the input,
+// prints each line's JSON on stdout and its warning on stderr with the line's place, and reports
+// malformed lines; returns the number of malformed or failed lines.
 template <typename Handler>
 int ForEachInputLine(const std::string& input, Handler handle) {
   std::istringstream file;
@@ -69,11 +80,15 @@ int ForEachInputLine(const std::string& input, Handler handle) {
   for (int number = 1; NextLine(*in, source, number, &line); ++number) {
     const std::string_view text = TrimBlanks(line);
     if (text.empty() || text.front() == '#') continue;
+    const std::string place = source + ":" + std::to_string(number) + ": ";
     try {
-      std::cout << handle(text).dump() << "\n";
+      const LineResult result = handle(text);
+      if (!result.warning.empty()) std::cerr << "graspsynth: " << place << result.warning << "\n";
+      if (result.failed) ++bad;
+      std::cout << result.out.dump() << "\n";
     } catch (const InputError& e) {
       ++bad;
-      const std::string message = source + ":" + std::to_string(number) + ": " + e.what();
+      const std::string message = place + e.what();
       std::cerr << "graspsynth: " << message << "\n";
       std::cout << json{{"error", message}}.dump() << "\n";
     }
@@ -91,12 +106,51 @@ std::vector<double> ParseLine(std::string_view text, size_t count, const char* l
 
 json ToJson(const Vector7d& q) { return std::vector<double>(q.data(), q.data() + kArmDof); }
 
-json FkLine(const ArmModel& arm, std::string_view text) {
+// "limits [-1.641, 1.641] rad, [-94, 94] deg": joint i's limits.
+std::string LimitText(const ArmModel& arm, int i) {
+  const double lo = arm.lower()[i], hi = arm.upper()[i];
+  return "limits [" + FixedNumber(lo, 3) + ", " + FixedNumber(hi, 3) + "] rad, [" +
+         FixedNumber(lo * 180.0 / M_PI, 0) + ", " + FixedNumber(hi * 180.0 / M_PI, 0) + "] deg";
+}
+
+// Configuration q checked against the arm's joint limits: "within_limits" and, when some joint
+// is outside, "outside_limits" (each joint's name, value and limits) in `*result`, and a warning
+// naming them, with a hint at degrees when q read as degrees is within the limits and some value
+// is beyond pi (no angle of a radian configuration of this arm needs more than its limits).
+void CheckJointLimits(const ArmModel& arm, const Vector7d& q, LineResult* result) {
+  json outside = json::array();
+  std::string joints;
+  for (int i = 0; i < kArmDof; ++i) {
+    if (q[i] >= arm.lower()[i] && q[i] <= arm.upper()[i]) continue;
+    const std::string& name = arm.joint(i).name;
+    outside.push_back(
+        {{"joint", name}, {"value", q[i]}, {"lower", arm.lower()[i]}, {"upper", arm.upper()[i]}});
+    joints += (joints.empty() ? "" : ", ") + name + " = " + ShortestNumber(q[i]) + " (" +
+              LimitText(arm, i) + ")";
+  }
+  result->out["within_limits"] = outside.empty();
+  if (outside.empty()) return;
+  result->out["outside_limits"] = outside;
+  result->warning = "outside the joint limits: " + joints;
+  const bool beyond_pi = q.cwiseAbs().maxCoeff() > M_PI;
+  if (beyond_pi && arm.WithinLimits(q * (M_PI / 180.0))) {
+    result->warning +=
+        " (the values look like degrees: fk takes radians, and read as degrees they are within "
+        "the limits)";
+  }
+}
+
+LineResult FkLine(const ArmModel& arm, std::string_view text) {
   const std::vector<double> v = ParseLine(text, kArmDof, "q1 .. q7 in radians");
-  const Eigen::Isometry3d X_WF = ArmFlangePose(arm, Eigen::Map<const Vector7d>(v.data()));
-  const Eigen::Quaterniond q = Canonical(Eigen::Quaterniond(X_WF.linear()));
+  const Vector7d q = Eigen::Map<const Vector7d>(v.data());
+  const Eigen::Isometry3d X_WF = ArmFlangePose(arm, q);
+  const Eigen::Quaterniond quat = Canonical(Eigen::Quaterniond(X_WF.linear()));
   const Eigen::Vector3d& p = X_WF.translation();
-  return json{{"position", {p.x(), p.y(), p.z()}}, {"quaternion", {q.w(), q.x(), q.y(), q.z()}}};
+  LineResult result;
+  result.out = json{{"position", {p.x(), p.y(), p.z()}},
+                    {"quaternion", {quat.w(), quat.x(), quat.y(), quat.z()}}};
+  CheckJointLimits(arm, q, &result);
+  return result;
 }
 
 // The branch of the request, or none for all.
@@ -105,7 +159,37 @@ std::optional<ArmBranch> BranchOf(const request::IkRequest& r) {
   return ArmBranch{(*r.branch)[0], (*r.branch)[1], (*r.branch)[2]};
 }
 
-json IkLine(const ArmModel& arm, std::optional<ArmBranch> only, std::string_view text) {
+// "out of reach: ..." for a target whose wrist centre lies outside the arm's span, with a hint at
+// millimetres when the target is farther than ten times the span (no workspace in metres is)
+// and the position read as millimetres is within it.
+std::string OutOfReachText(const ArmModel& arm, const Eigen::Isometry3d& X_WF) {
+  const ArmReach reach = ReachOfTarget(arm, X_WF);
+  std::string text = "out of reach: the wrist centre is " + FixedNumber(reach.distance, 3) +
+                     " m from the shoulder, and the arm reaches from " +
+                     FixedNumber(reach.inner, 3) + " to " + FixedNumber(reach.outer, 3) + " m";
+  Eigen::Isometry3d X_WF_mm = X_WF;
+  X_WF_mm.translation() /= 1000.0;
+  const ArmReach mm = ReachOfTarget(arm, X_WF_mm);
+  if (reach.distance > 10.0 * reach.outer && mm.distance >= mm.inner && mm.distance <= mm.outer) {
+    text += " (the position looks like millimetres: ik takes metres)";
+  }
+  return text;
+}
+
+// The message of a reachable target without a solution at psi: the feasible arm angles, or why
+// there are none.
+std::string NoSolutionText(double psi, const json& psi_intervals) {
+  std::string text = "no solution within the joint limits at psi = " + ShortestNumber(psi);
+  if (psi_intervals.empty()) return text + " (no arm angle is feasible for this target)";
+  text += " (feasible arm angles:";
+  for (const json& iv : psi_intervals) {
+    text += " [" + FixedNumber(iv[0].get<double>(), 3) + ", " +
+            FixedNumber(iv[1].get<double>(), 3) + "]";
+  }
+  return text + ")";
+}
+
+LineResult IkLine(const ArmModel& arm, std::optional<ArmBranch> only, std::string_view text) {
   const std::vector<double> v = ParseLine(text, 8, "x y z qw qx qy qz psi");
   Eigen::Quaterniond quat(v[3], v[4], v[5], v[6]);
   if (std::abs(quat.norm() - 1.0) > kQuaternionTol) {
@@ -121,10 +205,12 @@ json IkLine(const ArmModel& arm, std::optional<ArmBranch> only, std::string_view
   json solutions = json::array();
   json branches = json::array();
   std::vector<Interval> intervals;
+  bool unreachable = true;  // on every branch considered (reach does not depend on the branch)
   for (int index = 0; index < 8; ++index) {
     const ArmBranch b = ArmBranch::FromIndex(index);
     if (only && !(b == *only)) continue;
     const ArmTargetForm form = PrepareArmTarget(arm, X_WF, b.gc4);
+    unreachable &= form.status == IkStatus::kUnreachable;
     const std::vector<Interval> feasible = FeasibleArmAngles(arm, form, b.gc2, b.gc6);
     intervals.insert(intervals.end(), feasible.begin(), feasible.end());
     const ArmIkSolution s = SolveArmIk(arm, X_WF, psi, b);
@@ -135,7 +221,25 @@ json IkLine(const ArmModel& arm, std::optional<ArmBranch> only, std::string_view
   }
   json psi_intervals = json::array();
   for (const Interval& iv : MergeIntervals(intervals)) psi_intervals.push_back({iv.lo, iv.hi});
-  return json{{"solutions", solutions}, {"psi_intervals", psi_intervals}, {"branches", branches}};
+  LineResult result;
+  result.out = json{{"solutions", solutions},
+                    {"psi_intervals", psi_intervals},
+                    {"branches", branches},
+                    {"status", "ok"}};
+  if (!solutions.empty()) return result;
+  result.failed = true;
+  if (unreachable) {
+    const ArmReach reach = ReachOfTarget(arm, X_WF);
+    result.out["status"] = "out_of_reach";
+    result.out["reach"] = {
+        {"distance", reach.distance}, {"inner", reach.inner}, {"outer", reach.outer}};
+    result.warning = OutOfReachText(arm, X_WF);
+  } else {
+    result.out["status"] = "no_solution";
+    result.warning = NoSolutionText(psi, psi_intervals);
+  }
+  result.out["message"] = result.warning;
+  return result;
 }
 
 void AddCommonOptions(CLI::App* cmd, KinematicsOptions* opts) {
@@ -158,12 +262,17 @@ void AddKinematicsCommands(CLI::App& app, int* exit_code) {
 
   CLI::App* fk = app.add_subcommand(
       "fk",
-      "Forward kinematics of the arm.\n"
+      "Forward kinematics of the arm: the flange pose of each configuration\n"
       "Reads one configuration per line, 7 joint values in radians (S1 S2 S3 E1 E2 W1 W2,\n"
       "blank- or comma-separated), and prints one JSON object per line:\n"
-      "  {\"position\":[x,y,z],\"quaternion\":[w,x,y,z]}  (flange pose, world frame, metres)\n"
-      "Blank lines and lines starting with # are skipped. A malformed line prints\n"
-      "{\"error\":...} and is named on stderr; the exit status is 1 if any line was bad.");
+      "  {\"position\":[x,y,z],\"quaternion\":[w,x,y,z],\"within_limits\":true}\n"
+      "(flange pose, world frame, metres). A configuration outside the joint limits is still\n"
+      "answered, with \"within_limits\":false and \"outside_limits\" (each joint's name, value,\n"
+      "lower and upper limit), and named on stderr (with a hint when the values look like\n"
+      "degrees). Blank lines and lines starting with # are skipped. A malformed line prints\n"
+      "{\"error\":...} and is named on stderr; the exit status is 1 if any line was bad.\n"
+      "Example:\n"
+      "  echo \"0 0.5 0 1.2 0 0.6 0\" | graspsynth fk");
   AddCommonOptions(fk, opts.get());
   fk->callback([opts, exit_code] {
     const RobotModel robot = LoadRobot(*opts);
@@ -174,14 +283,21 @@ void AddKinematicsCommands(CLI::App& app, int* exit_code) {
 
   CLI::App* ik = app.add_subcommand(
       "ik",
-      "Analytic inverse kinematics of the arm at a given arm angle.\n"
+      "Analytic inverse kinematics of the arm at a given arm angle\n"
       "Reads one flange target per line: x y z qw qx qy qz psi (metres, unit quaternion,\n"
       "arm angle in radians in [-pi, pi]) and prints one JSON object per line:\n"
-      "  {\"solutions\":[[q1..q7],...],\"psi_intervals\":[[lo,hi],...],\"branches\":[...]}\n"
+      "  {\"solutions\":[[q1..q7],...],\"branches\":[...],\"psi_intervals\":[[lo,hi],...],\n"
+      "   \"status\":\"ok\"}\n"
       "solutions: every solution within the joint limits at that psi over all 8 branches\n"
       "(or the --branch one); branches: the (GC2,GC4,GC6) signs of each solution;\n"
       "psi_intervals: the arm angles at which the target is feasible (union over the\n"
-      "branches considered). A malformed line prints {\"error\":...}; exit status 1 then.");
+      "branches considered). A target without a solution has status \"out_of_reach\" (its wrist\n"
+      "centre beyond the arm's span from the shoulder: \"reach\" gives the distance and the span,\n"
+      "with a hint when the position looks like millimetres) or \"no_solution\" (reachable, but\n"
+      "not within the joint limits at that psi), a \"message\" that stderr repeats, and the exit\n"
+      "status is 1. A malformed line prints {\"error\":...}; exit status 1 then too.\n"
+      "Example:\n"
+      "  echo \"0.5 0.2 0.6 0 1 0 0 0.3\" | graspsynth ik");
   AddCommonOptions(ik, opts.get());
   auto flags = std::make_shared<RequestFlags<request::IkRequest>>(ik, request::IkOptions());
   ik->callback([opts, flags, exit_code] {

@@ -16,6 +16,7 @@
 #include "apps/cli_helpers.hpp"
 #include "apps/demos_command.hpp"
 #include "apps/generalize_command.hpp"
+#include "apps/help_formatter.hpp"
 #include "apps/kinematics_commands.hpp"
 #include "apps/run_command.hpp"
 #include "apps/select_command.hpp"
@@ -132,7 +133,9 @@ int main(int argc, char** argv) {
   if (mpi.rank() > 0 && !std::freopen("/dev/null", "w", stdout)) mpi.AbortAll(2);
   CLI::App app{
       "graspsynth: demonstration-seeded grasp synthesis for a PA-10 arm with a Gifu Hand III.\n"
-      "Run 'graspsynth <command> --help' for the options of one command."};
+      "Run 'graspsynth COMMAND --help' for what a command does, an example and its options.",
+      "graspsynth"};
+  graspsynth::apps::UseHelpFormatter(&app);  // before the commands: they take it from here
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string(kVersion), "Print the version and exit");
   int exit_code = 0;

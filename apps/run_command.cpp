@@ -141,7 +141,7 @@ void AddRunCommand(CLI::App& app, int* exit_code) {
   auto opts = std::make_shared<RunOptions>();
   CLI::App* run = app.add_subcommand(
       "run",
-      "The main job: the end-to-end study on the shipped demonstrations.\n"
+      "The main job: the whole study on the shipped demonstrations\n"
       "1. analysis: segment every log of --demos, build the paper's Table I (for the paper's\n"
       "   pan: compare it with the paper, 5 mm / 2 deg, and check that the paper's grasp\n"
       "   wrist poses are reachable), fit the wrist line and the radial strategy, draw\n"
@@ -160,15 +160,16 @@ void AddRunCommand(CLI::App& app, int* exit_code) {
       "byte for byte, whatever --threads is (report.md and timing.json hold wall times).\n"
       "Defaults: 20 selection replays, as the shipped library, 20 gate replays and 2 replays\n"
       "per end of each physics factor in the sensitivity tables, 17 orientations, 2 methods,\n"
-      "every replay with the physics perturbed (--physics); about 3 min (168 s) on a 2-core\n"
-      "machine. With the shipped demonstrations the selection rebuilds\n"
-      "learning_data/library.json's choices.\n"
+      "every replay with the physics perturbed (--physics). With the shipped demonstrations the\n"
+      "selection rebuilds learning_data/library.json's choices.\n"
       "--quick runs 40, 45, 60, 85 deg with 2 selection and 3 gate replays.\n"
       "Under mpirun the replays are spread over the processes, the files the same bytes\n"
       "(README, \"Running at scale\"); finished jobs are kept in OUT/.run.resume/ until the\n"
       "end, and --resume after a kill runs only the others.\n"
       "Exit status: 0 when the study ran (failed grasps are results in the report), 1 when no\n"
-      "orientation could be selected, 2 on bad input.");
+      "orientation could be selected, 2 on bad input.\n"
+      "Example:\n"
+      "  graspsynth run --quick --out study-quick");
   run->add_option("--out", opts->out, "Output folder")->capture_default_str();
   run->add_option("--demos", opts->demos,
                   "Folder of demonstration logs (default: the shipped learning_data/demos)");

@@ -131,9 +131,9 @@ void AddSelectCommand(CLI::App& app, int* exit_code) {
   auto opts = std::make_shared<SelectCommandOptions>();
   CLI::App* select = app.add_subcommand(
       "select",
-      "Pick the most robust demonstration per object orientation (paper III-C) and write the\n"
-      "grasp library. Every successful demonstration of DIR (object lifted >= 5 cm at the end)\n"
-      "that segments (a pre-grasp inside the scene's grasp region before the grasp event) is\n"
+      "Pick the most robust demonstration per orientation: the grasp library\n"
+      "Every successful demonstration of the directory (object lifted >= 5 cm at the end) that\n"
+      "segments (a pre-grasp inside the scene's grasp region before the grasp event) is\n"
       "replayed as the operator made it - reach, grasping motion and lift, through the arm's\n"
       "IK - in the ODE simulation: once unperturbed and --perturb times with time scaling\n"
       "(U[0.7, 1.3]) and waypoint noise (5 mm, 2 deg wrist, 2 deg fingers). Its score is the\n"
@@ -158,12 +158,13 @@ void AddSelectCommand(CLI::App& app, int* exit_code) {
       "theta_deg, trials, successes, score, ci_low, ci_high, nominal_success, seed, failures,\n"
       "selected; stopped when its replays stopped early) and per orientation the selected\n"
       "grasping motion (pre-grasp to grasp) with the operator's lift. The table on stdout lists\n"
-      "per orientation the successful\n"
-      "demonstrations (n), the selected file, its score and interval; rejected files are listed\n"
-      "with their reasons. Exit status: 0 when at least one orientation was selected, 1 when\n"
+      "per orientation the successful demonstrations (n), the selected file, its score and\n"
+      "interval; rejected files are listed with their reasons. Exit status: 0 when at least one "
+      "orientation was selected, 1 when\n"
       "none was (the library is written all the same), 2 on bad input.\n\n"
       "Example:\n"
-      "  graspsynth select learning_data/demos --out learning_data/library.json --threads 8");
+      "  graspsynth select learning_data/demos --out out/library.json\n"
+      "(learning_data/library.json, the shipped library, is this with --all-replays.)");
   select->add_option("directory", opts->directory, "Folder of demonstration logs (*.csv, v1)")
       ->required()
       ->check(CLI::ExistingDirectory);

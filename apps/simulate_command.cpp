@@ -254,8 +254,9 @@ void AddScriptedGraspCommand(CLI::App& app, int* exit_code) {
   auto sopts = std::make_shared<ScriptedOptions>();
   CLI::App* scripted = app.add_subcommand(
       "scripted-grasp",
-      "Write the scripted (hand-made) grasp-and-lift trajectory for an object orientation:\n"
-      "reach from a rest pose, approach from above, close the hand on the handle (fingertips\n"
+      "Write the scripted (hand-made) grasp-and-lift trajectory for an orientation\n"
+      "The trajectory: reach from a rest pose, approach from above, close the hand on the handle "
+      "(fingertips\n"
       "on its far face, thumb on its near face), lift 10 cm. examples/grasp_60deg.json is\n"
       "its output for --theta 60.");
   auto flags = std::make_shared<RequestFlags<request::ScriptedGraspRequest>>(
@@ -274,18 +275,17 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
   auto opts = std::make_shared<SimulateOptions>();
   CLI::App* sim = app.add_subcommand(
       "simulate",
-      "Play a joint trajectory in the ODE simulation (PA-10 arm, Gifu Hand III, table, pan)\n"
-      "and judge the grasp: after the lift and a hold (--hold, default 1 s) the object's\n"
+      "Play a trajectory in the ODE simulation and judge the grasp\n"
+      "Plays a joint trajectory in the ODE simulation (PA-10 arm, Gifu Hand III, table, pan)\n"
+      "and judges the grasp: after the lift and a hold (--hold, default 1 s) the object's\n"
       "centre must be >= 5 cm above its rest height and touch only the hand. Friction alone\n"
       "holds the object. With --perturb N, N replays with time scaling (uniform in\n"
       "[--time-scale-min, --time-scale-max]), Gaussian waypoint noise and, with --physics on\n"
-      "(the default), perturbed physics (friction, contact stiffness and damping, the\n"
-      "object's mass and centre of mass, the finger servos' force, the step) give a\n"
-      "robustness score (success fraction with a 95% Wilson interval); --sensitivity N adds\n"
-      "N replays per end of each physics factor's range, that factor alone varied. Every\n"
-      "trial reports its hold quality (tilt, slip, contacts, the fingers carrying the load);\n"
-      "a pan held but tilted more than 30 deg at the end is 'tilted', a failure. The same\n"
-      "--seed gives the same report whatever --threads is.\n\n"
+      "(the default), perturbed physics give a robustness score (success fraction with a 95%\n"
+      "Wilson interval); --sensitivity adds a table of each physics factor's effect on its\n"
+      "own. Every trial reports its hold quality (tilt, slip, contacts, the fingers carrying\n"
+      "the load); a pan held but tilted more than 30 deg at the end is 'tilted', a failure.\n"
+      "The same --seed gives the same report whatever --threads is.\n\n"
       "TRAJECTORY: graspsynth-trajectory/1 JSON: {\"format\", \"theta_deg\", \"samples\":\n"
       "[{\"t\": s, \"arm\": [7 rad], \"hand\": [16 rad]}, ...], \"waypoints\" (optional)}.\n"
       "TRAJECTORY may also be a graspsynth-grasp/1 file (its \"trajectory\" is played).\n"

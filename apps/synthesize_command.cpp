@@ -112,8 +112,9 @@ void AddSynthesizeCommand(CLI::App& app, int* exit_code) {
   auto opts = std::make_shared<SynthesizeOptions>();
   CLI::App* cmd = app.add_subcommand(
       "synthesize",
-      "Synthesize a grasp for an object orientation from the grasp library, check it in\n"
-      "physics and write it as a graspsynth-grasp/1 file (its \"trajectory\" member is a\n"
+      "Synthesize a grasp for an object orientation from the grasp library\n"
+      "The grasp is checked in physics (the gate: a nominal trial and --perturb perturbed ones)\n"
+      "and written as a graspsynth-grasp/1 file (its \"trajectory\" member is a\n"
       "graspsynth-trajectory/1 document; `graspsynth simulate grasp.json` plays it).\n"
       "Methods: interp (the paper's blend of the two nearest demonstrations; a bracket that\n"
       "cannot be blended falls back to the nearer demonstration turned with the object, then\n"

@@ -335,6 +335,7 @@ void AddServerCommand(CLI::App& app, int* exit_code) {
   auto opts = std::make_shared<ServerOptions>();
   CLI::App* teleop = app.add_subcommand(
       "teleop",
+      "Live teleoperation server: UDP in, ODE in real time, state out, recording\n"
       "Live teleoperation: runs the ODE scene in real time at --rate and takes operator\n"
       "commands over UDP (wire format GSTP, README 'Teleoperation'): a wrist pose in the\n"
       "tracker's frame, mapped to the robot by the calibration file (--calibration), and 14\n"
@@ -363,7 +364,8 @@ void AddServerCommand(CLI::App& app, int* exit_code) {
       "--summary", opts->summary,
       "Write the session summary (graspsynth-teleop-session/1 JSON) here at the end");
   teleop->add_option("--port-file", opts->port_file,
-                     "Write the UDP port listened on into this file once bound (for scripts)");
+                     "Write the UDP port listened on into this file once bound: with --port 0, a "
+                     "script reads the free port there");
   teleop->callback([opts, flags, exit_code] {
     RefuseCalibrationConfig(flags->config());
     static_cast<request::TeleopRequest&>(*opts) = flags->Build();
@@ -375,6 +377,7 @@ void AddClientCommand(CLI::App& app, int* exit_code) {
   auto copts = std::make_shared<ClientOptions>();
   CLI::App* client = app.add_subcommand(
       "teleop-client",
+      "Replay a demonstration log to a teleop server over UDP, as tracker and glove\n"
       "Replays a demonstration log (v1) to a 'graspsynth teleop' server over UDP at the log's\n"
       "rate (times --speed), as a tracker and a glove would: each wrist pose is mapped into\n"
       "the tracker's frame with the inverse of the calibration (--calibration, the server's),\n"
@@ -401,6 +404,7 @@ void AddKeygenCommand(CLI::App& app, int* exit_code) {
   auto out = std::make_shared<std::string>();
   CLI::App* keygen = app.add_subcommand(
       "teleop-keygen",
+      "Write a new shared key that authenticates the teleoperation link\n"
       "Writes a new shared key for the teleoperation link: 32 random bytes (OpenSSL) in hex, in\n"
       "a file readable by its owner only (mode 0600). Give the same file to 'teleop --key-file'\n"
       "and 'teleop-client --key-file'. An existing file is never overwritten.");

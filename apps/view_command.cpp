@@ -217,7 +217,8 @@ void AddViewCommand(CLI::App& app, int* exit_code) {
   auto opts = std::make_shared<ViewOptions>();
   CLI::App* view = app.add_subcommand(
       "view",
-      "Browser viewer: serves a page (three.js) on this machine and replays a file in it.\n"
+      "Browser viewer: a grasp played as simulated, a trial record or a demonstration log\n"
+      "Serves a page (three.js) on this machine and replays a file in it.\n"
       "Open the URL printed on stderr. --trajectory takes a graspsynth-trajectory/1 file or a\n"
       "graspsynth-grasp/1 file (its \"trajectory\"): the command runs its nominal trial in the\n"
       "ODE simulation (simulate's defaults) and plays it as simulated: the joints and the\n"

@@ -4,6 +4,8 @@
 #include <cassert>
 #include <cmath>
 
+#include "kinematics/arm_reach.hpp"
+
 namespace graspsynth {
 namespace {
 
@@ -332,8 +334,7 @@ ArmTargetForm PrepareArmTarget(const ArmModel& arm, const Eigen::Isometry3d& X_W
 
   // step 1: wrist centre and shoulder-to-wrist vector.
   const Eigen::Matrix3d& R_WF = X_WF.linear();
-  Eigen::Vector3d x_sw = X_WF.translation() - len.d_wt * R_WF.col(2);
-  x_sw.z() -= len.d_bs;
+  const Eigen::Vector3d x_sw = ShoulderToWrist(len, X_WF);
   const double L = x_sw.norm();
   if (!std::isfinite(L)) return form;
 

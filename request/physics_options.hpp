@@ -37,9 +37,8 @@ OptionList<R> PhysicsOptions(F ref) {
   };
   const auto range = [&](const char* name, double P::*lo, double P::*hi, const char* what) {
     Option<R> o;
-    o.info =
-        MakeInfo(name, OptionKind::kNumberPair,
-                 std::string("Factor range of the contact ") + what + " (log-uniform), MIN MAX");
+    o.info = MakeInfo(name, OptionKind::kNumberPair,
+                      std::string("Contact ") + what + ": the range of its factor (log-uniform)");
     o.info.group = kPhysicsGroup;
     o.get = [ref, lo, hi](const R& r) -> Value {
       const P& p = ref(const_cast<R&>(r));

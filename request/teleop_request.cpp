@@ -88,9 +88,10 @@ void AddOutputOptions(OptionList<TeleopRequest>* list) {
                                    "Operator name written into the logs (default: none)"),
                           &R::operator_name));
   list->push_back(Number<R>(
-      WithRange(MakeInfo("exit_after", OptionKind::kNumber,
-                         "End the session after this many seconds in any case (0: never; scripts)"),
-                0.0),
+      WithRange(
+          MakeInfo("exit_after", OptionKind::kNumber,
+                   "End the session after this many seconds in any case, for scripts (0: never)"),
+          0.0),
       &R::exit_after_s));
 }
 

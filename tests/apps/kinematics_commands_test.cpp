@@ -3,11 +3,14 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <vector>
 
+#include "common/format.hpp"
+#include "kinematics/robot_description.hpp"
 #include "tests/utils/run_command.hpp"
 #include "tests/utils/test_folder.hpp"
 
@@ -103,12 +106,123 @@ TEST(IkCommand, SolvesWhatFkProduced) {
   }
 }
 
-TEST(IkCommand, UnreachableTargetHasNoSolutionAndNoInterval) {
-  const auto r = RunGraspsynth("ik", "3 0 0.5 1 0 0 0 0\n");
+// The shipped robot: the limits and lengths the commands check against.
+const ArmModel& Arm() {
+  static const RobotModel robot = LoadRobotModel(DefaultRobotDescriptionPath());
+  return robot.arm;
+}
+
+// "x y z qw qx qy qz" of the flange pose that `graspsynth fk` gives for `q` (radians).
+std::string FlangeTarget(const std::vector<double>& q) {
+  std::ostringstream line;
+  line.precision(17);
+  for (double v : q) line << v << " ";
+  const json pose = json::parse(RunGraspsynth("fk", line.str() + "\n").out);
+  std::ostringstream target;
+  target.precision(17);
+  for (double v : pose["position"]) target << v << " ";
+  for (double v : pose["quaternion"]) target << v << " ";
+  return target.str();
+}
+
+TEST(FkCommand, SaysWhichJointsAreOutsideTheLimitsAndHintsAtDegrees) {
+  // S2 30, E1 90 and W1 45 degrees, given as radians: a pose all the same, exit status 0.
+  const auto r = RunGraspsynth("fk", "0 30 0 90 0 45 0\n0.3 0.7 0 1.1 0.5 -0.8 0.2\n");
   ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto lines = JsonLines(r.out);
+  ASSERT_EQ(lines.size(), 2u);
+  EXPECT_TRUE(lines[0].contains("position"));
+  EXPECT_FALSE(lines[0]["within_limits"].get<bool>());
+  const json& outside = lines[0]["outside_limits"];
+  ASSERT_EQ(outside.size(), 3u) << outside.dump();
+  const std::vector<std::pair<std::string, int>> expected = {{"S2", 1}, {"E1", 3}, {"W1", 5}};
+  for (size_t k = 0; k < expected.size(); ++k) {
+    const auto& [name, i] = expected[k];
+    EXPECT_EQ(outside[k]["joint"], name);
+    EXPECT_EQ(outside[k]["lower"].get<double>(), Arm().lower()[i]);
+    EXPECT_EQ(outside[k]["upper"].get<double>(), Arm().upper()[i]);
+  }
+  EXPECT_EQ(outside[1]["value"].get<double>(), 90.0);
+  EXPECT_THAT(r.err, HasSubstr("<stdin>:1: outside the joint limits: S2 = 30 (limits ["));
+  EXPECT_THAT(r.err, HasSubstr("E1 = 90 (limits [" + FixedNumber(Arm().lower()[3], 3) + ", " +
+                               FixedNumber(Arm().upper()[3], 3) + "] rad"));
+  EXPECT_THAT(r.err, HasSubstr("look like degrees"));
+  // the second line is within the limits: said so, and nothing on stderr for it.
+  EXPECT_TRUE(lines[1]["within_limits"].get<bool>());
+  EXPECT_FALSE(lines[1].contains("outside_limits"));
+  EXPECT_THAT(r.err, ::testing::Not(HasSubstr("<stdin>:2:")));
+}
+
+TEST(FkCommand, ARadianValueJustBeyondALimitGetsNoHintAtDegrees) {
+  const double e1 = Arm().upper()[3] + 0.1;
+  std::ostringstream line;
+  line.precision(17);
+  line << "0 0 0 " << e1 << " 0 0 0\n";
+  const auto r = RunGraspsynth("fk", line.str());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json out = json::parse(r.out);
+  EXPECT_FALSE(out["within_limits"].get<bool>());
+  ASSERT_EQ(out["outside_limits"].size(), 1u);
+  EXPECT_EQ(out["outside_limits"][0]["joint"], "E1");
+  EXPECT_THAT(r.err, HasSubstr("outside the joint limits: E1 = "));
+  EXPECT_THAT(r.err, ::testing::Not(HasSubstr("degrees")));
+}
+
+TEST(IkCommand, AnUnreachableTargetIsOutOfReachWithExitStatus1) {
+  const auto r = RunGraspsynth("ik", "3 0 0.5 1 0 0 0 0\n");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
   const json out = json::parse(r.out);
   EXPECT_TRUE(out["solutions"].empty());
   EXPECT_TRUE(out["psi_intervals"].empty());
+  EXPECT_EQ(out["status"], "out_of_reach");
+  // the span is the arm's, d_se + d_ew; the distance is the wrist centre's from the shoulder.
+  const SrsLengths& len = Arm().lengths();
+  EXPECT_DOUBLE_EQ(out["reach"]["outer"].get<double>(), len.d_se + len.d_ew);
+  EXPECT_DOUBLE_EQ(out["reach"]["inner"].get<double>(), std::abs(len.d_se - len.d_ew));
+  EXPECT_NEAR(out["reach"]["distance"].get<double>(), std::hypot(3.0, 0.5 - len.d_wt - len.d_bs),
+              1e-12);
+  EXPECT_THAT(r.err, HasSubstr("<stdin>:1: out of reach: the wrist centre is 3.002 m from the "
+                               "shoulder"));
+  EXPECT_EQ(out["message"].get<std::string>().rfind("out of reach", 0), 0u);
+  EXPECT_THAT(r.err, ::testing::Not(HasSubstr("millimetres")));
+}
+
+TEST(IkCommand, ATargetInMillimetresIsOutOfReachWithAHint) {
+  // README's example target, 0.5 0.2 0.6 m, given in millimetres.
+  const auto r = RunGraspsynth("ik", "500 200 600 0 1 0 0 0.3\n0.5 0.2 0.6 0 1 0 0 0.3\n");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  const auto lines = JsonLines(r.out);
+  ASSERT_EQ(lines.size(), 2u);
+  EXPECT_EQ(lines[0]["status"], "out_of_reach");
+  EXPECT_THAT(r.err, HasSubstr("<stdin>:1: out of reach"));
+  EXPECT_THAT(r.err, HasSubstr("looks like millimetres: ik takes metres"));
+  // in metres it has solutions.
+  EXPECT_EQ(lines[1]["status"], "ok");
+  EXPECT_FALSE(lines[1]["solutions"].empty());
+  EXPECT_THAT(r.err, ::testing::Not(HasSubstr("<stdin>:2:")));
+}
+
+TEST(IkCommand, AReachableTargetWithoutASolutionAtThatArmAngleFails) {
+  // a configuration near the shoulder's limit: on its branch only some arm angles are feasible.
+  const std::string target = FlangeTarget({0.0, 1.5, 0.0, 1.0, 0.0, 1.0, 0.0});
+  const auto ok = RunGraspsynth("ik --branch 1,1,1", target + "0\n");
+  ASSERT_EQ(ok.exit_code, 0) << ok.err;
+  const json feasible = json::parse(ok.out)["psi_intervals"];
+  ASSERT_EQ(feasible.size(), 1u) << feasible.dump();
+  const double psi = feasible[0][1].get<double>() + 0.5;
+  ASSERT_LT(psi, M_PI);
+  std::ostringstream line;
+  line.precision(17);
+  line << target << psi << "\n";
+  const auto r = RunGraspsynth("ik --branch 1,1,1", line.str());
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  const json out = json::parse(r.out);
+  EXPECT_TRUE(out["solutions"].empty());
+  EXPECT_EQ(out["status"], "no_solution");
+  EXPECT_EQ(out["psi_intervals"], feasible);
+  EXPECT_THAT(r.err, HasSubstr("no solution within the joint limits at psi = "));
+  EXPECT_THAT(r.err, HasSubstr("feasible arm angles: ["));
+  EXPECT_THAT(r.err, ::testing::Not(HasSubstr("out of reach")));
 }
 
 TEST(IkCommand, NamesMalformedLines) {
