@@ -270,8 +270,8 @@ void AddDemosCommand(CLI::App& app, int* exit_code) {
       "Generate a demonstration set, one log per trial, into --out\n"
       "Writes one CSV log per trial (theta020_trial01.csv, ...) and the operator.json that made\n"
       "it into --out. The same operator file and seed give the same bytes, whatever --threads is "
-      "and whatever the number of processes under mpirun (README,\n"
-      "\"Running at scale\"). Finished trials are kept in OUT/.demos.resume/ until the end:\n"
+      "and whatever the number of processes under mpirun\n"
+      "(docs/scale-out.md). Finished trials are kept in OUT/.demos.resume/ until the end:\n"
       "--resume after a kill runs only the others.\n"
       "Example:\n  graspsynth demos generate --out demos/ --seed 7 --trials-per-orientation 10");
   auto generate_flags = std::make_shared<RequestFlags<request::DemosRequest>>(

@@ -129,7 +129,7 @@ void AddGeneralizeCommand(CLI::App& app, int* exit_code) {
       "library without it. Writes OUT/NAME.csv (the study's synthesis CSV layout) and\n"
       "OUT/NAME.md (summary per method, the shortfalls with the simulator's reasons, every\n"
       "grasp), atomically; the CSV is the same bytes for the same seed whatever --threads is,\n"
-      "and whatever the number of processes under mpirun (README, \"Running at scale\").\n"
+      "and whatever the number of processes under mpirun (docs/scale-out.md).\n"
       "Each finished grasp is kept in OUT/.NAME.resume/ until the end: --resume after a\n"
       "kill runs only the grasps that were not finished.\n"
       "Methods: interp, line or nearest, then +refine (both refinement stages), +ceres or\n"

@@ -34,7 +34,7 @@
 
 namespace {
 
-// The MPI job this process belongs to, if any (README, "Running at scale"): its rank and size,
+// The MPI job this process belongs to, if any (docs/scale-out.md): its rank and size,
 // and how to end every rank after an error on this one.
 #ifdef GRASPSYNTH_HAS_MPI
 using Mpi = graspsynth::MpiSession;
@@ -55,7 +55,7 @@ constexpr const char* kVersion = "graspsynth 0.1.0";
 constexpr const char* kEmptyValue = "an empty value (leave the option out to take its default)";
 
 // Refuses an empty value for every option that takes one, in `app` and its subcommands: an
-// empty --object or --at would otherwise mean "not given" without a word (README, "Commands");
+// empty --object or --at would otherwise mean "not given" without a word (docs/commands.md);
 // leaving the option out is how its default is asked for.
 void RefuseEmptyValues(CLI::App* app) {
   for (CLI::Option* option : app->get_options()) {
@@ -92,7 +92,7 @@ std::vector<std::string> CommandNames(const CLI::App* app) {
 }
 
 // The exit status of a command line that CLI11 refused or answered: 0 for --help and --version
-// (printed), 2 for every refusal (README, "Exit status": bad input), with the nearest flag for
+// (printed), 2 for every refusal (README.md, "Commands": bad input), with the nearest flag for
 // one that is misspelt.
 int ParseErrorExit(CLI::App& app, const CLI::ParseError& e, int argc, char** argv) {
   const int code = app.exit(e);  // prints the help, the version or the error

@@ -164,7 +164,7 @@ void AddRunCommand(CLI::App& app, int* exit_code) {
       "selection rebuilds learning_data/library.json's choices.\n"
       "--quick runs 40, 45, 60, 85 deg with 2 selection and 3 gate replays.\n"
       "Under mpirun the replays are spread over the processes, the files the same bytes\n"
-      "(README, \"Running at scale\"); finished jobs are kept in OUT/.run.resume/ until the\n"
+      "(docs/scale-out.md); finished jobs are kept in OUT/.run.resume/ until the\n"
       "end, and --resume after a kill runs only the others.\n"
       "Exit status: 0 when the study ran (failed grasps are results in the report), 1 when no\n"
       "orientation could be selected, 2 on bad input.\n"

@@ -152,7 +152,7 @@ void AddSelectCommand(CLI::App& app, int* exit_code) {
       "those of --all-replays, which runs every replay.\n\n"
       "Each demonstration's perturbations are seeded from --seed and its file name, so the same\n"
       "--seed gives the same library, byte for byte, whatever --threads is, and whatever the\n"
-      "number of processes under mpirun (README, \"Running at scale\"). Finished jobs are kept\n"
+      "number of processes under mpirun (docs/scale-out.md). Finished jobs are kept\n"
       "in .OUT.resume/ beside --out until the end: --resume after a kill runs only the others.\n\n"
       "The library (--out, graspsynth-library/1 or /2 JSON) holds every score (file, trial,\n"
       "theta_deg, trials, successes, score, ci_low, ci_high, nominal_success, seed, failures,\n"

@@ -227,9 +227,9 @@ void AddViewCommand(CLI::App& app, int* exit_code) {
       "alone, the object standing still. --trial plays a trial record (simulate --trial-record;\n"
       "--trajectory recognises one too). --log plays a demonstration log (its wrist poses\n"
       "through the analytic IK with a continuous arm angle, the object at its logged\n"
-      "position); with none, the robot is shown at rest. The replay starts when a page first\n"
-      "asks for a frame and runs at the file's rate (times --speed) until its end (plus\n"
-      "--hold), or for ever with --loop; Ctrl-C or SIGTERM stop it cleanly. docs/viewer.md.");
+      "position); with none, the robot is shown at rest. The replay runs at the file's rate\n"
+      "(times --speed) until its end (plus --hold), or for ever with --loop; Ctrl-C or\n"
+      "SIGTERM stop it cleanly. More, with screenshots: docs/viewer.md.");
   auto flags = std::make_shared<RequestFlags<request::ViewRequest>>(view, request::ViewOptions());
   auto* source = view->add_option_group("source", "What to replay");
   source

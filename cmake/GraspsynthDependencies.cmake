@@ -48,7 +48,7 @@ pkg_check_modules(TINYXML QUIET IMPORTED_TARGET tinyxml)
 graspsynth_require(TINYXML_FOUND "TinyXML" libtinyxml-dev)
 
 # MPI (Open MPI, libopenmpi-dev) is optional: without it the command runs on one machine's
-# threads, as before (README, "Running at scale").
+# threads, as before (docs/scale-out.md).
 if(GRASPSYNTH_MPI)
   # the C API from C++; the deprecated C++ bindings are not used.
   set(MPI_CXX_SKIP_MPICXX ON)

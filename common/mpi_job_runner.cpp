@@ -263,7 +263,7 @@ class MpiJobRunner final : public JobRunner {
       w.String(payload);
       return w.Take();
     };
-    // a fault for the tests (README, "Running at scale"): the first job of the stage named by
+    // a fault for the tests (docs/scale-out.md): the first job of the stage named by
     // GRASPSYNTH_TEST_FAIL_STAGE that this rank runs fails, as a job that meets bad input does.
     const char* fail = std::getenv("GRASPSYNTH_TEST_FAIL_STAGE");
     std::atomic<bool> failed{fail == nullptr || stage.name != fail};

@@ -8,7 +8,7 @@ generate` (the trial-to-trial variability off, one trial) and scored with `grasp
 (the nominal replay and --perturb perturbed replays under the physics gate's noise: time scale
 0.7-1.3, wrist 5 mm and 2 deg, fingers 2 deg, and with --physics on, select's default, the
 physics perturbation: friction, contact stiffness and damping, the pan's mass and centre of
-mass, the finger servos' force and the step; README.md, "Robustness under the contact model"). The fitness is the success fraction plus 0.05
+mass, the finger servos' force and the step; docs/architecture.md, "Robustness under the contact model"). The fitness is the success fraction plus 0.05
 for a successful nominal replay; a trial that does not lift the pan scores 0.
 
 The search is a (1+1) evolution strategy: each step changes one to three grip values by

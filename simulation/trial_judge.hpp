@@ -55,7 +55,7 @@ struct TrialJudgeOptions {
   /// its up axis from vertical); beyond it the trial is kTilted. 30 deg: the demonstrations
   /// lift the pan level (a few degrees), a pan at 30 deg still keeps what lies in it and its
   /// load still acts mostly along the fingers' grip, while one hanging at 60 deg from a
-  /// sideways pinch is held by friction at its limit (README.md, "Robustness under the
+  /// sideways pinch is held by friction at its limit (docs/architecture.md, "Robustness under the
   /// contact model").
   double max_hold_tilt = Radians(30.0);
   /// Instability: a finger or the object faster than this (m/s, rad/s) or with more kinetic

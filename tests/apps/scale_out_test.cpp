@@ -1,4 +1,4 @@
-// Tests of the scale-out (README, "Running at scale"): a generalize sweep killed midway (SIGKILL)
+// Tests of the scale-out (docs/scale-out.md): a generalize sweep killed midway (SIGKILL)
 // and resumed with --resume ends with the bytes of an uninterrupted run, also when some of its
 // kept jobs are damaged or foreign (they run again); a resume with another seed, or of a folder
 // another build started, is refused naming it; and, where the build has MPI, generalize, demos

@@ -1,4 +1,4 @@
-# The direction of the modules (README.md, "Architecture"): a module's sources see the headers of
+# The direction of the modules (docs/architecture.md): a module's sources see the headers of
 # the modules it links and of no other (cmake/GraspsynthOptions.cmake, graspsynth_module). Each
 # case below is a source of module FROM that includes a header of module TO. The forbidden ones,
 # a module including one that comes after it, must fail to compile because the header is not
