@@ -21,6 +21,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 using ::testing::HasSubstr;
+using ::testing::Not;
 using testing::ReadFileText;
 using testing::RunGraspsynth;
 
@@ -88,14 +89,17 @@ TEST_F(RunCommand, QuickStudyWritesEveryFileWithPlausibleResults) {
     EXPECT_EQ(done, total) << line;
   }
 
-  // every file, valid against its format.
+  // every file, valid against its format; the folder recorded as given (absolute here).
   const json analysis = json::parse(ReadFileText(out / "analysis.json"));
   EXPECT_EQ(analysis["format"], "graspsynth-analysis/1");
+  EXPECT_EQ(analysis["directory"], demos);
   const json library = json::parse(ReadFileText(out / "library.json"));
   EXPECT_EQ(library["format"], "graspsynth-library/1");
   EXPECT_GE(library["entries"].size(), 1u);
   const json synthesis = json::parse(ReadFileText(out / "synthesis.json"));
   EXPECT_EQ(synthesis["format"], "graspsynth-study-synthesis/1");
+  EXPECT_EQ(synthesis["demos"], demos);
+  EXPECT_EQ(library["demo_directory"], demos);
   ASSERT_EQ(synthesis["rows"].size(), 2u * orientations);
   const json timing = json::parse(ReadFileText(out / "timing.json"));
   EXPECT_EQ(timing["format"], "graspsynth-study-timing/1");
