@@ -73,7 +73,7 @@ void PrintStudySummary(const StudyResult& result, const fs::path& out) {
     paper_rows += row.paper ? 1 : 0;
     within += row.within_tolerance ? 1 : 0;
   }
-  std::printf("graspsynth run: %s, seed %llu, %.1f s\n", options.demos.string().c_str(),
+  std::printf("graspsynth run: %s, seed %llu, %.1f s\n", options.DemosName().c_str(),
               static_cast<unsigned long long>(options.seed), result.total_s);
   std::printf("  analysis: %d logs, %d trials used; ", result.analysis.files,
               result.analysis.table.used);

@@ -4,12 +4,16 @@
 # and shipped libraries) and the physics gate, and the wall time of `graspsynth run` with 1 and
 # 2 threads (its scaling). Timings depend on the machine; the script records it.
 # Writes experiments/results/performance.md, the raw Google Benchmark JSON (perf_*.json), and
-# the 2-thread study's report.md and summary (study_report.md, study_summary.txt).
+# the 2-thread study's report.md and summary (study_report.md, study_summary.txt). No file keeps
+# a path of this machine: the benchmarks run from the project root by a relative path and their
+# JSON goes through experiments/benchmark_context.py; the study reads the shipped demonstrations
+# (named learning_data/demos) and writes into study_N of the temporary folder, its working folder.
 #
-#   experiments/performance.sh [BUILD_DIR]      (default: build)
+#   experiments/performance.sh [BUILD_DIR]      (default: build, relative to the project root)
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
-build="${root}/${1:-build}"
+build_arg="${1:-build}"
+build="${root}/${build_arg}"
 out="${root}/experiments/results"
 tmp="$(mktemp -d)"
 trap 'rm -rf "${tmp}"' EXIT
@@ -18,8 +22,9 @@ cd "${root}"
 bench() {
   local name="$1"
   shift
-  "${build}/benchmarks/${name}" --benchmark_out="${out}/perf_${name}.json" \
+  "${build_arg}/benchmarks/${name}" --benchmark_out="${out}/perf_${name}.json" \
     --benchmark_out_format=json "$@" >"${tmp}/${name}.txt"
+  python3 "${root}/experiments/benchmark_context.py" --root "${root}" "${out}/perf_${name}.json"
 }
 echo "benchmarks (several minutes)..." >&2
 bench ik_benchmark
@@ -27,8 +32,8 @@ bench simulation_benchmark
 bench synthesis_benchmark
 study_time() {
   local threads="$1"
-  "${build}/apps/graspsynth" run --threads "${threads}" --out "${tmp}/study_${threads}" \
-    >"${tmp}/study_${threads}.txt" 2>/dev/null
+  (cd "${tmp}" && "${build}/apps/graspsynth" run --threads "${threads}" --out "study_${threads}" \
+    >"study_${threads}.txt" 2>/dev/null)
   grep -o '"total_s": [0-9.]*' "${tmp}/study_${threads}/timing.json" | awk '{printf "%.1f", $2}'
 }
 echo "graspsynth run with 2 threads, then 1 thread (about 20 minutes)..." >&2

@@ -5,12 +5,13 @@
 
 #include "common/data_dir.hpp"
 #include "common/errors.hpp"
+#include "common/input_file.hpp"
 
 namespace graspsynth {
 
 namespace fs = std::filesystem;
 
-DemoDirectory ReadDemoDirectory(const fs::path& directory) {
+DemoDirectory ReadDemoDirectory(const fs::path& directory, const std::string& name) {
   std::error_code ec;
   if (!fs::is_directory(directory, ec)) {
     throw InputError("demonstration folder '" + directory.string() +
@@ -38,15 +39,23 @@ DemoDirectory ReadDemoDirectory(const fs::path& directory) {
             [](const fs::path& a, const fs::path& b) { return a.filename() < b.filename(); });
 
   DemoDirectory result;
-  result.directory = directory.string();
+  result.directory = name.empty() ? directory.string() : name;
   for (const fs::path& path : files) {
+    // as the folder is named: `directory` / file name is what the listing gives.
+    const std::string source =
+        name.empty() ? path.string() : (fs::path(name) / path.filename()).string();
     try {
-      result.logs.push_back(ReadDemoLog(path));
+      result.logs.push_back(ParseDemoLog(ReadInputFile(path, input_kind::kDemoLog), source));
     } catch (const InputError& e) {
-      result.rejected.push_back({path.string(), e.what()});
+      result.rejected.push_back({source, e.what()});
     }
   }
   return result;
+}
+
+DemoDirectory ReadDefaultDemoDirectory(const std::string& object_name) {
+  const fs::path directory = DefaultDemoDirectory(object_name);
+  return ReadDemoDirectory(directory, DataRelativeName(directory));
 }
 
 std::filesystem::path ObjectLearningDataDirectory(const std::string& object_name) {

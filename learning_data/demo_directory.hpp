@@ -20,7 +20,7 @@ struct RejectedDemoFile {
 
 /// What ReadDemoDirectory found.
 struct DemoDirectory {
-  std::string directory;                   ///< the folder as given
+  std::string directory;                   ///< the folder as named (ReadDemoDirectory's `name`)
   std::vector<DemoLog> logs;               ///< the good logs, sorted by file name
   std::vector<RejectedDemoFile> rejected;  ///< the bad files with reasons, sorted by file name
 };
@@ -30,9 +30,19 @@ struct DemoDirectory {
 /// are ignored) with ReadDemoLog: one that is not a regular file (a folder, a named pipe, a
 /// device) is rejected with that reason. Files are visited in file-name order, so the result does
 /// not depend on the file system's listing order.
+/// The result names the folder `name`, or `directory` as given when `name` is empty, and each file
+/// the folder's name joined with the file's name (every log's `source`, every rejected `file`,
+/// and the reader's reasons about a file's content; a file that cannot be opened is named as
+/// opened): the shipped folder read by a default is named relative to the project root
+/// (DataRelativeName), so that outputs are the same bytes on every clone.
 /// Throws InputError only when `directory` does not exist or is not a readable folder; a bad log
 /// goes to `rejected` with its reason.
-DemoDirectory ReadDemoDirectory(const std::filesystem::path& directory);
+DemoDirectory ReadDemoDirectory(const std::filesystem::path& directory,
+                                const std::string& name = {});
+
+/// ReadDemoDirectory(DefaultDemoDirectory(object_name)), named relative to the project root
+/// ("learning_data/demos/theta020_trial03.csv").
+DemoDirectory ReadDefaultDemoDirectory(const std::string& object_name = "pan");
 
 /// The folder of an object's shipped learning data (its demonstrations, operator and library):
 /// learning_data/ for the pan, the study's reference object, whose files have always been

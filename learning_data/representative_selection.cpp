@@ -458,9 +458,14 @@ SelectionResult SelectRepresentatives(const SimulationModel& model,
                                       const SelectionOptions& options,
                                       const SelectionProgress& progress) {
   RequireValid(options, "bad selection option");
-  const DemoDirectory demos = ReadDemoDirectory(directory);
+  return SelectRepresentatives(model, ReadDemoDirectory(directory), options, progress);
+}
+
+SelectionResult SelectRepresentatives(const SimulationModel& model, const DemoDirectory& demos,
+                                      const SelectionOptions& options,
+                                      const SelectionProgress& progress) {
   SelectionResult result =
-      SelectRepresentatives(model, demos.logs, directory.string(), options, progress);
+      SelectRepresentatives(model, demos.logs, demos.directory, options, progress);
   for (const RejectedDemoFile& rejected : demos.rejected) {
     result.issues.push_back(
         {FileName(rejected.file), SelectionIssueKind::kUnreadable, rejected.reason});

@@ -155,4 +155,11 @@ SelectionResult SelectRepresentatives(const SimulationModel& model,
                                       const SelectionOptions& options,
                                       const SelectionProgress& progress = {});
 
+/// Selects from the logs of `demos` (a ReadDemoDirectory result: its rejected files become
+/// kUnreadable issues, its `directory` name is recorded in the library).
+/// Throws InputError when the options are invalid.
+SelectionResult SelectRepresentatives(const SimulationModel& model, const DemoDirectory& demos,
+                                      const SelectionOptions& options,
+                                      const SelectionProgress& progress = {});
+
 }  // namespace graspsynth

@@ -113,14 +113,13 @@ py::object Analyze(const std::optional<std::filesystem::path>& directory,
   const std::shared_ptr<const SceneModel> scene = SceneOrDefault(scene_arg);
   const AnalysisOptions options = request::ToAnalysisOptions(
       RequestFromPython(request::AnalyzeOptions(), given), scene->grasp_region);
-  const std::filesystem::path folder =
-      directory ? *directory : DefaultDemoDirectory(scene->object.name);
   PaperComparisonOptions comparison;
   std::string text;
   {
     py::gil_scoped_release release;
-    const DemonstrationAnalysis analysis =
-        AnalyzeDemonstrations(ReadDemoDirectory(folder), options);
+    const DemonstrationAnalysis analysis = AnalyzeDemonstrations(
+        directory ? ReadDemoDirectory(*directory) : ReadDefaultDemoDirectory(scene->object.name),
+        options);
     text = AnalysisReportJson(analysis, scene->object.paper_object ? &comparison : nullptr);
   }
   return JsonTextToPython(text);
@@ -247,7 +246,7 @@ void BindDemoAnalysis(py::module_& m) {
   m.def(
       "read_demo_directory",
       [](const std::optional<std::filesystem::path>& directory) {
-        DemoDirectory d = ReadDemoDirectory(directory ? *directory : DefaultDemoDirectory());
+        DemoDirectory d = directory ? ReadDemoDirectory(*directory) : ReadDefaultDemoDirectory();
         py::list logs;
         for (DemoLog& log : d.logs) logs.append(std::make_shared<DemoLog>(std::move(log)));
         py::list rejected;

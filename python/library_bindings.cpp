@@ -103,14 +103,15 @@ py::tuple Select(const std::optional<std::filesystem::path>& directory, const py
                  const std::shared_ptr<SceneModel>& scene_arg) {
   const request::SelectRequest r = RequestFromPython(request::SelectOptions(), given);
   const SceneModel& scene = *SceneOrDefault(scene_arg);
-  const std::filesystem::path folder =
-      directory ? std::filesystem::path(*directory) : DefaultDemoDirectory(scene.object.name);
   const SelectionOptions options = request::ToSelectionOptions(r, scene);
   SelectionResult result;
   {
     py::gil_scoped_release release;
     const SimulationModel model(*RobotOrDefault(robot), scene);
-    result = SelectRepresentatives(model, folder, options);
+    result = SelectRepresentatives(
+        model,
+        directory ? ReadDemoDirectory(*directory) : ReadDefaultDemoDirectory(scene.object.name),
+        options);
   }
   py::list issues;
   for (const SelectionIssue& issue : result.issues) {

@@ -2,6 +2,7 @@
 
 #include <utility>
 
+#include "common/data_dir.hpp"
 #include "common/errors.hpp"
 #include "common/orientation_list.hpp"
 #include "common/valid_options.hpp"
@@ -72,6 +73,8 @@ StudyOptions ToStudyOptions(const RunRequest& request, const SceneModel& scene,
                             const std::filesystem::path& demos) {
   StudyOptions options;
   options.demos = demos.empty() ? DefaultDemoDirectory(scene.object.name) : demos;
+  // the shipped folder is named relative to the project root: the same bytes on every clone.
+  if (demos.empty()) options.demos_name = DataRelativeName(options.demos);
   options.seed = request.seed;
   options.threads = request.threads;
   options.analysis.segmentation.region = scene.grasp_region;

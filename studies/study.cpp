@@ -366,8 +366,8 @@ StudyResult RunStudy(const SimulationModel& model, const StudyOptions& options,
 
   // stage 1: segmentation and Table I (and the cheap kinematics check of the paper's grasps).
   auto start = std::chrono::steady_clock::now();
-  report(StudyStage::kAnalysis, 0, 2, options.demos.string());
-  const DemoDirectory demos = ReadDemoDirectory(options.demos);
+  report(StudyStage::kAnalysis, 0, 2, options.DemosName());
+  const DemoDirectory demos = ReadDemoDirectory(options.demos, options.demos_name);
   if (demos.logs.empty()) {
     throw InputError("study: no readable demonstration logs (*.csv) in '" + options.demos.string() +
                      "' (" + std::to_string(demos.rejected.size()) + " rejected)");
@@ -390,7 +390,7 @@ StudyResult RunStudy(const SimulationModel& model, const StudyOptions& options,
   selection.early_stop = options.selection_early_stop;
   selection.runner = options.runner;
   selection.segmentation = options.analysis.segmentation;
-  result.selection = SelectRepresentatives(model, demos.logs, options.demos.string(), selection,
+  result.selection = SelectRepresentatives(model, demos.logs, demos.directory, selection,
                                            [&](int done, int total, const std::string& file) {
                                              report(StudyStage::kSelection, done, total, file);
                                            });

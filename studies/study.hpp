@@ -60,6 +60,10 @@ const char* ToString(StudyStage stage);
 struct StudyOptions {
   /// Folder of demonstration logs (*.csv, graspsynth-demo/1).
   std::filesystem::path demos;
+  /// How the outputs name `demos` and its files (report.md, synthesis.json, analysis.json, the
+  /// library): empty for `demos` as given; the shipped folder's name relative to the project root
+  /// when a default chose it (request::ToStudyOptions: "learning_data/demos").
+  std::string demos_name;
   /// Seed of the whole study (selection and physics gates).
   uint64_t seed = 1;
   /// Worker threads of the replays (0: one per hardware thread). Changes no result.
@@ -124,6 +128,9 @@ struct StudyOptions {
   /// True when every value is in range (and the nested options are valid); otherwise false
   /// with the reason, naming the field and the value, in `why` (if given).
   bool IsValid(std::string* why) const;
+
+  /// `demos_name`, or `demos` as given when it is empty.
+  std::string DemosName() const { return demos_name.empty() ? demos.string() : demos_name; }
 };
 
 /// Reachability of the paper's Table I grasp wrist pose at one orientation (a cheap kinematics

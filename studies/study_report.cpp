@@ -102,7 +102,7 @@ std::string StudySynthesisJson(const StudyResult& result) {
   const StudyOptions& o = result.options;
   json j;
   j["format"] = kStudySynthesisFormat;
-  j["demos"] = o.demos.string();
+  j["demos"] = o.DemosName();
   j["seed"] = o.seed;
   j["orientations_deg"] = o.orientations;
   json methods = json::array();
@@ -266,7 +266,7 @@ std::map<double, int> SuccessfulByOrientation(const GraspLibrary& library) {
 void OptionsSection(const StudyResult& result, std::ostringstream& md) {
   const StudyOptions& o = result.options;
   md << "# graspsynth study\n\n";
-  md << "Demonstrations `" << o.demos.string() << "`, seed " << o.seed << ", "
+  md << "Demonstrations `" << o.DemosName() << "`, seed " << o.seed << ", "
      << o.selection_perturbations << " perturbed replays per demonstration in the selection, "
      << o.gate_perturbations << " perturbed replays per synthesized grasp (gate: nominal success "
      << "and robustness >= " << Format("%.2f", o.min_robustness) << "), the physics "

@@ -14,6 +14,7 @@ namespace {
 
 using nlohmann::json;
 using ::testing::HasSubstr;
+using ::testing::Not;
 using testing::ReadFileText;
 using testing::RunGraspsynth;
 
@@ -66,6 +67,28 @@ TEST(AnalyzeCommand, AnalyzesAFolderAndNamesTheBadFile) {
 
 // Only the paper's pan has a published Table I: for another object the report's
 // paper_comparison is null and the table is ours alone.
+// A folder given as a relative path is recorded as given, and each file joined to it: no path
+// of the machine in the report (the absolute one is recorded as given above).
+TEST(AnalyzeCommand, ARelativeFolderIsRecordedAsGiven) {
+  const testing::TestFolder folder;
+  std::filesystem::create_directories(folder.path() / "demos");
+  WriteDemoSet(folder.path() / "demos", true);
+  const auto r = RunGraspsynth("analyze ./demos --out out/report.json", "", 0, folder.path());
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("from ./demos ("));
+  const std::string text = ReadFileText(folder.path() / "out" / "report.json");
+  EXPECT_THAT(text, Not(HasSubstr(folder.path().string())));
+  const json j = json::parse(text);
+  EXPECT_EQ(j.at("directory"), "./demos");
+  EXPECT_EQ(j.at("rejected").at(0).at("file"), "./demos/broken.csv");
+  EXPECT_THAT(j["rejected"][0].at("reason").get<std::string>(), HasSubstr("./demos/broken.csv:8:"));
+  for (const json& row : j.at("orientations")) {
+    for (const json& file : row.at("files")) {
+      EXPECT_EQ(file.get<std::string>().rfind("./demos/theta", 0), 0u) << file;
+    }
+  }
+}
+
 TEST(AnalyzeCommand, AnotherObjectHasNoPaperComparison) {
   const testing::TestFolder folder;
   const auto demos = folder.path() / "demos";

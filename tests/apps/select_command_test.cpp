@@ -158,10 +158,12 @@ TEST(SelectCommand, RejectsBadInputAndExplainsItself) {
   EXPECT_THAT(help.out, HasSubstr("ties go to"));
   EXPECT_THAT(help.out, HasSubstr("--perturb"));
   EXPECT_THAT(help.out, HasSubstr("whatever --threads is"));
-  const auto missing = RunGraspsynth("select /nonexistent/folder --out /tmp/x.json");
+  const testing::TestFolder folder;
+  const auto missing =
+      RunGraspsynth("select /nonexistent/folder --out " + (folder.path() / "x.json").string());
   EXPECT_NE(missing.exit_code, 0);
   EXPECT_THAT(missing.err, HasSubstr("/nonexistent/folder"));
-  const testing::TestFolder folder;
+  EXPECT_FALSE(std::filesystem::exists(folder.path() / "x.json"));
   const auto zero = RunGraspsynth("select " + folder.path().string() + " --out " +
                                   (folder.path() / "l.json").string() + " --perturb 0");
   EXPECT_NE(zero.exit_code, 0);

@@ -83,6 +83,58 @@ TEST(DemoDirectory, AMissingFolderIsAnInputError) {
                        "not a folder");
 }
 
+TEST(DemoDirectory, ANamedFolderNamesEachFileJoinedToTheName) {
+  const TestFolder folder;
+  const auto& dir = folder.path();
+  WriteFile(dir / "a_good.csv", testing::GoodDemoText());
+  const testing::MalformedCase bad = testing::MalformedDemoCases().front();
+  WriteFile(dir / "m_bad.csv", bad.text);
+
+  const DemoDirectory demos = ReadDemoDirectory(dir, "shipped/demos");
+  EXPECT_EQ(demos.directory, "shipped/demos");
+  ASSERT_EQ(demos.logs.size(), 1u);
+  EXPECT_EQ(demos.logs[0].source, "shipped/demos/a_good.csv");
+  EXPECT_EQ(demos.logs[0].samples.size(), 4u);  // read from `dir`, whatever the name
+  ASSERT_EQ(demos.rejected.size(), 1u);
+  EXPECT_EQ(demos.rejected[0].file, "shipped/demos/m_bad.csv");
+  EXPECT_EQ(demos.rejected[0].reason.rfind("shipped/demos/m_bad.csv:", 0), 0u)
+      << demos.rejected[0].reason;
+  for (const std::string& part : bad.message)
+    EXPECT_THAT(demos.rejected[0].reason, HasSubstr(part));
+}
+
+TEST(DemoDirectory, ARelativeFolderIsNamedAsGiven) {
+  const TestFolder folder;
+  std::filesystem::create_directories(folder.path() / "demos");
+  WriteFile(folder.path() / "demos" / "a_good.csv", testing::GoodDemoText());
+  const std::filesystem::path previous = std::filesystem::current_path();
+  std::filesystem::current_path(folder.path());
+  const DemoDirectory demos = ReadDemoDirectory("./demos");
+  std::filesystem::current_path(previous);
+  EXPECT_EQ(demos.directory, "./demos");
+  ASSERT_EQ(demos.logs.size(), 1u);
+  EXPECT_EQ(demos.logs[0].source, "./demos/a_good.csv");
+}
+
+TEST(DemoDirectory, TheShippedFolderIsNamedRelativeToTheProjectRoot) {
+  const DemoDirectory shipped = ReadDefaultDemoDirectory();
+  EXPECT_EQ(shipped.directory, "learning_data/demos");
+  ASSERT_EQ(shipped.logs.size(), 90u);
+  EXPECT_TRUE(shipped.rejected.empty());
+  EXPECT_EQ(shipped.logs[0].source, "learning_data/demos/theta020_trial01.csv");
+  // the same logs as the folder read by its path, which names it as given (absolute).
+  const DemoDirectory by_path = ReadDemoDirectory(DefaultDemoDirectory());
+  EXPECT_EQ(by_path.directory, DefaultDemoDirectory().string());
+  ASSERT_EQ(by_path.logs.size(), shipped.logs.size());
+  for (size_t i = 0; i < shipped.logs.size(); ++i) {
+    EXPECT_EQ(by_path.logs[i].source,
+              (DefaultDemoDirectory() / std::filesystem::path(shipped.logs[i].source).filename())
+                  .string());
+    EXPECT_EQ(FormatDemoLog(by_path.logs[i]), FormatDemoLog(shipped.logs[i]));
+  }
+  EXPECT_EQ(ReadDefaultDemoDirectory("saucepan").directory, "learning_data/objects/saucepan/demos");
+}
+
 TEST(DemoDirectory, EachObjectHasItsLearningDataFolderAndThePanKeepsItsOwn) {
   EXPECT_EQ(ObjectLearningDataDirectory("pan").filename(), "learning_data");
   EXPECT_EQ(DefaultDemoDirectory(), ObjectLearningDataDirectory("pan") / "demos");

@@ -75,6 +75,19 @@ def test_the_analysis_equals_the_command_lines_report(gs, cli, demos, tmp_path):
     assert analysis["wrist_line"]["rms_m"] < 0.01
 
 
+def test_the_shipped_demonstrations_are_named_relative_to_the_project_root(gs, repo):
+    # the default folder: the committed analysis (experiments/paper_reproduction.sh) on any clone.
+    analysis = gs.analyze_demonstrations()
+    assert analysis["directory"] == "learning_data/demos"
+    assert analysis == load_json(repo / "experiments" / "results" / "analysis.json")
+    logs, rejected = gs.read_demo_directory()
+    assert rejected == [] and len(logs) == 90
+    assert logs[0].source == "learning_data/demos/theta020_trial01.csv"
+    # a folder given is named as given.
+    logs, _ = gs.read_demo_directory(str(repo / "learning_data" / "demos"))
+    assert logs[0].source == str(repo / "learning_data" / "demos" / "theta020_trial01.csv")
+
+
 def test_the_wrist_line_fit_finds_a_line_through_collinear_points(gs):
     x = np.linspace(-0.2, 0.2, 9)
     points = np.stack([x, 0.5 * x + 0.1], axis=1)

@@ -14,6 +14,8 @@ def test_the_quick_study_equals_the_command_lines(gs, cli, tmp_path):
     assert study.analysis == load_json(out / "analysis.json")
     assert study.library.to_json() == (out / "library.json").read_text()
     assert study.synthesis == load_json(out / "synthesis.json")
+    # the shipped demonstrations named relative to the project root, as the command names them.
+    assert study.analysis["directory"] == study.synthesis["demos"] == "learning_data/demos"
     assert [r.method for r in study.rows] == ["interp+refine", "line+refine"]
     assert [s.method for s in study.summary] == [s["method"] for s in study.synthesis["summary"]]
     assert len(study.table_i) == 9

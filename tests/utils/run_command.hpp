@@ -32,9 +32,11 @@ inline std::string ReadFileText(const std::filesystem::path& path) {
 
 /// Runs `graspsynth <args>` (args are passed to the shell as written) with `input` on stdin.
 /// With `timeout_s` > 0, under coreutils' `timeout` (a command still running then is killed and
-/// exits 124): a guard against a hang, not a speed claim.
+/// exits 124): a guard against a hang, not a speed claim. With a `working_folder`, the command
+/// runs there (relative paths in `args` are relative to it).
 inline CommandOutput RunGraspsynth(const std::string& args, const std::string& input = "",
-                                   int timeout_s = 0) {
+                                   int timeout_s = 0,
+                                   const std::filesystem::path& working_folder = {}) {
   namespace fs = std::filesystem;
   const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
   const fs::path dir =
@@ -44,7 +46,9 @@ inline CommandOutput RunGraspsynth(const std::string& args, const std::string& i
   std::ofstream(dir / "in") << input;
   const std::string guard =
       timeout_s > 0 ? "timeout -k 10 " + std::to_string(timeout_s) + " " : std::string();
-  const std::string command = guard + ::testing::GraspsynthBinary() + " " + args + " < " +
+  const std::string cd =
+      working_folder.empty() ? std::string() : "cd '" + working_folder.string() + "' && ";
+  const std::string command = cd + guard + ::testing::GraspsynthBinary() + " " + args + " < " +
                               (dir / "in").string() + " > " + (dir / "out").string() + " 2> " +
                               (dir / "err").string();
   const int status = std::system(command.c_str());
