@@ -126,25 +126,14 @@ def test_a_simulation_option_out_of_range_names_the_option(gs, repo):
         gs.Simulation().robustness(example, nois_scale=1.0)
 
 
-def split_top_level(text):
-    parts, depth, start = [], 0, 0
-    for i, c in enumerate(text):
-        depth += c in "([{"
-        depth -= c in ")]}"
-        if c == "," and depth == 0:
-            parts.append(text[start:i].strip())
-            start = i + 1
-    if text[start:].strip():
-        parts.append(text[start:].strip())
-    return parts
-
-
 def extension_signature(function):
     """(name, default text or None) of each parameter but self, from pybind11's docstring."""
     line = function.__doc__.splitlines()[0]
     inner = line[line.index("(") + 1:line.rindex(") ->")]
+    from graspsynth import _split_parameters  # the package's own splitter
+
     params = []
-    for part in split_top_level(inner):
+    for part in _split_parameters(inner):
         name = part.split(":")[0].strip()
         default = part.split(" = ", 1)[1] if " = " in part else None
         if name != "self":
