@@ -17,6 +17,7 @@
 #include "apps/demos_command.hpp"
 #include "apps/generalize_command.hpp"
 #include "apps/kinematics_commands.hpp"
+#include "apps/mujoco_command.hpp"
 #include "apps/run_command.hpp"
 #include "apps/select_command.hpp"
 #include "apps/simulate_command.hpp"
@@ -142,6 +143,7 @@ int main(int argc, char** argv) {
   graspsynth::apps::AddAnalyzeCommand(app, &exit_code);
   graspsynth::apps::AddDemosCommand(app, &exit_code);
   graspsynth::apps::AddSimulateCommand(app, &exit_code);
+  graspsynth::apps::AddExportMjcfCommand(app, &exit_code);
   graspsynth::apps::AddSynthesizeCommand(app, &exit_code);
   graspsynth::apps::AddGeneralizeCommand(app, &exit_code);
   graspsynth::apps::AddSelectCommand(app, &exit_code);
