@@ -30,6 +30,7 @@
 #include "common/mpi_job_runner.hpp"
 #endif
 #include "simulation/library_info.hpp"
+#include "simulation_mujoco/mujoco_world.hpp"
 #include "solver/library_info.hpp"
 
 namespace {
@@ -155,7 +156,9 @@ int main(int argc, char** argv) {
     std::cout << kVersion << "\n"
               << "  " << graspsynth::CollisionLibraryInfo() << "\n"
               << "  " << graspsynth::SimulationLibraryInfo() << "\n"
-              << "  " << graspsynth::SolverLibraryInfo() << "\n";
+              << "  " << graspsynth::SolverLibraryInfo() << "\n"
+              << "  MuJoCo " << graspsynth::MujocoVersion()
+              << (graspsynth::MujocoAvailable() ? "" : " (built without MuJoCo)") << "\n";
   });
 
   RefuseEmptyValues(&app);
