@@ -18,6 +18,7 @@
 #include "apps/generalize_command.hpp"
 #include "apps/help_formatter.hpp"
 #include "apps/kinematics_commands.hpp"
+#include "apps/mujoco_command.hpp"
 #include "apps/run_command.hpp"
 #include "apps/select_command.hpp"
 #include "apps/simulate_command.hpp"
@@ -30,6 +31,7 @@
 #include "common/mpi_job_runner.hpp"
 #endif
 #include "simulation/library_info.hpp"
+#include "simulation_mujoco/mujoco_world.hpp"
 #include "solver/library_info.hpp"
 
 namespace {
@@ -145,6 +147,7 @@ int main(int argc, char** argv) {
   graspsynth::apps::AddAnalyzeCommand(app, &exit_code);
   graspsynth::apps::AddDemosCommand(app, &exit_code);
   graspsynth::apps::AddSimulateCommand(app, &exit_code);
+  graspsynth::apps::AddExportMjcfCommand(app, &exit_code);
   graspsynth::apps::AddSynthesizeCommand(app, &exit_code);
   graspsynth::apps::AddGeneralizeCommand(app, &exit_code);
   graspsynth::apps::AddSelectCommand(app, &exit_code);
@@ -156,7 +159,9 @@ int main(int argc, char** argv) {
     std::cout << kVersion << "\n"
               << "  " << graspsynth::CollisionLibraryInfo() << "\n"
               << "  " << graspsynth::SimulationLibraryInfo() << "\n"
-              << "  " << graspsynth::SolverLibraryInfo() << "\n";
+              << "  " << graspsynth::SolverLibraryInfo() << "\n"
+              << "  MuJoCo " << graspsynth::MujocoVersion()
+              << (graspsynth::MujocoAvailable() ? "" : " (built without MuJoCo)") << "\n";
   });
 
   RefuseEmptyValues(&app);

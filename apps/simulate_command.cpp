@@ -27,6 +27,8 @@
 #include "simulation/simulation_fields.hpp"
 #include "simulation/trial.hpp"
 #include "simulation/trial_record.hpp"
+#include "simulation_mujoco/mujoco_trial.hpp"
+#include "simulation_mujoco/mujoco_world.hpp"
 #include "solver/grasp_file.hpp"
 #include "studies/trial_json.hpp"
 
@@ -183,9 +185,28 @@ std::string ReportSummary(const json& report) {
   return text;
 }
 
+// --engine mujoco: the MuJoCo trial's options; what it cannot do yet is refused up front.
+std::optional<MujocoTrialOptions> MujocoOptionsOf(const SimulateOptions& o,
+                                                  const request::SimulateRequest& r) {
+  if (r.engine.engine != "mujoco") return std::nullopt;
+  auto refuse = [](const std::string& what) {
+    throw InputError("--engine mujoco: " + what + " is ODE's only (docs/mujoco.md)");
+  };
+  if (r.perturb > 0) refuse("--perturb");
+  if (r.sensitivity > 0) refuse("--sensitivity");
+  if (!o.trial_record.empty()) refuse("--trial-record");
+  if (!MujocoAvailable()) {
+    throw InputError(
+        "--engine mujoco: this graspsynth is built without MuJoCo (install "
+        "libmujoco-dev, or run scripts/setup.sh, and build again)");
+  }
+  return request::ToMujocoTrialOptions(r.engine, r.trial.time_step);
+}
+
 int RunSimulate(const SimulateOptions& o, const request::SimulateRequest& r) {
   const TrialOptions trial = request::ToTrialOptions(r);
   const RobustnessOptions ro = request::ToRobustnessOptions(r);  // every option checked first
+  const std::optional<MujocoTrialOptions> mujoco = MujocoOptionsOf(o, r);
   const SimulationModel model = LoadModel(o.robot, o.scene, o.object);
   // a graspsynth-trajectory/1 file, or the "trajectory" member of a graspsynth-grasp/1 file.
   JointTrajectory trajectory =
@@ -200,9 +221,11 @@ int RunSimulate(const SimulateOptions& o, const request::SimulateRequest& r) {
   if (!o.trial_record.empty()) {
     recorded = RunRecordedTrial(model, trajectory, nominal_options, o.trajectory);
   }
-  const TrialResult nominal =
-      recorded ? recorded->result : RunTrial(model, trajectory, nominal_options);
-  std::cerr << "nominal trial: " << nominal.BriefReport() << "\n";
+  const TrialResult nominal = mujoco ? RunMujocoTrial(model, trajectory, nominal_options, *mujoco)
+                              : recorded ? recorded->result
+                                         : RunTrial(model, trajectory, nominal_options);
+  std::cerr << "nominal trial" << (mujoco ? " (MuJoCo)" : "") << ": " << nominal.BriefReport()
+            << "\n";
 
   json report;
   report["format"] = kReportFormat;
@@ -215,6 +238,13 @@ int RunSimulate(const SimulateOptions& o, const request::SimulateRequest& r) {
                         {"time_step_s", trial.step()},
                         {"hold_s", trial.hold},
                         {"lift_threshold_m", trial.lift_threshold}};
+  if (mujoco) {
+    // the ODE report's bytes are unchanged; a MuJoCo trial says so, with its own step.
+    report["settings"]["engine"] = "mujoco";
+    report["settings"]["mujoco_servo"] = std::string(ToString(mujoco->servo));
+    report["settings"]["time_step_s"] = mujoco->time_step > 0.0 ? mujoco->time_step : 0.001;
+    report["settings"].erase("fidelity");
+  }
   // the trial's figures (its field list's, rounded), then this report's own.
   json& n = report["nominal"] = {{"success", nominal.success()}};
   struct Rounded {
@@ -295,10 +325,14 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
       "time_scale, success, outcome, reason, lift_m, physics, hold}] and,\n"
       "with --sensitivity, \"sensitivity\" (docs/formats.md). Exit status: 0 when the\n"
       "nominal trial succeeds, 1 when it fails, 2 on bad input.\n\n"
+      "With --engine mujoco the nominal trial is replayed in MuJoCo instead (the same\n"
+      "controller and judgement; --mujoco-servo stiff|soft maps ODE's finger motor onto a\n"
+      "MuJoCo servo; docs/mujoco.md).\n\n"
       "Examples:\n"
       "  graspsynth simulate examples/grasp_60deg.json\n"
       "  graspsynth simulate examples/grasp_60deg.json --perturb 100 --out report.json\n"
-      "  graspsynth simulate examples/grasp_60deg.json --trial-record trial.json");
+      "  graspsynth simulate examples/grasp_60deg.json --trial-record trial.json\n"
+      "  graspsynth simulate examples/grasp_60deg.json --engine mujoco");
   auto flags =
       std::make_shared<RequestFlags<request::SimulateRequest>>(sim, request::SimulateOptions());
   sim->add_option("trajectory", opts->trajectory,

@@ -59,6 +59,28 @@ if(GRASPSYNTH_MPI)
   endif()
 endif()
 
+# MuJoCo (Debian's libmujoco-dev, 2.2) is optional like MPI: without it `simulate --engine
+# mujoco` says that the build has no MuJoCo, and `export-mjcf` still writes its models
+# (docs/mujoco.md). scripts/setup.sh installs it.
+if(GRASPSYNTH_MUJOCO)
+  find_package(mujoco 2.2 QUIET)
+  if(NOT mujoco_FOUND)
+    message(STATUS "graspsynth: MuJoCo not found (Debian package libmujoco-dev): building without it")
+    set(GRASPSYNTH_MUJOCO OFF)
+  else()
+    # Debian's config names a qhull include folder that its packages do not install; an imported
+    # target with a missing folder stops the generation, and graspsynth needs only mujoco.h.
+    get_target_property(mujoco_includes mujoco::mujoco INTERFACE_INCLUDE_DIRECTORIES)
+    set(mujoco_existing)
+    foreach(dir ${mujoco_includes})
+      if(EXISTS ${dir})
+        list(APPEND mujoco_existing ${dir})
+      endif()
+    endforeach()
+    set_target_properties(mujoco::mujoco PROPERTIES INTERFACE_INCLUDE_DIRECTORIES "${mujoco_existing}")
+  endif()
+endif()
+
 if(GRASPSYNTH_BUILD_TESTS)
   find_package(GTest QUIET)
   graspsynth_require(GTest_FOUND "GoogleTest" "libgtest-dev libgmock-dev")

@@ -70,6 +70,7 @@ OptionList<SimulateRequest> MakeSimulateOptions() {
                              0.0, INFINITY, true),
                    &R::record_interval));
   AppendTrialSettings<R>([](R& r) -> TrialSettings& { return r.trial; }, &list);
+  AppendEngineOptions<R>([](R& r) -> EngineSettings& { return r.engine; }, &list);
   list.push_back(NumberOption(
       MakeInfo("time_scale_min", OptionKind::kNumber, "Smallest time scale of a replay"),
       &R::time_scale_min));

@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 
 #include "motion/scripted_grasp.hpp"
+#include "request/mujoco_request.hpp"
 #include "request/option.hpp"
 #include "simulation/robustness.hpp"
 #include "simulation/trial.hpp"
@@ -38,6 +39,7 @@ struct SimulateRequest {
   int threads = RobustnessOptions{}.threads;  ///< 0: all cores
   double record_interval = 0.01;              ///< s between recorded states (with --record)
   TrialSettings trial;
+  EngineSettings engine;  ///< the engine of the nominal trial (docs/mujoco.md)
   double time_scale_min = PerturbationOptions{}.time_scale_min;
   double time_scale_max = PerturbationOptions{}.time_scale_max;
   double position_noise = PerturbationOptions{}.position_sigma;  ///< m

@@ -14,7 +14,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev liborocos-kdl-dev
   python3 chromium clang libclang-rt-14-dev
   python3-dev pybind11-dev python3-numpy python3-pytest python3-matplotlib python3-pandas
-  libopenmpi-dev openmpi-bin
+  libopenmpi-dev openmpi-bin libmujoco-dev
 )
 # node and npm vendor three.js for the browser viewer (viewer/package.json). Debian's nodejs and
 # npm are used only when no npm is on the PATH: a node from elsewhere (NodeSource) ships its own

@@ -44,6 +44,7 @@
 #include <string>
 #include <vector>
 
+#include "simulation/judged_world.hpp"
 #include "simulation/simulation_model.hpp"
 
 namespace graspsynth {
@@ -103,35 +104,6 @@ struct WorldOptions {
   bool IsValid(std::string* why) const;
 };
 
-/// What touched what in the last collision pass.
-struct ContactReport {
-  int total = 0;               ///< contact joints created
-  int object_hand = 0;         ///< object with fingers or palm
-  int object_table = 0;        ///< object with the table
-  int object_arm = 0;          ///< object with arm links
-  int finger_table = 0;        ///< fingers with the table
-  int arm_table = 0;           ///< arm links, hand mount or palm with the table (not resolved)
-  std::string arm_table_link;  ///< first link found touching the table
-  /// Hand links touching the object: bit j for the child link of hand joint j
-  /// (HandJointVector order), bit 20 for the palm or the hand mount.
-  unsigned long hand_links_on_object = 0;
-  double max_object_penetration = 0.0;  ///< deepest contact involving the object, m
-};
-
-/// One contact point between the object and a finger or the palm, as the last collision pass
-/// made it (for grasp-quality evaluation).
-struct HandObjectContact {
-  Eigen::Vector3d p_WC = Eigen::Vector3d::Zero();  ///< contact point, world, m
-  Eigen::Vector3d n_W = Eigen::Vector3d::UnitZ();  ///< unit normal, world, pointing into the object
-  double depth = 0.0;                              ///< penetration depth, m
-  int hand_link = -1;  ///< HandJointVector index of the finger link, 20 for the palm or mount
-  /// Force this contact put on the object in the step that followed the pass (world, N); zero
-  /// after a detection-only pass (StepKinematically).
-  Eigen::Vector3d f_W = Eigen::Vector3d::Zero();
-  /// Coulomb coefficient of the object part touched, as modelled (before any PhysicsVariation).
-  double friction = 1.0;
-};
-
 /// Size of the world (the figures a benchmark reports).
 struct WorldCounts {
   int bodies = 0;  ///< dynamic and kinematic bodies
@@ -178,7 +150,7 @@ struct StepComparison {
 
 /// One ODE world. Not copyable; movable. Use from one thread at a time (each thread that uses
 /// one must be a thread ODE knows about: the constructor registers the calling thread).
-class SimulationData {
+class SimulationData final : public JudgedWorld {
  public:
   /// Builds the world with the arm at `arm_q` (rad), the hand at `hand_f` (rad, DIPs equal to
   /// their PIPs), everything at rest, the object at rest on the table at options.theta, and
@@ -186,7 +158,7 @@ class SimulationData {
   /// Throws InputError when `options` is not valid.
   SimulationData(const SimulationModel& model, const WorldOptions& options, const Vector7d& arm_q,
                  const HandVector& hand_f);
-  ~SimulationData();
+  ~SimulationData() override;
   SimulationData(SimulationData&&) noexcept;
   SimulationData& operator=(SimulationData&&) noexcept;
   SimulationData(const SimulationData&) = delete;
@@ -217,7 +189,7 @@ class SimulationData {
   StepComparison StepBothWays();
 
   /// Simulated time since construction, s.
-  double time() const;
+  double time() const override;
   /// Measured arm joint angles (rad; E2 and W2 unwrapped beyond +-pi).
   Vector7d arm_positions() const;
   /// Measured actuated hand joints f0..f15, rad.
@@ -225,32 +197,32 @@ class SimulationData {
   /// Measured values of all 20 hand joints (HandJointVector order), rad.
   HandJointVector hand_joint_positions() const;
   /// Pose X_WO of the object frame (the pan body's centre).
-  Eigen::Isometry3d object_pose() const;
+  Eigen::Isometry3d object_pose() const override;
   /// Linear velocity of the object's centre of mass (m/s) and its angular velocity (rad/s),
   /// world frame.
   Eigen::Vector3d object_velocity() const;
   Eigen::Vector3d object_angular_velocity() const;
   /// Pose X_WH of the hand-mount frame H.
-  Eigen::Isometry3d wrist_pose() const;
+  Eigen::Isometry3d wrist_pose() const override;
   /// Pose X_WL of arm link i in 1..7 (7: the flange frame F).
   Eigen::Isometry3d arm_link_pose(int i) const;
   /// Pose X_WL of hand link j (HandJointVector index 0..19: the child link of that joint).
   Eigen::Isometry3d hand_link_pose(int j) const;
   /// Contacts of the last collision pass.
-  const ContactReport& contacts() const;
+  const ContactReport& contacts() const override;
   /// The object-hand contact points of the last collision pass (emptied by every pass).
-  const std::vector<HandObjectContact>& hand_object_contacts() const;
+  const std::vector<HandObjectContact>& hand_object_contacts() const override;
   /// Index (0..6) of an arm joint whose command was clamped to its limit in the last step,
   /// or -1; the commanded value is in limit_violation_value().
-  int limit_violation() const;
-  double limit_violation_value() const;
+  int limit_violation() const override;
+  double limit_violation_value() const override;
   /// False when a body's position, orientation or velocity is NaN or infinite.
-  bool IsFinite() const;
+  bool IsFinite() const override;
   /// Kinetic energy of the fingers and the object (J): the part the solver can destabilize.
-  double HandObjectKineticEnergy() const;
+  double HandObjectKineticEnergy() const override;
   /// Largest linear (m/s) and angular (rad/s) speed of a finger link or the object.
-  double MaxDynamicSpeed() const;
-  double MaxDynamicAngularSpeed() const;
+  double MaxDynamicSpeed() const override;
+  double MaxDynamicAngularSpeed() const override;
 
   WorldCounts counts() const;
   const StepStatistics& statistics() const;

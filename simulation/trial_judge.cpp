@@ -65,7 +65,7 @@ TrialWatch StartTrialWatch(const Eigen::Isometry3d& X_WO_rest) {
   return watch;
 }
 
-void WatchStep(const SimulationData& data, const TrialJudgeOptions& options, TrialWatch* watch) {
+void WatchStep(const JudgedWorld& data, const TrialJudgeOptions& options, TrialWatch* watch) {
   const ContactReport& c = data.contacts();
   const double time = data.time();
   const Eigen::Isometry3d X_WO = data.object_pose();
@@ -86,7 +86,7 @@ void WatchStep(const SimulationData& data, const TrialJudgeOptions& options, Tri
   }
 }
 
-std::optional<TrialVerdict> EarlyVerdict(const SimulationData& data, const ArmModel& arm,
+std::optional<TrialVerdict> EarlyVerdict(const JudgedWorld& data, const ArmModel& arm,
                                          const TrialJudgeOptions& options) {
   const double time = data.time();
   if (data.limit_violation() >= 0) {
@@ -117,7 +117,7 @@ TrialVerdict OdeFailureVerdict(double t, const char* what) {
   return {TrialOutcome::kUnstable, Format("numerical instability at t = %.3f s: ", t) + what};
 }
 
-TrialVerdict JudgeTrial(const SimulationData& data, const TrialWatch& watch, double held,
+TrialVerdict JudgeTrial(const JudgedWorld& data, const TrialWatch& watch, double held,
                         const TrialJudgeOptions& options) {
   const ContactReport& c = data.contacts();
   const double lift = data.object_pose().translation().z() - watch.X_WO_rest.translation().z();
@@ -168,7 +168,7 @@ std::string HoldQuality::LoadBearers(double min_share) const {
   return text.empty() ? "none" : text;
 }
 
-HoldQuality MeasureHold(const SimulationData& data, const TrialWatch& watch) {
+HoldQuality MeasureHold(const JudgedWorld& data, const TrialWatch& watch) {
   HoldQuality q;
   const Eigen::Isometry3d X_WO = data.object_pose();
   q.end_tilt = Tilt(X_WO);

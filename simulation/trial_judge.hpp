@@ -111,13 +111,13 @@ struct HoldQuality {
 TrialWatch StartTrialWatch(const Eigen::Isometry3d& X_WO_rest);
 
 /// Updates `watch` from the world after a step.
-void WatchStep(const SimulationData& data, const TrialJudgeOptions& options, TrialWatch* watch);
+void WatchStep(const JudgedWorld& data, const TrialJudgeOptions& options, TrialWatch* watch);
 
 /// What ends a trial at once after a step, checked in this order: an arm joint commanded
 /// beyond its limit (`arm` names it), an arm link or the palm on the table, a non-finite state
 /// or a finger or the object faster or more energetic than the options allow. std::nullopt when
 /// the trial goes on.
-std::optional<TrialVerdict> EarlyVerdict(const SimulationData& data, const ArmModel& arm,
+std::optional<TrialVerdict> EarlyVerdict(const JudgedWorld& data, const ArmModel& arm,
                                          const TrialJudgeOptions& options);
 
 /// The verdict of an ODE failure (`what`) at simulated time `t` (s).
@@ -126,12 +126,12 @@ TrialVerdict OdeFailureVerdict(double t, const char* what);
 /// Judges a trial at its end from the world's last contacts and object pose and the watch;
 /// `held` (s) is how long the last command was held (for the reason). In this order: success,
 /// resting on the arm (touches_other), dropped, knocked over, not lifted.
-TrialVerdict JudgeTrial(const SimulationData& data, const TrialWatch& watch, double held,
+TrialVerdict JudgeTrial(const JudgedWorld& data, const TrialWatch& watch, double held,
                         const TrialJudgeOptions& options);
 
 /// How the object sits in the hand at the end of a trial: the world's object pose and last
 /// object-hand contacts (with their forces) and the watch.
-HoldQuality MeasureHold(const SimulationData& data, const TrialWatch& watch);
+HoldQuality MeasureHold(const JudgedWorld& data, const TrialWatch& watch);
 
 /// One physics step of a trial whose arm follows its controller kinematically: while
 /// `*free_space`, a kinematic step without contact detail (SimulationData::StepKinematically),

@@ -16,10 +16,14 @@ set(graspsynth_include_cases
   "forbidden viewer teleop/protocol.hpp"
   "forbidden studies viewer/viewer_scene.hpp"
   "forbidden studies request/option.hpp"
+  "forbidden simulation simulation_mujoco/mjcf_export.hpp"
+  "forbidden solver simulation_mujoco/mujoco_trial.hpp"
   "allowed studies kinematics/arm_model.hpp"
   "allowed solver analysis/wrist_line.hpp"
   "allowed teleop viewer/viewer_scene.hpp"
-  "allowed request studies/study.hpp")
+  "allowed request studies/study.hpp"
+  "allowed simulation_mujoco simulation/trial_judge.hpp"
+  "allowed request simulation_mujoco/mujoco_trial.hpp")
 set(case_targets)
 foreach(case ${graspsynth_include_cases})
   string(REPLACE " " ";" fields "${case}")
