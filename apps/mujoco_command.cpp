@@ -66,8 +66,9 @@ void AddExportMjcfCommand(CLI::App& app, int* exit_code) {
   auto opts = std::make_shared<ExportOptions>();
   CLI::App* cmd = app.add_subcommand(
       "export-mjcf",
-      "Write the grasp scene as an MJCF model for MuJoCo: the PA-10 arm and the Gifu Hand III\n"
-      "of the robot description, with a servo for every joint (the description's limits and\n"
+      "Write the robot, table and object (and a grasp) as an MJCF model for MuJoCo\n"
+      "The PA-10 arm and the Gifu Hand III of the robot description, with a servo for every joint "
+      "(the description's limits and\n"
       "force caps), the table, and the object (primitives; meshes as mesh assets) at --theta\n"
       "and --at, with the contact settings that mirror graspsynth's ODE world. With\n"
       "--trajectory (graspsynth-trajectory/1 or graspsynth-grasp/1) the placement is the\n"
