@@ -17,7 +17,8 @@
 /// Every draw is made whatever the ranges (a zero range gives the nominal value), so one range's
 /// change never shifts another's values.
 ///
-/// The default ranges and their reasons (docs/architecture.md, "Robustness under the contact model"):
+/// The default ranges and their reasons (docs/architecture.md, "Robustness under the contact
+/// model"):
 /// - friction +-25%: Coulomb coefficients of rubber-like fingertips on metal or plastic are
 ///   measured within about that of a nominal value, and they change with wear and dirt;
 /// - stiffness and damping x0.5 to x2: soft-contact parameters are a modelling choice, not a

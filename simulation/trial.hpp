@@ -12,11 +12,11 @@
 ///   and the object, every step simulated at 1 ms, no early stop;
 /// - kFast: the arm follows the controller kinematically (it is 35 kg against a 0.4 kg
 ///   object, and its shoulder and elbow motors of 80-200 N m do not yield; its wrist's of
-///   10-15 N m can, which kFastWristDynamic models: docs/architecture.md, "Robustness under the contact
-///   model", measures what that changes), steps of 4 ms, free space is not
-///   simulated in contact detail (the controller model moves arm and fingers and collisions
-///   are checked until anything touches: free space ends at the first contact, which is
-///   resolved from the next step on), and the trial stops as soon as its outcome is decided.
+///   10-15 N m can, which kFastWristDynamic models: docs/architecture.md, "Robustness under the
+///   contact model", measures what that changes), steps of 4 ms, free space is not simulated in
+///   contact detail (the controller model moves arm and fingers and collisions are checked until
+///   anything touches: free space ends at the first contact, which is resolved from the next step
+///   on), and the trial stops as soon as its outcome is decided.
 
 #include <functional>
 #include <string>

@@ -11,8 +11,8 @@
 /// perturbed replays, so the robustness that is reported is that of the grasp returned, scored
 /// on replays that chose nothing. Measured on the shipped library: every blend of the 60 and
 /// 70 deg representatives at 63-65 deg drops the pan, while the 60 deg one turned with the
-/// object lifts it (docs/architecture.md, "Robustness under the contact model"). Likewise, a grasp whose
-/// grip was slid (SynthesisOptions::grip_slide) and whose nominal trial fails is synthesized
+/// object lifts it (docs/architecture.md, "Robustness under the contact model"). Likewise, a grasp
+/// whose grip was slid (SynthesisOptions::grip_slide) and whose nominal trial fails is synthesized
 /// again without the slide and that grasp is gated, before the blend's fallback is considered.
 
 #include <string>

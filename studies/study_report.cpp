@@ -464,7 +464,8 @@ std::string StudyReportMarkdown(const StudyResult& result) {
      << "The nominal trial's hold (tilt of the pan at the end of the hold and its largest, its "
         "slip in the hand since it left the table, the fingers carrying at least 10% of the "
         "contact force) and, per physics factor, the successes with that factor alone at the "
-        "low · high end of its range (docs/architecture.md, \"Robustness under the contact model\").\n\n"
+        "low · high end of its range (docs/architecture.md, \"Robustness under the contact "
+        "model\").\n\n"
      << HoldAndSensitivityMarkdown(result.rows) << "\n";
   md << "## Where a method falls short\n\n";
   md << ShortfallMarkdown(result.rows);

@@ -148,9 +148,9 @@ TEST_F(RunCommand, QuickStudyWritesEveryFileWithPlausibleResults) {
 #ifndef GRASPSYNTH_SANITIZED
     // robust grasps: the full study's figures under the physics perturbation are 0.93
     // (interp+refine) and 0.81 (line+refine) over 20 replays per grasp, the line principle's
-    // 60 deg grasp at 0.55 (docs/results.md, "The study"); here 4 grasps x 3 replays = 12 per method,
-    // so a method at 0.8 falls below 0.5 by chance with probability 0.004 (binomial), and the
-    // replays are seeded (measured: 0.83 and 0.67). At least half of each method's grasps pass
+    // 60 deg grasp at 0.55 (docs/results.md, "The study"); here 4 grasps x 3 replays = 12 per
+    // method, so a method at 0.8 falls below 0.5 by chance with probability 0.004 (binomial), and
+    // the replays are seeded (measured: 0.83 and 0.67). At least half of each method's grasps pass
     // the gate (a grasp at 0.9 fails it with 3 replays as soon as one of them fails).
     EXPECT_GE(s["mean_robustness"].get<double>(), 0.5) << s.dump();
     EXPECT_GE(2 * s["passed"].get<int>(), orientations) << s.dump();
