@@ -2,7 +2,9 @@
 
 /// @file
 /// Wall time for the figures the tools report (stage times, trial speeds, tick budgets): one
-/// monotonic clock, in seconds.
+/// monotonic clock, in seconds; and the CPU time of the calling thread (a trial's cost).
+
+#include <time.h>
 
 #include <chrono>
 
@@ -19,6 +21,13 @@ inline double SecondsBetween(WallClock::time_point start, WallClock::time_point 
 /// Seconds elapsed since `start` on WallClock.
 inline double SecondsSince(WallClock::time_point start) {
   return std::chrono::duration<double>(WallClock::now() - start).count();
+}
+
+/// CPU seconds the calling thread has used (CLOCK_THREAD_CPUTIME_ID).
+inline double ThreadCpuSeconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
 }  // namespace graspsynth

@@ -53,6 +53,10 @@ class JudgedWorld {
   virtual double time() const = 0;
   /// Pose X_WO of the object frame.
   virtual Eigen::Isometry3d object_pose() const = 0;
+  /// Linear velocity of the object's centre of mass (m/s) and its angular velocity (rad/s),
+  /// world frame.
+  virtual Eigen::Vector3d object_velocity() const = 0;
+  virtual Eigen::Vector3d object_angular_velocity() const = 0;
   /// Pose X_WH of the hand-mount frame H.
   virtual Eigen::Isometry3d wrist_pose() const = 0;
   /// Contacts of the last collision pass.

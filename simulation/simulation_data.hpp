@@ -200,8 +200,8 @@ class SimulationData final : public JudgedWorld {
   Eigen::Isometry3d object_pose() const override;
   /// Linear velocity of the object's centre of mass (m/s) and its angular velocity (rad/s),
   /// world frame.
-  Eigen::Vector3d object_velocity() const;
-  Eigen::Vector3d object_angular_velocity() const;
+  Eigen::Vector3d object_velocity() const override;
+  Eigen::Vector3d object_angular_velocity() const override;
   /// Pose X_WH of the hand-mount frame H.
   Eigen::Isometry3d wrist_pose() const override;
   /// Pose X_WL of arm link i in 1..7 (7: the flange frame F).

@@ -1,7 +1,5 @@
 #include "simulation/trial.hpp"
 
-#include <time.h>
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -14,15 +12,6 @@
 #include "common/valid_options.hpp"
 
 namespace graspsynth {
-namespace {
-
-double ThreadCpuSeconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
-}  // namespace
 
 bool TrialOptions::IsValid(std::string* why) const {
   auto fail = [&](const char* what, double v) {
@@ -73,15 +62,6 @@ SimulationData MakeTrialWorld(const SimulationModel& model, const JointTrajector
                         trajectory.samples.front().hand);
 }
 
-// kFast: once the robot holds still and the object lies on the table untouched, nothing can
-// change any more.
-bool AtRestForGood(const SimulationData& data, double t_motion) {
-  const ContactReport& c = data.contacts();
-  return data.time() > t_motion + 0.1 && c.object_table > 0 && c.object_hand == 0 &&
-         c.object_arm == 0 && data.object_velocity().norm() < 1e-3 &&
-         data.object_angular_velocity().norm() < 1e-2;
-}
-
 // Plays the trajectory and the hold step by step, watching the trial; the verdict of an early
 // end, or std::nullopt when it ran to its end (or to rest, kFast).
 std::optional<TrialVerdict> PlayTrial(const SimulationModel& model,
@@ -125,6 +105,21 @@ std::optional<TrialVerdict> PlayTrial(const SimulationModel& model,
 
 }  // namespace
 
+void FinishTrial(const JudgedWorld& world, const TrialWatch& watch, double t_motion,
+                 const std::optional<TrialVerdict>& early, const TrialJudgeOptions& options,
+                 TrialResult* result) {
+  result->max_lift = watch.max_lift;
+  result->max_penetration = watch.max_penetration;
+  result->simulated_time = world.time();
+  result->final_object_pose = world.object_pose();
+  result->lift = result->final_object_pose.translation().z() - watch.X_WO_rest.translation().z();
+  result->hold = MeasureHold(world, watch);
+  const TrialVerdict verdict =
+      early ? *early : JudgeTrial(world, watch, result->simulated_time - t_motion, options);
+  result->outcome = verdict.outcome;
+  result->reason = verdict.reason;
+}
+
 TrialResult RunTrial(const SimulationModel& model, const JointTrajectory& trajectory,
                      const TrialOptions& options, const StepObserver& observer) {
   RequireValid(options, "invalid trial option");
@@ -142,17 +137,8 @@ TrialResult RunTrial(const SimulationModel& model, const JointTrajectory& trajec
   const std::optional<TrialVerdict> early =
       PlayTrial(model, trajectory, options, observer, &data, &watch, &result);
 
-  result.max_lift = watch.max_lift;
-  result.max_penetration = watch.max_penetration;
-  result.simulated_time = data.time();
-  result.final_object_pose = data.object_pose();
-  result.lift = result.final_object_pose.translation().z() - X_WO_rest.translation().z();
+  FinishTrial(data, watch, t_motion, early, options, &result);
   result.statistics = data.statistics();
-  result.hold = MeasureHold(data, watch);
-  const TrialVerdict verdict =
-      early ? *early : JudgeTrial(data, watch, result.simulated_time - t_motion, options);
-  result.outcome = verdict.outcome;
-  result.reason = verdict.reason;
   result.wall_time = SecondsSince(wall_start);
   result.cpu_time = ThreadCpuSeconds() - cpu_start;
   return result;

@@ -19,6 +19,7 @@
 ///   on), and the trial stops as soon as its outcome is decided.
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -101,5 +102,15 @@ using StepObserver = std::function<void(SimulationData&)>;
 /// options.hold and judges the outcome. Throws InputError only for invalid options.
 TrialResult RunTrial(const SimulationModel& model, const JointTrajectory& trajectory,
                      const TrialOptions& options = {}, const StepObserver& observer = {});
+
+/// The end of a trial, whatever engine played it (RunTrial, and the MuJoCo trial of
+/// simulation_mujoco/): from the world after its last step and the watch, the result's highest
+/// lift and deepest penetration, simulated time, final object pose and lift, hold, and outcome
+/// with its reason: `early` when the play ended with a verdict, else the judgement after the
+/// last command was held for the time past `t_motion` (s). The caller fills the rest (states,
+/// counts, the step statistics, the times).
+void FinishTrial(const JudgedWorld& world, const TrialWatch& watch, double t_motion,
+                 const std::optional<TrialVerdict>& early, const TrialJudgeOptions& options,
+                 TrialResult* result);
 
 }  // namespace graspsynth

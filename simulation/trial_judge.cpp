@@ -86,6 +86,13 @@ void WatchStep(const JudgedWorld& data, const TrialJudgeOptions& options, TrialW
   }
 }
 
+bool AtRestForGood(const JudgedWorld& data, double t_motion) {
+  const ContactReport& c = data.contacts();
+  return data.time() > t_motion + 0.1 && c.object_table > 0 && c.object_hand == 0 &&
+         c.object_arm == 0 && data.object_velocity().norm() < 1e-3 &&
+         data.object_angular_velocity().norm() < 1e-2;
+}
+
 std::optional<TrialVerdict> EarlyVerdict(const JudgedWorld& data, const ArmModel& arm,
                                          const TrialJudgeOptions& options) {
   const double time = data.time();

@@ -120,6 +120,10 @@ void WatchStep(const JudgedWorld& data, const TrialJudgeOptions& options, TrialW
 std::optional<TrialVerdict> EarlyVerdict(const JudgedWorld& data, const ArmModel& arm,
                                          const TrialJudgeOptions& options);
 
+/// True once the trial's motion (`t_motion`, s) is over by 0.1 s and the object lies on the
+/// table untouched and still: nothing can change any more, so a trial may stop there.
+bool AtRestForGood(const JudgedWorld& data, double t_motion);
+
 /// The verdict of an ODE failure (`what`) at simulated time `t` (s).
 TrialVerdict OdeFailureVerdict(double t, const char* what);
 

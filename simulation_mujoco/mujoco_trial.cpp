@@ -1,7 +1,5 @@
 #include "simulation_mujoco/mujoco_trial.hpp"
 
-#include <time.h>
-
 #include <cmath>
 #include <optional>
 #include <stdexcept>
@@ -14,21 +12,6 @@
 
 namespace graspsynth {
 namespace {
-
-double ThreadCpuSeconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
-// as the fast ODE trial (simulation/trial.cpp): once the robot holds still and the object lies
-// on the table untouched, nothing can change any more.
-bool AtRestForGood(const MujocoData& data, double t_motion) {
-  const ContactReport& c = data.contacts();
-  return data.time() > t_motion + 0.1 && c.object_table > 0 && c.object_hand == 0 &&
-         c.object_arm == 0 && data.object_velocity().norm() < 1e-3 &&
-         data.object_angular_velocity().norm() < 1e-2;
-}
 
 // Plays the trajectory and the hold step by step, watching the trial; the verdict of an early
 // end, or std::nullopt when it ran to its end (or to rest).
@@ -101,17 +84,8 @@ TrialResult RunMujocoTrial(const SimulationModel& model, const JointTrajectory& 
   const std::optional<TrialVerdict> early =
       PlayTrial(model, trajectory, trial, mjcf_options.time_step, &data, &watch, &result);
 
-  result.max_lift = watch.max_lift;
-  result.max_penetration = watch.max_penetration;
-  result.simulated_time = data.time();
-  result.final_object_pose = data.object_pose();
-  result.lift = result.final_object_pose.translation().z() - X_WO_rest.translation().z();
+  FinishTrial(data, watch, t_motion, early, trial, &result);
   result.statistics = data.statistics();
-  result.hold = MeasureHold(data, watch);
-  const TrialVerdict verdict =
-      early ? *early : JudgeTrial(data, watch, result.simulated_time - t_motion, trial);
-  result.outcome = verdict.outcome;
-  result.reason = verdict.reason;
   result.wall_time = SecondsSince(wall_start);
   result.cpu_time = ThreadCpuSeconds() - cpu_start;
   return result;

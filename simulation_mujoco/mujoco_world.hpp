@@ -77,8 +77,8 @@ class MujocoData final : public JudgedWorld {
   Vector7d arm_positions() const;
   HandVector hand_positions() const;
   Eigen::Isometry3d object_pose() const override;
-  Eigen::Vector3d object_velocity() const;
-  Eigen::Vector3d object_angular_velocity() const;
+  Eigen::Vector3d object_velocity() const override;
+  Eigen::Vector3d object_angular_velocity() const override;
   Eigen::Isometry3d wrist_pose() const override;
   /// Pose X_WL of arm link i in 1..7 (7: the flange frame F), as MuJoCo computed it.
   Eigen::Isometry3d arm_link_pose(int i) const;
