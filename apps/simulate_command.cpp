@@ -286,9 +286,8 @@ void AddScriptedGraspCommand(CLI::App& app, int* exit_code) {
       "scripted-grasp",
       "Write the scripted (hand-made) grasp-and-lift trajectory for an orientation\n"
       "The trajectory: reach from a rest pose, approach from above, close the hand on the handle "
-      "(fingertips\n"
-      "on its far face, thumb on its near face), lift 10 cm. examples/grasp_60deg.json is\n"
-      "its output for --theta 60.");
+      "(fingertips on its far face, thumb on its near face), lift 10 cm. "
+      "examples/grasp_60deg.json is its output for --theta 60.");
   auto flags = std::make_shared<RequestFlags<request::ScriptedGraspRequest>>(
       scripted, request::ScriptedGraspRequestOptions());
   scripted->add_option("--out", sopts->out, "Trajectory file to write")->required();
