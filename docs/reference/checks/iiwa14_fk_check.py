@@ -29,7 +29,11 @@ import random
 import sys
 import xml.etree.ElementTree as ET
 
-import numpy as np
+try:
+    import numpy as np
+except ImportError:  # the test suite skips the check (exit 77) where numpy is missing
+    print("numpy is missing: check skipped")
+    sys.exit(77)
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
 URDF = os.path.join(ROOT, "models", "iiwa14_allegro.urdf")

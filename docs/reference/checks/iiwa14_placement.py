@@ -24,7 +24,11 @@ import math
 import os
 import sys
 
-import numpy as np
+try:
+    import numpy as np
+except ImportError:  # the test suite skips the check (exit 77) where numpy is missing
+    print("numpy is missing: check skipped")
+    sys.exit(77)
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
 LIB = os.path.join(ROOT, "learning_data", "library.json")
