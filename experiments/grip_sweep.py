@@ -21,7 +21,7 @@ on 2 busy cores; the grips measured for issue 45 are experiments/grips/pan_candi
 grips.json: {"name": {grip fields...}, ...}; {} (an empty grip) is the operator's own grip.
 Besides GraspStyle fields a grip may hold "@open" / "@closed" ({joint index: deg}, edits of the
 strategy's hand shapes, f0..f15 = thumb j1-j4, then abduction, MCP, PIP of index, middle, ring,
-little), "@THETA" (fields for that orientation only), "@d" and "@eta" (the wrist's place) and
+little), "@keep_open" ([joint index, ...]: joints that stay as opened), "@THETA" (fields for that orientation only), "@d" and "@eta" (the wrist's place) and
 "@top" (top-level operator fields, e.g. close_duration).
 A theta without a plan in the operator file takes the nearest plan's strategy, its polar angles
 turned with the object (the wrist where the nearest plan's is, relative to the handle).
@@ -62,6 +62,13 @@ def reduced_config(config, theta, grip, strategy_index):
             for j, v in grip[key].items():
                 hand[int(j)] = v
             own[field] = hand
+    # "@keep_open": [joint index, ...]: those joints do not move when the hand closes.
+    if "@keep_open" in grip:
+        opened = own.get("open_hand_deg") or config["open_hand_deg"]
+        closed = list(own.get("closed_hand_deg") or config["closed_hand_deg"])
+        for j in grip["@keep_open"]:
+            closed[j] = opened[j]
+        own["closed_hand_deg"] = closed
     if own:
         s["grasp"] = own
     if "@d" in grip:
