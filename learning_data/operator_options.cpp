@@ -89,12 +89,19 @@ HandVector HandDeg(const JsonReader& field) { return field.AsNumbers(kHandDof) *
 // Reads the GraspStyle fields present in `object` over `style`.
 void ReadStyle(const JsonReader& object, GraspStyle* style) {
   ReadScalars(object, kStyleScalars, style);
+  if (const std::optional<double> v = object.OptionalNumber("thumb_close_duration")) {
+    style->thumb_close_duration = *v;
+  }
   if (object.Has("open_hand_deg")) style->open_hand = HandDeg(object.Field("open_hand_deg"));
   if (object.Has("closed_hand_deg")) style->closed_hand = HandDeg(object.Field("closed_hand_deg"));
 }
 
 void WriteStyle(const GraspStyle& style, json* j) {
   WriteScalars(style, kStyleScalars, j);
+  // written only where it is used: the files made before it existed keep their bytes.
+  if (style.thumb_close_duration != 0.0) {
+    (*j)["thumb_close_duration"] = style.thumb_close_duration;
+  }
   (*j)["open_hand_deg"] = HandToDeg(style.open_hand);
   (*j)["closed_hand_deg"] = HandToDeg(style.closed_hand);
 }
@@ -154,6 +161,9 @@ bool GraspStyle::IsValid(std::string* why) const {
     if (!std::isfinite(this->*f.member)) return fail(std::string(f.name) + " must be finite");
   }
   if (!(hook_reach > 0.0)) return fail("hook_reach must be > 0");
+  if (!(thumb_close_duration >= 0.0 && std::isfinite(thumb_close_duration))) {
+    return fail("thumb_close_duration must be finite and >= 0");
+  }
   if (!(wrist_above_handle >= 0.0)) return fail("wrist_above_handle must be >= 0");
   if (!(max_pitch >= 0.0 && max_pitch < 0.5 * M_PI)) {
     return fail("max_pitch_deg must be in [0, 90)");

@@ -28,12 +28,21 @@ namespace graspsynth {
 /// max_pitch = 0); it is then turned about the vertical by `yaw_offset` (positive turns the
 /// fingertips toward the handle's free end, whichever side of the handle the wrist is on) and
 /// rolled about z_H by `roll`. Lengths in m, angles in rad.
+///
+/// The hand closes from `open_hand` to `closed_hand` in the operator's close_duration, every
+/// joint at once; with `thumb_close_duration` > 0 the four fingers close first (the thumb held
+/// as opened) and the thumb closes after them, in that many seconds (scaled by the close's own
+/// timing draw), so that the fingers hold the handle before the thumb, whose servo is four
+/// times as strong (2 N m against 0.5), presses it: in MuJoCo's stiff servo mapping a thumb
+/// that closes with the fingers pushes a light object out of the hand (experiments/grip_sweep.py).
 struct GraspStyle {
   double hook_reach = 0.135;         ///< handle axis along z_H from the wrist, m
   double wrist_above_handle = 0.04;  ///< handle axis along x_H from the wrist, m
   double max_pitch = 0.0;            ///< largest fingers-down pitch, rad, in [0, pi/2)
   double yaw_offset = 0.0;           ///< rad
   double roll = 0.0;                 ///< rad, about z_H
+  /// The thumb's closing after the fingers', s, >= 0; 0: the thumb closes with the fingers.
+  double thumb_close_duration = 0.0;
   HandVector open_hand = DefaultOpenHook();
   HandVector closed_hand = DefaultClosedHook();
 
@@ -124,13 +133,15 @@ inline constexpr char kOperatorFormat[] = "graspsynth-operator/1";
 /// Reads operator options (format graspsynth-operator/1, JSON). Fields that are absent keep
 /// their defaults; `plans` is required, `positions` ([[x, y], ...], m) optional. A strategy's
 /// optional `grasp` object holds the fields of its own grip (the GraspStyle fields of the top
-/// level: hook_reach, wrist_above_handle, max_pitch_deg, yaw_offset_deg, roll_deg, open_hand_deg,
-/// closed_hand_deg); the ones it leaves out come from the top level. Throws InputError naming the
+/// level: hook_reach, wrist_above_handle, max_pitch_deg, yaw_offset_deg, roll_deg,
+/// thumb_close_duration, open_hand_deg, closed_hand_deg); the ones it leaves out come from the top
+/// level. Throws InputError naming the
 /// file and the field.
 OperatorOptions ReadOperatorOptions(const std::filesystem::path& path);
 /// The same from the text of an operator file; `source` names it in messages.
 OperatorOptions ParseOperatorOptions(std::string_view json_text, const std::string& source);
-/// Writes them (atomically), every field included.
+/// Writes them (atomically), every field included except a thumb_close_duration of 0 (the
+/// default; files written before the field existed stay the same bytes).
 void WriteOperatorOptions(const OperatorOptions& options, const std::filesystem::path& path);
 /// Path of the shipped, calibrated operator of `object_name`: demos/operator.json in its
 /// learning-data folder (learning_data/demos/operator.json for the pan;

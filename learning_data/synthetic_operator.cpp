@@ -62,6 +62,37 @@ double BearingTurn(const SceneModel& scene, const Eigen::Vector2d& c) {
   return std::atan2(c0.x() * c.y() - c0.y() * c.x(), c0.dot(c));
 }
 
+// The closed shape with noise (std `noise` per joint, rad), kept 2 deg inside the joint ranges
+// (a target at a stop makes the motor fight the stop).
+HandVector NoisyClosedHand(const HandModel& hand, const GraspStyle& style, double noise,
+                           SplitMix64& rng) {
+  HandVector closed = style.closed_hand;
+  const double inset = 2.0 * kDeg;
+  for (int j = 0; j < kHandDof; ++j) {
+    closed[j] = std::clamp(closed[j] + noise * rng.Normal(), hand.lower()[j] + inset,
+                           hand.upper()[j] - inset);
+  }
+  return closed;
+}
+
+// The hand's closing at the grasp pose (w, q): from `open` to `closed` in `close` s (the
+// trial's draw of the nominal `close_duration`); with the style's thumb_close_duration, the
+// fingers first (the thumb held as opened) and then the thumb, in thumb_close_duration s scaled
+// as the close was (no draw of its own: the trials without it keep their random streams).
+void AddClosing(const GraspStyle& style, double close, double close_duration,
+                const Eigen::Vector3d& w, const Eigen::Quaterniond& q, const HandVector& open,
+                const HandVector& closed, PlannedTrial* t) {
+  if (!(style.thumb_close_duration > 0.0)) {
+    t->segments.push_back(Segment{close, w, w, q, q, open, closed});
+    return;
+  }
+  HandVector fingers_closed = closed;
+  fingers_closed.head<4>() = open.head<4>();
+  t->segments.push_back(Segment{close, w, w, q, q, open, fingers_closed});
+  const double thumb = style.thumb_close_duration * close / close_duration;
+  t->segments.push_back(Segment{thumb, w, w, q, q, fingers_closed, closed});
+}
+
 PlannedTrial PlanTrial(const SceneModel& scene, const HandModel& hand, const OperatorOptions& o,
                        const OrientationPlan& plan, const Placement& placement,
                        const GraspStrategy& strategy, bool sloppy, SplitMix64& rng) {
@@ -127,14 +158,7 @@ PlannedTrial PlanTrial(const SceneModel& scene, const HandModel& hand, const Ope
   const Eigen::Vector3d p_above = w + o.above_height * Eigen::Vector3d::UnitZ();
   const Eigen::Vector3d p_lift = w + o.lift_height * Eigen::Vector3d::UnitZ();
 
-  // the closed shape with noise, kept 2 deg inside the joint ranges (a target at a stop makes
-  // the motor fight the stop).
-  HandVector closed = style.closed_hand;
-  const double inset = 2.0 * kDeg;
-  for (int j = 0; j < kHandDof; ++j) {
-    closed[j] = std::clamp(closed[j] + k * o.finger_noise * rng.Normal(), hand.lower()[j] + inset,
-                           hand.upper()[j] - inset);
-  }
+  const HandVector closed = NoisyClosedHand(hand, style, k * o.finger_noise, rng);
   const HandVector& open = style.open_hand;
 
   auto scaled = [&](double duration) {
@@ -154,7 +178,7 @@ PlannedTrial PlanTrial(const SceneModel& scene, const HandModel& hand, const Ope
   add(scaled(o.entry_duration), p_out, p_in, q_grasp, q_grasp, open, open);
   add(scaled(o.approach_duration), p_in, p_above, q_grasp, q_grasp, open, open);
   add(scaled(o.descent_duration), p_above, w, q_grasp, q_grasp, open, open);
-  add(scaled(o.close_duration), w, w, q_grasp, q_grasp, open, closed);
+  AddClosing(style, scaled(o.close_duration), o.close_duration, w, q_grasp, open, closed, &t);
   add(scaled(o.settle_duration), w, w, q_grasp, q_grasp, closed, closed);
   for (const Segment& s : t.segments) t.grasp_time += s.duration;
   add(scaled(o.lift_duration), w, p_lift, q_grasp, q_grasp, closed, closed);

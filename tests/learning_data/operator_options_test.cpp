@@ -68,6 +68,36 @@ TEST(OperatorOptions, WriteThenReadGivesTheSameOptions) {
   fs::remove(path);
 }
 
+TEST(OperatorOptions, ThumbCloseDurationIsReadWrittenWhereUsedAndChecked) {
+  OperatorOptions a = ReadOperatorOptions(DefaultOperatorOptionsPath());
+  GraspStyle own = a.grasp;
+  own.thumb_close_duration = 0.4;
+  a.plans.front().strategies.front().grasp = own;
+  const fs::path path = TempFile("thumb.json");
+  WriteOperatorOptions(a, path);
+  const OperatorOptions b = ReadOperatorOptions(path);
+  ASSERT_TRUE(b.plans.front().strategies.front().grasp.has_value());
+  EXPECT_EQ(b.plans.front().strategies.front().grasp->thumb_close_duration, 0.4);
+  // the top level's 0 is the default and is not written: older files keep their bytes.
+  EXPECT_EQ(b.grasp.thumb_close_duration, 0.0);
+  std::ifstream in(path);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text.find("thumb_close_duration"), text.rfind("thumb_close_duration"));
+  // a strategy's grip inherits the top level's.
+  std::ofstream(path) << R"({"format": "graspsynth-operator/1", "thumb_close_duration": 0.3,
+      "plans": [{"theta_deg": 20, "pregrasp_eta_deg": -70, "strategies": [{"weight": 1,
+      "d": 0.3, "eta_deg": -70, "grasp": {"hook_reach": 0.1}}]}]})";
+  const OperatorOptions c = ReadOperatorOptions(path);
+  EXPECT_EQ(c.grasp.thumb_close_duration, 0.3);
+  EXPECT_EQ(c.plans.front().strategies.front().grasp->thumb_close_duration, 0.3);
+  std::ofstream(path) << R"({"format": "graspsynth-operator/1", "plans": [{"theta_deg": 20,
+      "pregrasp_eta_deg": -70, "strategies": [{"weight": 1, "d": 0.3, "eta_deg": -70,
+      "grasp": {"thumb_close_duration": -0.1}}]}]})";
+  GS_EXPECT_THROW_WITH(ReadOperatorOptions(path), InputError, path.string(),
+                       "thumb_close_duration must be finite and >= 0");
+  fs::remove(path);
+}
+
 TEST(OperatorOptions, BadFilesNameTheFileAndTheField) {
   const fs::path path = TempFile("bad.json");
   auto expect_error = [&](const std::string& text, const std::string& message) {

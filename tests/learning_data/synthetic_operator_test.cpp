@@ -131,6 +131,47 @@ TEST(SyntheticOperator, TheHookPutsTheHandleWhereTheStyleSays) {
   }
 }
 
+TEST(SyntheticOperator, ALateThumbClosesAfterTheFingers) {
+  const SimulationModel model = LoadDefaultSimulationModel();
+  OperatorOptions options = OneOrientation(100.0, 1);
+  Steady(&options);
+  options.plans.front().strategies.resize(1);
+  GraspStrategy& strategy = options.plans.front().strategies.front();
+  GraspStyle style = strategy.grasp.value_or(options.grasp);
+  const std::vector<OperatorTrial> with_thumb = GenerateDemonstrations(model, options, 1);
+  style.thumb_close_duration = 0.5;
+  strategy.grasp = style;
+  const std::vector<OperatorTrial> late = GenerateDemonstrations(model, options, 1);
+  ASSERT_EQ(with_thumb.size(), 1u);
+  ASSERT_EQ(late.size(), 1u);
+  const DemoLog& a = with_thumb.front().log;
+  const DemoLog& b = late.front().log;
+  // the trial is longer by the thumb's closing (the steady operator's durations are nominal).
+  EXPECT_NEAR(b.samples.back().t - a.samples.back().t, 0.5, 1.0 / 60.0 + 1e-9);
+  const auto grasp_at = [](const DemoLog& log) {
+    return std::find_if(log.samples.begin(), log.samples.end(),
+                        [](const DemoSample& s) { return s.event == DemoEvent::kGrasp; });
+  };
+  ASSERT_NE(grasp_at(b), b.samples.end());
+  // the sample where the first trial's fingers were closed: the late thumb's fingers are closed
+  // there too, the thumb still as opened; at the grasp the hand is closed as in the first trial.
+  const double settle = options.settle_duration;
+  const double closed_t = grasp_at(a)->t - settle;
+  const auto at = [](const DemoLog& log, double t) {
+    return *std::min_element(log.samples.begin(), log.samples.end(),
+                             [t](const DemoSample& x, const DemoSample& y) {
+                               return std::abs(x.t - t) < std::abs(y.t - t);
+                             });
+  };
+  const DemoSample fingers_closed = at(b, closed_t);
+  const HandVector& closed = grasp_at(a)->f;  // the closed shape within the joint ranges
+  const HandVector& open = a.samples.front().f;
+  EXPECT_TRUE(testing::MatricesNear(fingers_closed.f.tail<12>(), closed.tail<12>(), 1e-6));
+  EXPECT_TRUE(testing::MatricesNear(fingers_closed.f.head<4>(), open.head<4>(), 1e-6));
+  EXPECT_GT((closed.head<4>() - open.head<4>()).norm(), 0.1);  // the thumb does close
+  EXPECT_TRUE(testing::MatricesNear(grasp_at(b)->f, closed, 1e-9));
+}
+
 TEST(SyntheticOperator, SameSeedSameLogsWhateverTheThreadCount) {
   const SimulationModel model = LoadDefaultSimulationModel();
   OperatorOptions options = OneOrientation(80.0, 2);
