@@ -73,7 +73,10 @@ RobotFile LoadRobotFile(const std::filesystem::path& path) {
 }
 
 ArmModel LoadArmFromRobotFile(const std::filesystem::path& path) {
-  const RobotFile file = LoadRobotFile(path);
+  return ArmFromRobotFile(LoadRobotFile(path));
+}
+
+ArmModel ArmFromRobotFile(const RobotFile& file) {
   const std::string urdf = file.urdf.string();
   ArmChainNames names;
   names.base_link = file.arm.base_link;

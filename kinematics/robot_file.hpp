@@ -63,4 +63,8 @@ RobotFile LoadRobotFile(const std::filesystem::path& path);
 /// mm>").
 ArmModel LoadArmFromRobotFile(const std::filesystem::path& path);
 
+/// The arm of a parsed robot file (LoadArmFromRobotFile after its LoadRobotFile): reads the URDF
+/// at file.urdf. Throws as LoadArmFromRobotFile.
+ArmModel ArmFromRobotFile(const RobotFile& file);
+
 }  // namespace graspsynth
