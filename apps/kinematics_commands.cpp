@@ -19,6 +19,7 @@
 #include "kinematics/arm_reach.hpp"
 #include "kinematics/pose_math.hpp"
 #include "kinematics/robot_description.hpp"
+#include "kinematics/robot_file.hpp"
 #include "request/kinematics_request.hpp"
 
 namespace graspsynth::apps {
@@ -246,13 +247,18 @@ void AddCommonOptions(CLI::App* cmd, KinematicsOptions* opts) {
   cmd->add_option("input", opts->input, "Input file, or - for standard input")
       ->capture_default_str();
   cmd->add_option("--robot", opts->robot,
-                  "Robot description (URDF); default: models/pa10_gifu3.urdf of this checkout "
-                  "or $GRASPSYNTH_DATA_DIR/models/pa10_gifu3.urdf");
+                  "Robot description (URDF), or a robot file (*.json, graspsynth-robot/1, e.g. "
+                  "models/iiwa14_allegro.robot.json: only its arm is read); default: "
+                  "models/pa10_gifu3.urdf of this checkout or "
+                  "$GRASPSYNTH_DATA_DIR/models/pa10_gifu3.urdf");
 }
 
-RobotModel LoadRobot(const KinematicsOptions& opts) {
-  return LoadRobotModel(opts.robot.empty() ? DefaultRobotDescriptionPath()
-                                           : std::filesystem::path(opts.robot));
+// fk and ik need only the arm: from the URDF's whole robot, or from a robot file's arm part.
+ArmModel LoadArm(const KinematicsOptions& opts) {
+  if (opts.robot.empty()) return LoadRobotModel(DefaultRobotDescriptionPath()).arm;
+  const std::filesystem::path path(opts.robot);
+  if (path.extension() == ".json") return LoadArmFromRobotFile(path);
+  return LoadRobotModel(path).arm;
 }
 
 }  // namespace
@@ -275,9 +281,9 @@ void AddKinematicsCommands(CLI::App& app, int* exit_code) {
       "  echo \"0 0.5 0 1.2 0 0.6 0\" | graspsynth fk");
   AddCommonOptions(fk, opts.get());
   fk->callback([opts, exit_code] {
-    const RobotModel robot = LoadRobot(*opts);
-    const int bad = ForEachInputLine(
-        opts->input, [&](std::string_view text) { return FkLine(robot.arm, text); });
+    const ArmModel arm = LoadArm(*opts);
+    const int bad =
+        ForEachInputLine(opts->input, [&](std::string_view text) { return FkLine(arm, text); });
     if (bad > 0) *exit_code = 1;
   });
 
@@ -289,7 +295,9 @@ void AddKinematicsCommands(CLI::App& app, int* exit_code) {
       "  {\"solutions\":[[q1..q7],...],\"branches\":[...],\"psi_intervals\":[[lo,hi],...],\n"
       "   \"status\":\"ok\"}\n"
       "solutions: every solution within the joint limits at that psi over all 8 branches\n"
-      "(or the --branch one); branches: the (GC2,GC4,GC6) signs of each solution;\n"
+      "(or the --branch one); branches: the (GC2,GC4,GC6) signs of each solution (of its\n"
+      "DH values: on an arm whose joint turns against the DH table, e.g. the iiwa's A4, the\n"
+      "sign of that joint's negated value);\n"
       "psi_intervals: the arm angles at which the target is feasible (union over the\n"
       "branches considered). A target without a solution has status \"out_of_reach\" (its wrist\n"
       "centre beyond the arm's span from the shoulder: \"reach\" gives the distance and the span,\n"
@@ -302,9 +310,9 @@ void AddKinematicsCommands(CLI::App& app, int* exit_code) {
   auto flags = std::make_shared<RequestFlags<request::IkRequest>>(ik, request::IkOptions());
   ik->callback([opts, flags, exit_code] {
     const std::optional<ArmBranch> only = BranchOf(flags->Build());
-    const RobotModel robot = LoadRobot(*opts);
+    const ArmModel arm = LoadArm(*opts);
     const int bad = ForEachInputLine(
-        opts->input, [&](std::string_view text) { return IkLine(robot.arm, only, text); });
+        opts->input, [&](std::string_view text) { return IkLine(arm, only, text); });
     if (bad > 0) *exit_code = 1;
   });
 }

@@ -7,8 +7,10 @@
 #include <random>
 #include <vector>
 
+#include "common/data_dir.hpp"
 #include "kinematics/arm_ik.hpp"
 #include "kinematics/robot_description.hpp"
+#include "kinematics/robot_file.hpp"
 
 namespace graspsynth::bench {
 
@@ -18,6 +20,13 @@ inline const RobotModel& Robot() {
   return robot;
 }
 
+/// The KUKA LBR iiwa 14's arm from its shipped robot file, loaded once.
+inline const ArmModel& IiwaArm() {
+  static const ArmModel arm =
+      LoadArmFromRobotFile(DataDirectory() / "models/iiwa14_allegro.robot.json");
+  return arm;
+}
+
 /// A reachable flange target with the configuration that produced it.
 struct ArmTarget {
   Vector7d q;              ///< in-limit configuration
@@ -25,11 +34,11 @@ struct ArmTarget {
   double psi = 0.0;        ///< ArmAngleOf(q)
 };
 
-/// `count` targets from uniformly random in-limit configurations (seeded, so every run and
-/// every binary sees the same set). Configurations within 0.05 rad of the singular S2 = 0,
+/// `count` targets of `arm` from uniformly random in-limit configurations (seeded, so every run
+/// and every binary sees the same set). Configurations within 0.05 rad of the singular S2 = 0,
 /// E1 = 0 or W1 = 0 are redrawn.
-inline std::vector<ArmTarget> ReachableTargets(int count, uint64_t seed = 20261125) {
-  const ArmModel& arm = Robot().arm;
+inline std::vector<ArmTarget> ReachableTargets(const ArmModel& arm, int count,
+                                               uint64_t seed = 20261125) {
   std::mt19937_64 rng(seed);
   std::vector<ArmTarget> targets;
   while (static_cast<int>(targets.size()) < count) {
@@ -43,6 +52,11 @@ inline std::vector<ArmTarget> ReachableTargets(int count, uint64_t seed = 202611
     targets.push_back(t);
   }
   return targets;
+}
+
+/// ReachableTargets of the shipped robot's arm (the PA-10).
+inline std::vector<ArmTarget> ReachableTargets(int count, uint64_t seed = 20261125) {
+  return ReachableTargets(Robot().arm, count, seed);
 }
 
 }  // namespace graspsynth::bench

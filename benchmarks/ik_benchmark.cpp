@@ -85,6 +85,31 @@ void BM_AnalyticIkAllBranches(benchmark::State& state) {
 }
 BENCHMARK(BM_AnalyticIkAllBranches)->Repetitions(5)->ReportAggregatesOnly(true);
 
+// the same on the KUKA LBR iiwa 14 (its robot file; A4's sign turned against the DH table, so
+// the IK maps limits and solutions).
+void BM_AnalyticIkAllBranchesIiwa(benchmark::State& state) {
+  const ArmModel& arm = IiwaArm();
+  static const std::vector<ArmTarget> targets = ReachableTargets(arm, kTargetCount);
+  std::vector<std::vector<Vector7d>> answers(targets.size());
+  size_t k = 0;
+  for (auto _ : state) {
+    const size_t i = k++ % targets.size();
+    answers[i] = SolveArmIkAllBranches(arm, targets[i].X_WF, targets[i].psi);
+  }
+  int64_t solved = 0;
+  for (size_t i = 0; i < std::min(k, targets.size()); ++i) {
+    for (const Vector7d& q : answers[i]) {
+      if (BranchOf(arm, q) == BranchOf(arm, targets[i].q) &&
+          (q - targets[i].q).cwiseAbs().maxCoeff() < kPoseTol) {
+        ++solved;
+        break;
+      }
+    }
+  }
+  ReportSuccess(state, solved, static_cast<int64_t>(std::min(k, targets.size())));
+}
+BENCHMARK(BM_AnalyticIkAllBranchesIiwa)->Repetitions(5)->ReportAggregatesOnly(true);
+
 // one branch at one arm angle (the teleoperation case: branch and psi held continuous).
 void BM_AnalyticIkOneBranch(benchmark::State& state) {
   const ArmModel& arm = Robot().arm;

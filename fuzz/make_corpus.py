@@ -151,6 +151,18 @@ def urdf():
     put("urdf", "pa10_gifu3.urdf", read("models/pa10_gifu3.urdf"))
 
 
+def robot_files():
+    reset("robot_file")
+    for name in ("pa10_gifu3", "iiwa14_allegro"):
+        robot = json.loads(read("models/%s.robot.json" % name))
+        put("robot_file", name + ".robot.json", json.dumps(robot, indent=1))
+        # the arm part only, the smallest file the reader takes
+        arm_only = {k: robot[k] for k in ("format", "name", "urdf", "arm")}
+        put("robot_file", name + "_arm.robot.json", json.dumps(arm_only, indent=1))
+    arm_only["arm"]["flange_link"] = "A6_link"
+    put("robot_file", "iiwa_six_joints.robot.json", json.dumps(arm_only, indent=1))
+
+
 KEY = b"\x24" * 32  # fuzz/gstp_fuzz.cpp's key
 
 
@@ -204,6 +216,7 @@ def main():
     trajectories()
     meshes()
     urdf()
+    robot_files()
     gstp()
     http()
     text()

@@ -285,13 +285,14 @@ bool BranchFeasibleAt(const BranchForms& b, const ArmModel& arm, double psi,
   const double c = std::cos(psi);
   for (int k = 0; k < 2; ++k) {
     const int j = kCosineJoints[k];
-    if (binds[j] && !InRangeModulo(CosineValue(b, k, s, c), arm.lower()[j], arm.upper()[j])) {
+    if (binds[j] && !InRangeModulo(CosineValue(b, k, s, c), arm.dh_lower()[j], arm.dh_upper()[j])) {
       return false;
     }
   }
   for (int k = 0; k < 4; ++k) {
     const int j = kTangentJoints[k];
-    if (binds[j] && !InRangeModulo(TangentValue(b, k, s, c), arm.lower()[j], arm.upper()[j])) {
+    if (binds[j] &&
+        !InRangeModulo(TangentValue(b, k, s, c), arm.dh_lower()[j], arm.dh_upper()[j])) {
       return false;
     }
   }
@@ -300,8 +301,13 @@ bool BranchFeasibleAt(const BranchForms& b, const ArmModel& arm, double psi,
 
 }  // namespace
 
-ArmBranch BranchOf(const Eigen::Ref<const Vector7d>& q) {
-  return {q[1] >= 0.0 ? 1 : -1, q[3] >= 0.0 ? 1 : -1, q[5] >= 0.0 ? 1 : -1};
+ArmBranch BranchOf(const Eigen::Ref<const Vector7d>& q_dh) {
+  return {q_dh[1] >= 0.0 ? 1 : -1, q_dh[3] >= 0.0 ? 1 : -1, q_dh[5] >= 0.0 ? 1 : -1};
+}
+
+ArmBranch BranchOf(const ArmModel& arm, const Eigen::Ref<const Vector7d>& q) {
+  if (arm.dh_map().identity) return BranchOf(q);
+  return BranchOf(arm.dh_map().ToDh(q));
 }
 
 std::string_view ToString(IkStatus status) {
@@ -325,6 +331,7 @@ ArmTargetForm PrepareArmTarget(const ArmModel& arm, const Eigen::Isometry3d& X_W
   const SrsLengths& len = arm.lengths();
   ArmTargetForm form;
   form.gc4 = gc4;
+  form.dh_map = arm.dh_map();
   form.As.setZero();
   form.Bs.setZero();
   form.Cs.setZero();
@@ -332,9 +339,11 @@ ArmTargetForm PrepareArmTarget(const ArmModel& arm, const Eigen::Isometry3d& X_W
   form.Bw.setZero();
   form.Cw.setZero();
 
-  // step 1: wrist centre and shoulder-to-wrist vector.
-  const Eigen::Matrix3d& R_WF = X_WF.linear();
-  const Eigen::Vector3d x_sw = ShoulderToWrist(len, X_WF);
+  // step 1: wrist centre and shoulder-to-wrist vector, from DH frame 7 (the flange itself
+  // when the arm's DH map is the identity).
+  const Eigen::Isometry3d X_W7 = arm.dh_map().FlangeToDh(X_WF);
+  const Eigen::Matrix3d& R_WF = X_W7.linear();
+  const Eigen::Vector3d x_sw = ShoulderToWrist(len, X_W7);
   const double L = x_sw.norm();
   if (!std::isfinite(L)) return form;
 
@@ -353,7 +362,7 @@ ArmTargetForm PrepareArmTarget(const ArmModel& arm, const Eigen::Isometry3d& X_W
   const double half = std::atan2(std::sqrt(one_minus), std::sqrt(one_plus));
   const double theta4 = gc4 * 2.0 * half;
   form.theta4 = theta4 <= -kPi ? kPi : theta4;
-  if (!InRangeModulo(form.theta4, arm.lower()[3], arm.upper()[3])) {
+  if (!InRangeModulo(form.theta4, arm.dh_lower()[3], arm.dh_upper()[3])) {
     form.status = IkStatus::kElbowLimit;
     return form;
   }
@@ -400,7 +409,8 @@ ArmTargetForm PrepareArmTarget(const ArmModel& arm, const Eigen::Isometry3d& X_W
 Vector7d JointsAtArmAngle(const ArmTargetForm& form, double psi, int gc2, int gc6) {
   assert(form.status == IkStatus::kOk);
   const PositiveBranchJoints j = EvaluatePositiveBranch(form, std::sin(psi), std::cos(psi));
-  return AssembleBranch(j, form.theta4, gc2, gc6);
+  if (form.dh_map.identity) return AssembleBranch(j, form.theta4, gc2, gc6);
+  return form.dh_map.ToJoints(AssembleBranch(j, form.theta4, gc2, gc6));
 }
 
 ArmIkSolution SolveArmIk(const ArmModel& arm, const Eigen::Isometry3d& X_WF, double psi,
@@ -441,7 +451,8 @@ std::vector<Vector7d> SolveArmIkAllBranches(const ArmModel& arm, const Eigen::Is
     const ArmBranch branch = ArmBranch::FromIndex(index);
     const int e = branch.gc4 > 0 ? 0 : 1;
     if (forms[e].status != IkStatus::kOk) continue;
-    const Vector7d q = AssembleBranch(joints[e], forms[e].theta4, branch.gc2, branch.gc6);
+    Vector7d q = AssembleBranch(joints[e], forms[e].theta4, branch.gc2, branch.gc6);
+    if (!arm.dh_map().identity) q = arm.dh_map().ToJoints(q);
     if (std::optional<Vector7d> in_limits = NearestEquivalent(arm, q, zero)) {
       if (solutions.empty()) solutions.reserve(8);
       solutions.push_back(*in_limits);
@@ -450,8 +461,10 @@ std::vector<Vector7d> SolveArmIkAllBranches(const ArmModel& arm, const Eigen::Is
   return solutions;
 }
 
-double ArmAngleOf(const ArmModel& arm, const Eigen::Ref<const Vector7d>& q) {
-  const SrsLengths& len = arm.lengths();
+namespace {
+
+// ArmAngleOf on DH values q.
+double ArmAngleOfDh(const SrsLengths& len, const Eigen::Ref<const Vector7d>& q) {
   // elbow and wrist centre from the shoulder: x_se along z of DH frame 2, x_ew along z of 4.
   const double c1 = std::cos(q[0]), s1 = std::sin(q[0]);
   const double c2 = std::cos(q[1]), s2 = std::sin(q[1]);
@@ -477,16 +490,24 @@ double ArmAngleOf(const ArmModel& arm, const Eigen::Ref<const Vector7d>& q) {
   return Atan2Pi(u.dot(a.cross(b)), a.dot(b));
 }
 
+}  // namespace
+
+double ArmAngleOf(const ArmModel& arm, const Eigen::Ref<const Vector7d>& q) {
+  // the construction works on DH values (the joint values themselves on the PA-10).
+  if (arm.dh_map().identity) return ArmAngleOfDh(arm.lengths(), q);
+  return ArmAngleOfDh(arm.lengths(), arm.dh_map().ToDh(q));
+}
+
 std::vector<Interval> FeasibleArmAngles(const ArmModel& arm, const ArmTargetForm& form, int gc2,
                                         int gc6) {
   std::vector<Interval> intervals;
   if (form.status != IkStatus::kOk) return intervals;
-  if (!InRangeModulo(form.theta4, arm.lower()[3], arm.upper()[3])) return intervals;
+  if (!InRangeModulo(form.theta4, arm.dh_lower()[3], arm.dh_upper()[3])) return intervals;
   const BranchForms b = MakeBranchForms(form, gc2, gc6);
 
   // a joint whose range spans 2*pi always has an in-limit equivalent: it never binds.
   std::array<bool, kArmDof> binds;
-  for (int j = 0; j < kArmDof; ++j) binds[j] = arm.upper()[j] - arm.lower()[j] < kTwoPi;
+  for (int j = 0; j < kArmDof; ++j) binds[j] = arm.dh_upper()[j] - arm.dh_lower()[j] < kTwoPi;
 
   // cut points: every psi where some joint can enter or leave its range.
   std::array<double, 48> cuts;
@@ -496,7 +517,7 @@ std::vector<Interval> FeasibleArmAngles(const ArmModel& arm, const ArmTargetForm
   for (int k = 0; k < 2; ++k) {
     const int j = kCosineJoints[k];
     if (!binds[j]) continue;
-    for (const double limit : {arm.lower()[j], arm.upper()[j]}) {
+    for (const double limit : {arm.dh_lower()[j], arm.dh_upper()[j]}) {
       // theta = gc * acos(f) has the branch's sign, so only limits on that side are crossed;
       // limits at 0 or +-pi are only touched at an extreme of f.
       const double t = WrapToPi(limit);
@@ -509,7 +530,7 @@ std::vector<Interval> FeasibleArmAngles(const ArmModel& arm, const ArmTargetForm
     if (!binds[j]) continue;
     const Sinusoid& n = b.num[k];
     const Sinusoid& d = b.den[k];
-    for (const double limit : {arm.lower()[j], arm.upper()[j]}) {
+    for (const double limit : {arm.dh_lower()[j], arm.dh_upper()[j]}) {
       // n cos(t) - d sin(t) = 0 where theta = t or t +- pi; the spurious roots only add cuts.
       const double t = WrapToPi(limit);
       const double ct = std::cos(t);

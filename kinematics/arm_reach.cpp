@@ -12,7 +12,8 @@ Eigen::Vector3d ShoulderToWrist(const SrsLengths& lengths, const Eigen::Isometry
 
 ArmReach ReachOfTarget(const ArmModel& arm, const Eigen::Isometry3d& X_WF) {
   const SrsLengths& len = arm.lengths();
-  return {ShoulderToWrist(len, X_WF).norm(), std::abs(len.d_se - len.d_ew), len.d_se + len.d_ew};
+  return {ShoulderToWrist(len, arm.dh_map().FlangeToDh(X_WF)).norm(), std::abs(len.d_se - len.d_ew),
+          len.d_se + len.d_ew};
 }
 
 }  // namespace graspsynth

@@ -12,9 +12,10 @@
 
 namespace graspsynth {
 
-/// The shoulder-to-wrist vector x_sw of flange target X_WF, world frame, m: the wrist centre
-/// (d_wt behind the flange along its z axis) less the shoulder centre (d_bs above the base).
-Eigen::Vector3d ShoulderToWrist(const SrsLengths& lengths, const Eigen::Isometry3d& X_WF);
+/// The shoulder-to-wrist vector x_sw of a target X_W7 for DH frame 7 (world frame, m; the
+/// flange itself on an arm whose DhJointMap is the identity, the PA-10): the wrist centre (d_wt
+/// behind it along its z axis) less the shoulder centre (d_bs above the base).
+Eigen::Vector3d ShoulderToWrist(const SrsLengths& lengths, const Eigen::Isometry3d& X_W7);
 
 /// Where a flange target's wrist centre lies from the arm's shoulder centre, against the span of
 /// the arm: the target is out of reach when `distance` is beyond `outer` or inside `inner`,

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <exception>
@@ -14,11 +15,13 @@
 #include <set>
 #include <sstream>
 #include <utility>
+#include <vector>
 
 #include "common/data_dir.hpp"
 #include "common/errors.hpp"
 #include "common/input_file.hpp"
 #include "kinematics/pose_math.hpp"
+#include "kinematics/urdf_arm_chain.hpp"
 
 namespace graspsynth {
 namespace {
@@ -330,6 +333,32 @@ ArmModel ReadArm(Reader& reader, const std::string& source) {
   return ArmModel(source, std::move(base), std::move(joints), std::move(links));
 }
 
+// the message prefix `where`, or the URDF's source when it is empty.
+std::string Where(const std::string& where, const std::string& source) {
+  return where.empty() ? source : where;
+}
+
+// The joints from `base` down to `flange`, base first; throws when `flange` is not below it.
+std::vector<const urdf::Joint*> ChainJoints(const urdf::ModelInterface& model,
+                                            const std::string& source, const ArmChainNames& names) {
+  std::vector<const urdf::Joint*> chain;
+  std::string link = names.flange_link;
+  while (link != names.base_link) {
+    const urdf::LinkConstSharedPtr l = model.getLink(link);
+    if (!l->parent_joint) {
+      throw InputError(Where(names.chain_where, source) +
+                       ": expected a chain of joints from link " + Quoted(names.base_link) +
+                       " down to link " + Quoted(names.flange_link) + " in " + Quoted(source) +
+                       ", found that " + Quoted(names.flange_link) + " is not below " +
+                       Quoted(names.base_link) + " (its root is " + Quoted(link) + ")");
+    }
+    chain.push_back(l->parent_joint.get());
+    link = l->parent_joint->parent_link_name;
+  }
+  std::reverse(chain.begin(), chain.end());
+  return chain;
+}
+
 Finger ReadFinger(Reader& reader, int finger_index) {
   const std::string name(kFingerNames[finger_index]);
   const bool is_thumb = finger_index == 0;
@@ -391,6 +420,68 @@ Finger ReadFinger(Reader& reader, int finger_index) {
 }
 
 }  // namespace
+
+ArmChain ReadArmChain(std::string_view urdf_xml, const std::string& source,
+                      const ArmChainNames& names) {
+  const urdf::ModelInterfaceSharedPtr model = ParseWithUrdfdom(urdf_xml, source);
+  Reader reader(*model, source);
+  const auto require_link = [&](const std::string& name, const std::string& where) {
+    if (!model->getLink(name)) {
+      throw InputError(Where(where, source) + ": expected a link of " + Quoted(source) +
+                       ", found \"" + name + "\"");
+    }
+  };
+  require_link(names.base_link, names.base_where);
+  require_link(names.flange_link, names.flange_where);
+  const std::vector<const urdf::Joint*> chain = ChainJoints(*model, source, names);
+  const std::string at = Where(names.chain_where, source) + ": expected ";
+  const std::string between = " from link " + Quoted(names.base_link) + " to link " +
+                              Quoted(names.flange_link) + " in " + Quoted(source);
+
+  std::vector<std::string> revolute;
+  for (const urdf::Joint* joint : chain) {
+    if (joint->type == urdf::Joint::REVOLUTE) {
+      revolute.push_back(joint->name);
+    } else if (joint->type != urdf::Joint::FIXED) {
+      throw InputError(at + "revolute and fixed joints only" + between + ", found joint " +
+                       Quoted(joint->name) + " (" + JointTypeName(joint->type) + ")");
+    }
+  }
+  if (revolute.size() != static_cast<size_t>(kArmDof)) {
+    std::string list;
+    for (const std::string& name : revolute) list += (list.empty() ? "" : ", ") + Quoted(name);
+    throw InputError(at + std::to_string(kArmDof) + " revolute joints (and any fixed ones)" +
+                     between + ", found " + std::to_string(revolute.size()) +
+                     (list.empty() ? "" : " (" + list + ")"));
+  }
+
+  ArmChain arm;
+  arm.base = reader.Body(names.base_link, "arm base");
+  Eigen::Isometry3d X_fixed = Eigen::Isometry3d::Identity();  // fixed joints since the last link
+  int i = 0;
+  for (const urdf::Joint* joint : chain) {
+    if (joint->type == urdf::Joint::FIXED) {
+      X_fixed = X_fixed * ToIsometry(joint->parent_to_joint_origin_transform);
+      const urdf::Link& link = *model->getLink(joint->child_link_name);
+      if (link.inertial || !link.collision_array.empty()) {
+        throw InputError(at +
+                         "massless frames without collision geometry at the links of fixed "
+                         "joints" +
+                         between + ", found link " + Quoted(link.name) +
+                         " with mass or collision geometry (merging links is not supported yet)");
+      }
+      continue;
+    }
+    if (joint->mimic) reader.Fail("arm joint " + Quoted(joint->name) + " must not have a <mimic>");
+    arm.joints[i] = reader.Revolute(*joint, "arm joint");
+    arm.joints[i].X_PJ = X_fixed * arm.joints[i].X_PJ;
+    arm.links[i] = reader.Body(joint->child_link_name, "arm");
+    X_fixed = Eigen::Isometry3d::Identity();
+    ++i;
+  }
+  arm.X_7F = X_fixed;
+  return arm;
+}
 
 RobotModel ParseRobotModel(std::string_view urdf_xml, const std::string& source) {
   const urdf::ModelInterfaceSharedPtr model = ParseWithUrdfdom(urdf_xml, source);

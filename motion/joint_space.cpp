@@ -78,7 +78,7 @@ JointSpaceResult ToJointTrajectory(const RobotModel& robot, const CartesianPath&
                                    const Vector7d& q_start, const JointSpaceOptions& options) {
   RequireValid(options, "invalid JointSpaceOptions");
   JointSpaceResult result;
-  const ArmBranch branch = BranchOf(q_start);
+  const ArmBranch branch = BranchOf(robot.arm, q_start);
   Vector7d q_prev = q_start;
   double psi = ArmAngleOf(robot.arm, q_start);
   double time_shift = 0.0;

@@ -107,8 +107,8 @@ PerturbedTrajectory PerturbTrajectory(const RobotModel& robot, const JointTrajec
     Eigen::Isometry3d X_pert = Eigen::Isometry3d::Identity();
     X_pert.linear() = ExpRotation(noise.dr) * X.linear();
     X_pert.translation() = X.translation() + noise.dp;
-    const std::optional<Vector7d> q =
-        SolveWristPose(robot, X_pert, BranchOf(s.arm), ArmAngleOf(robot.arm, s.arm), q_prev);
+    const std::optional<Vector7d> q = SolveWristPose(robot, X_pert, BranchOf(robot.arm, s.arm),
+                                                     ArmAngleOf(robot.arm, s.arm), q_prev);
     if (!q) {
       out.message = "perturbed wrist pose of sample " + std::to_string(i) +
                     " (t = " + std::to_string(s.t * out.time_scale) +

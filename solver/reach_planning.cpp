@@ -77,8 +77,8 @@ ReachAttempt SplineReachAttempt(const RobotModel& robot, const GraspingMotion& m
   a.joints = ToJointTrajectory(robot, a.path, q_start, options.joint_space);
   a.joints.trajectory.theta_deg = theta_deg;
   if (a.ok()) {
-    a.margin_failed_sample =
-        FirstPoseWithoutMargin(robot, a.path, a.reach_samples, BranchOf(q_start), options.margin);
+    a.margin_failed_sample = FirstPoseWithoutMargin(robot, a.path, a.reach_samples,
+                                                    BranchOf(robot.arm, q_start), options.margin);
   }
   return a;
 }
@@ -94,7 +94,7 @@ std::optional<ReachAttempt> JointReachAttempt(const SynthesisModel& model,
                                               const ReachPlanOptions& options, CollisionData* data,
                                               std::string* why) {
   const RobotModel& robot = model.robot();
-  const int start_branch = BranchOf(q_start).index();
+  const int start_branch = BranchOf(robot.arm, q_start).index();
   const double psi = ArmAngleOf(robot.arm, q_start);
   std::ostringstream failures;
   std::vector<int> order = {start_branch};

@@ -214,7 +214,7 @@ struct TeleopSession::Impl {
     Eigen::Isometry3d X_TS = PoseFrom(command.p_TW, command.q_TW.normalized());
     const Eigen::Isometry3d X_WH = options.calibration.WristInWorld(X_TS);
     const std::optional<Vector7d> q =
-        SolveWristPose(robot, X_WH, BranchOf(q_ik), ArmAngleOf(robot.arm, q_ik), q_ik);
+        SolveWristPose(robot, X_WH, BranchOf(robot.arm, q_ik), ArmAngleOf(robot.arm, q_ik), q_ik);
     out_of_reach = !q.has_value();
     if (q) {
       q_ik = *q;

@@ -72,7 +72,7 @@ ViewerReplay ReplayOfLog(const RobotModel& robot, const DemoLog& log) {
   for (const DemoSample& s : log.samples) {
     Eigen::Isometry3d X_WH = PoseFrom(s.p_WH, s.q_WH.normalized());
     const std::optional<Vector7d> next =
-        q ? SolveWristPose(robot, X_WH, BranchOf(*q), ArmAngleOf(robot.arm, *q), *q)
+        q ? SolveWristPose(robot, X_WH, BranchOf(robot.arm, *q), ArmAngleOf(robot.arm, *q), *q)
           : RestConfiguration(robot, X_WH);
     if (next) {
       q = next;

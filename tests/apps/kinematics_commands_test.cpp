@@ -248,5 +248,74 @@ TEST(FkCommand, MissingInputFileIsAnError) {
   EXPECT_THAT(r.err, HasSubstr("/nonexistent/file.txt"));
 }
 
+std::string IiwaRobotFile() {
+  return std::string(::testing::SourceDir()) + "/models/iiwa14_allegro.robot.json";
+}
+
+TEST(FkCommand, TakesARobotFilesArm) {
+  // the iiwa straight up: the flange 0.36 + 0.42 + 0.40 + 0.126 m above the base, unturned.
+  const auto r = RunGraspsynth("fk --robot " + IiwaRobotFile(), "0 0 0 0 0 0 0\n");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json pose = json::parse(r.out);
+  EXPECT_NEAR(pose["position"][0].get<double>(), 0.0, 1e-12);
+  EXPECT_NEAR(pose["position"][1].get<double>(), 0.0, 1e-12);
+  EXPECT_NEAR(pose["position"][2].get<double>(), 1.306, 1e-12);
+  EXPECT_NEAR(pose["quaternion"][0].get<double>(), 1.0, 1e-12);
+  // A4 = +90 deg bends the forearm toward -x (A4 turns about -y at q = 0; the PA-10's E1 about
+  // +y bends it toward +x).
+  const auto bent =
+      RunGraspsynth("fk --robot " + IiwaRobotFile(), "0 0 0 1.5707963267948966 0 0 0\n");
+  ASSERT_EQ(bent.exit_code, 0) << bent.err;
+  const json p = json::parse(bent.out)["position"];
+  EXPECT_NEAR(p[0].get<double>(), -(0.40 + 0.126), 1e-12);
+  EXPECT_NEAR(p[2].get<double>(), 0.36 + 0.42, 1e-12);
+  // a joint beyond the iiwa's limit (A2 +-120 deg) is named by the URDF's joint name.
+  const auto off = RunGraspsynth("fk --robot " + IiwaRobotFile(), "0 2.2 0 0 0 0 0\n");
+  EXPECT_THAT(off.out, HasSubstr("A2"));
+}
+
+TEST(IkCommand, SolvesARobotFilesArmOnItsDhBranches) {
+  const std::vector<double> q = {0.3, 0.7, 0.0, 1.1, 0.5, -0.8, 0.2};
+  std::ostringstream q_line;
+  q_line.precision(17);
+  for (double v : q) q_line << v << " ";
+  const auto fk = RunGraspsynth("fk --robot " + IiwaRobotFile(), q_line.str() + "\n");
+  ASSERT_EQ(fk.exit_code, 0) << fk.err;
+  const json pose = json::parse(fk.out);
+  std::ostringstream target;
+  target.precision(17);
+  for (double v : pose["position"]) target << v << " ";
+  for (double v : pose["quaternion"]) target << v << " ";
+  // with S3 = 0 the elbow lies in the reference plane: arm angle 0, as on the PA-10.
+  const auto r = RunGraspsynth("ik --robot " + IiwaRobotFile(), target.str() + "0.0\n");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json out = json::parse(r.out);
+  bool found = false;
+  for (size_t k = 0; k < out["solutions"].size(); ++k) {
+    double err = 0.0;
+    for (int i = 0; i < 7; ++i)
+      err = std::max(err, std::abs(out["solutions"][k][i].get<double>() - q[i]));
+    if (err < 1e-9) {
+      found = true;
+      // A4 = +1.1 is DH E1 = -1.1: GC4 = -1.
+      EXPECT_EQ(out["branches"][k], json({1, -1, -1}));
+    }
+  }
+  EXPECT_TRUE(found) << r.out;
+}
+
+TEST(FkCommand, ABadRobotFileIsNamed) {
+  const testing::TestFolder folder;
+  const std::string path = (folder.path() / "bad.robot.json").string();
+  std::ofstream(path) << R"({"format": "graspsynth-robot/1", "name": "x", "urdf": ")"
+                      << std::string(::testing::SourceDir())
+                      << R"(/models/iiwa14_allegro.urdf", "arm": {"base_link": "base_link",
+                             "flange_link": "A6_link", "ik": "srs"}})";
+  const auto r = RunGraspsynth("fk --robot " + path, "0 0 0 0 0 0 0\n");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_THAT(r.err, HasSubstr(path));
+  EXPECT_THAT(r.err, HasSubstr("expected 7 revolute joints"));
+}
+
 }  // namespace
 }  // namespace graspsynth

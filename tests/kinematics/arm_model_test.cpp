@@ -63,21 +63,110 @@ TEST(ArmModel, RejectsAJointOffTheShoulder) {
     links[i] = good.link(i + 1);
   }
   joints[1].X_PJ.translation().x() += 0.01;  // S2 no longer meets S1
-  GS_EXPECT_THROW_WITH(ArmModel("robot.urdf", good.base(), joints, links), InputError,
-                       "robot.urdf", "'S1' and 'S2'", "miss each other");
+  GS_EXPECT_THROW_WITH(ArmModel("robot.urdf", good.base(), joints, links), InputError, "robot.urdf",
+                       "'S1' and 'S2'", "miss each other");
 }
 
-TEST(ArmModel, RejectsAFlippedAxisThatBreaksTheDhTable) {
-  const ArmModel good = testing::Pa10FromDh();
+// The joints and links of `good`, for editing.
+struct Chain {
   std::array<RevoluteJoint, kArmDof> joints;
   std::array<RigidLink, kArmDof> links;
+};
+Chain ChainOf(const ArmModel& good) {
+  Chain c;
   for (int i = 0; i < kArmDof; ++i) {
-    joints[i] = good.joint(i);
-    links[i] = good.link(i + 1);
+    c.joints[i] = good.joint(i);
+    c.links[i] = good.link(i + 1);
   }
-  joints[3].axis_J = -joints[3].axis_J;  // E1 turning the other way
-  GS_EXPECT_THROW_WITH(ArmModel("robot.urdf", good.base(), joints, links), InputError,
-                       "does not follow the standard DH table");
+  return c;
+}
+
+TEST(ArmModel, ThePa10sMapIsTheIdentity) {
+  const ArmModel arm = testing::Pa10FromDh();
+  EXPECT_TRUE(arm.dh_map().identity);
+  EXPECT_EQ(arm.dh_lower(), arm.lower());
+  EXPECT_EQ(arm.dh_upper(), arm.upper());
+  // the identity copies values: a negative zero stays negative.
+  Vector7d q = Vector7d::Zero();
+  q[3] = -0.0;
+  EXPECT_TRUE(std::signbit(arm.dh_map().ToDh(q)[3]));
+  EXPECT_TRUE(std::signbit(arm.dh_map().ToJoints(q)[3]));
+}
+
+TEST(ArmModel, AFlippedAxisBecomesAJointSign) {
+  // E1 turning the other way (the iiwa's A4): the chain is the DH table with E1's sign -1.
+  const ArmModel good = testing::Pa10FromDh();
+  Chain c = ChainOf(good);
+  c.joints[3].axis_J = -c.joints[3].axis_J;
+  const ArmModel arm("robot.urdf", good.base(), c.joints, c.links);
+  EXPECT_FALSE(arm.dh_map().identity);
+  const std::array<int, kArmDof> expected = {1, 1, 1, -1, 1, 1, 1};
+  EXPECT_EQ(arm.dh_map().sign, expected);
+  EXPECT_EQ(arm.dh_map().offset, Vector7d::Zero());
+  EXPECT_EQ(arm.dh_map().R_7F, Eigen::Matrix3d::Identity());
+  EXPECT_DOUBLE_EQ(arm.dh_lower()[3], -arm.upper()[3]);
+  EXPECT_DOUBLE_EQ(arm.dh_upper()[3], -arm.lower()[3]);
+  ArmFrames frames;
+  for (int k = 0; k < 50; ++k) {
+    const Vector7d q = Vector7d::Random() * 3.0;
+    ArmLinkFrames(arm, q, &frames);
+    EXPECT_TRUE(PosesNear(frames.X_WL[7], ArmFlangePose(arm, q), 1e-12));
+    Vector7d q_dh = q;
+    q_dh[3] = -q[3];
+    EXPECT_TRUE(PosesNear(ArmFlangePose(arm, q), DhFlangePose(arm.lengths(), q_dh), 1e-15));
+  }
+}
+
+TEST(ArmModel, ReadsSignsOffsetsAndTheFlangeTurn) {
+  // the DH table with offsets on S1 and S2, S2, E1 and W2 flipped, and the flange turned.
+  const ArmModel good = testing::Pa10FromDh();
+  Chain c = ChainOf(good);
+  const Vector7d offset = (Vector7d() << 0.3, -0.2, 0.0, 0.0, 0.0, 0.0, 0.0).finished();
+  for (int i = 0; i + 1 < kArmDof; ++i) {
+    // joint i at q turns as the DH joint at q + offset_i: the next joint frame turns with it.
+    c.joints[i + 1].X_PJ.prerotate(Eigen::AngleAxisd(offset[i], Eigen::Vector3d::UnitZ()));
+  }
+  for (const int i : {1, 3, 6}) c.joints[i].axis_J = -c.joints[i].axis_J;
+  ArmChainOptions options;
+  const Eigen::Matrix3d R_7F = (Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()) *
+                                Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()))
+                                   .toRotationMatrix();
+  options.X_7F.linear() = R_7F;
+  const ArmModel arm("robot.urdf", good.base(), c.joints, c.links, options);
+  const std::array<int, kArmDof> expected = {1, -1, 1, -1, 1, 1, -1};
+  EXPECT_EQ(arm.dh_map().sign, expected);
+  EXPECT_TRUE(testing::MatricesNear(arm.dh_map().offset, offset, 1e-12));
+  EXPECT_TRUE(testing::MatricesNear(arm.dh_map().R_7F, R_7F, 1e-12));
+  EXPECT_NEAR(arm.lengths().d_wt, 0.070, 1e-12);
+  ArmFrames frames;
+  for (int k = 0; k < 50; ++k) {
+    const Vector7d q = Vector7d::Random() * 3.0;
+    ArmLinkFrames(arm, q, &frames);
+    EXPECT_TRUE(PosesNear(frames.X_WL[7] * arm.X_7F(), ArmFlangePose(arm, q), 1e-12));
+    EXPECT_TRUE(testing::MatricesNear(arm.dh_map().ToJoints(arm.dh_map().ToDh(q)), q, 1e-15));
+  }
+}
+
+TEST(ArmModel, RejectsAnAxisThatMatchesNoSignOrOffset) {
+  const ArmModel good = testing::Pa10FromDh();
+  Chain c = ChainOf(good);
+  // S2 and everything after it tilted by 0.01 rad about the shoulder: still an SRS chain (the
+  // axes meet as before), but S2 is no longer perpendicular to S1, so no offset of S1 turns
+  // DH axis 2 onto it.
+  c.joints[1].X_PJ.rotate(Eigen::AngleAxisd(0.01, Eigen::Vector3d::UnitX()));
+  GS_EXPECT_THROW_WITH(ArmModel("robot.urdf", good.base(), c.joints, c.links), InputError,
+                       "robot.urdf", "arm joint 'S2'", "off axis 2", "0.01 rad");
+}
+
+TEST(ArmModel, RejectsAnInvalidSrsTolerance) {
+  const ArmModel good = testing::Pa10FromDh();
+  const Chain c = ChainOf(good);
+  ArmChainOptions options;
+  options.srs_tolerance_m = 0.0;
+  std::string why;
+  EXPECT_FALSE(options.IsValid(&why));
+  GS_EXPECT_THROW_WITH(ArmModel("robot.urdf", good.base(), c.joints, c.links, options), InputError,
+                       "robot.urdf", "srs_tolerance_m");
 }
 
 }  // namespace

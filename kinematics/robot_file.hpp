@@ -1,0 +1,70 @@
+#pragma once
+
+/// @file
+/// The robot file (`graspsynth-robot/1`, docs/formats.md "Robot file"): a JSON file beside a
+/// URDF that says which parts of the URDF are what. This reader reads the robot's name, its
+/// URDF and the arm part; the hand, collision and glove parts are left to later readers (their
+/// keys are accepted and not read). models/pa10_gifu3.robot.json and
+/// models/iiwa14_allegro.robot.json are the shipped ones.
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "kinematics/arm_model.hpp"
+
+namespace graspsynth {
+
+/// The servo of a part (arm.servo, hand.servo): read and checked, not used yet.
+struct RobotFileServo {
+  double position_gain = 20.0;   ///< 1/s: joint velocity = v_ff + gain (target - q)
+  double force_cap_scale = 1.0;  ///< the motors' force caps are the URDF efforts times this
+};
+
+/// The arm part of a robot file.
+struct RobotFileArm {
+  std::string base_link;          ///< the URDF link whose frame is the arm's base (world) frame
+  std::string flange_link;        ///< the URDF link whose frame is the flange F
+  std::string ik = "srs";         ///< the IK: "srs" (the analytic arm-angle IK), the only one
+  double srs_tolerance_m = 1e-6;  ///< m, ArmChainOptions::srs_tolerance_m
+  RobotFileServo servo;
+};
+
+/// What a robot file says (the parts read so far).
+struct RobotFile {
+  std::string source;          ///< the robot file, for messages
+  std::string name;            ///< the robot's name
+  std::filesystem::path urdf;  ///< the URDF: the file's `urdf` relative to its folder
+  RobotFileArm arm;
+};
+
+/// Parses a robot file's text (`json`; `source` names it in messages; `folder` is where its
+/// relative URDF path starts). Throws InputError in JsonReader's wording ("<source>: field
+/// '<path>': expected <what>, found <value>") when it is not JSON, the format is not
+/// `graspsynth-robot/1`, a key is unknown (top level, arm, arm.servo), `name` or `urdf` is not a
+/// non-empty string, `arm.base_link` / `arm.flange_link` is not a non-empty string or both are
+/// the same, `arm.ik` is not "srs", `arm.srs_tolerance_m` is not in (0, 0.01], or a servo
+/// number is not positive.
+RobotFile ParseRobotFile(std::string_view json, const std::string& source,
+                         const std::filesystem::path& folder);
+
+/// Reads and parses the robot file at `path` (ParseRobotFile; the URDF is relative to the
+/// file's folder). Throws InputError when it cannot be read, and ParseRobotFile's errors.
+RobotFile LoadRobotFile(const std::filesystem::path& path);
+
+/// The arm of the robot file at `path`: its URDF's chain from arm.base_link to arm.flange_link
+/// (ReadArmChain) checked and mapped onto the DH table by ArmModel with arm.srs_tolerance_m.
+/// The hand is not loaded. Throws InputError: LoadRobotFile's errors; the URDF cannot be read
+/// or is not a URDF; a named link does not exist ("<file>: field 'arm.flange_link': expected a
+/// link of '<urdf>', found \"...\""); the chain is not one or has another number of revolute
+/// joints ("<file>: fields 'arm.base_link', 'arm.flange_link': expected ..."); the arm is not
+/// SRS within the tolerance, or matches no joint sign and offset of the DH table ("<file>:
+/// field 'arm.ik': expected an SRS arm ..., found <the URDF's joints and the miss, in m and
+/// mm>").
+ArmModel LoadArmFromRobotFile(const std::filesystem::path& path);
+
+/// The arm of a parsed robot file (LoadArmFromRobotFile after its LoadRobotFile): reads the URDF
+/// at file.urdf. Throws as LoadArmFromRobotFile.
+ArmModel ArmFromRobotFile(const RobotFile& file);
+
+}  // namespace graspsynth
