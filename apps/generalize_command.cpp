@@ -99,6 +99,9 @@ int RunGeneralize(const GeneralizeOptions& o, const request::GeneralizeRequest& 
      << ShortfallMarkdown(rows) << "\n## Every grasp\n\n"
      << SynthesisTableMarkdown(rows) << "## Hold quality and sensitivity to the physics\n\n"
      << HoldAndSensitivityMarkdown(rows);
+  if (const std::string engines = EnginesMarkdown(rows); !engines.empty()) {
+    md << "\n## ODE and MuJoCo side by side\n\n" << engines;  // with --engines ode,mujoco
+  }
   const fs::path out = o.out;
   WriteFileAtomically(out / (o.name + ".csv"), StudySynthesisCsv(rows));
   WriteFileAtomically(out / (o.name + ".md"), md.str());

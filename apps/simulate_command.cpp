@@ -27,9 +27,12 @@
 #include "simulation/simulation_fields.hpp"
 #include "simulation/trial.hpp"
 #include "simulation/trial_record.hpp"
+#include "simulation_mujoco/mujoco_fields.hpp"
+#include "simulation_mujoco/mujoco_sweep.hpp"
 #include "simulation_mujoco/mujoco_trial.hpp"
 #include "simulation_mujoco/mujoco_world.hpp"
 #include "solver/grasp_file.hpp"
+#include "solver/physics_gate.hpp"
 #include "studies/trial_json.hpp"
 
 namespace graspsynth::apps {
@@ -203,10 +206,62 @@ std::optional<MujocoTrialOptions> MujocoOptionsOf(const SimulateOptions& o,
   return request::ToMujocoTrialOptions(r.engine, r.trial.time_step);
 }
 
+// --engine mujoco --mujoco-sweep: the trial under each MuJoCo contact setting and servo mapping
+// (simulation_mujoco/mujoco_sweep.hpp), one line per run on stderr and, with --out, a
+// graspsynth-mujoco-sweep/1 report. Exit 0 when the runs that held reach the gate's share.
+int RunMujocoSweepCommand(const SimulateOptions& o, const request::SimulateRequest& r,
+                          const TrialOptions& trial, const MujocoTrialOptions& mujoco) {
+  if (!o.record.empty()) throw InputError("--mujoco-sweep: --record is the one trial's only");
+  MujocoSweepOptions sweep;
+  sweep.trial = trial;
+  sweep.time_step = mujoco.time_step > 0.0 ? mujoco.time_step : sweep.time_step;
+  sweep.threads = r.threads;
+  const SimulationModel model = LoadModel(o.robot, o.scene, o.object);
+  JointTrajectory trajectory =
+      LoadTrajectoryOrGraspFile(o.trajectory, model.robot().arm, model.robot().hand);
+  PlaceTrajectoryObject(model.scene(), r.at, o.trajectory, &trajectory);
+  ProgressBar bar;
+  const MujocoSweepResult result = EvaluateMujocoSweep(
+      model, trajectory, sweep,
+      [&](int done, int total) { bar.Update("MuJoCo sweep", done, total, "runs"); });
+  bar.Finish();
+  std::fprintf(stderr, "%-16s %-5s %-13s %9s %9s %9s  %s\n", "setting", "servo", "outcome",
+               "lift mm", "slip mm", "slip deg", "reason");
+  for (const MujocoSweepRun& run : result.runs) {
+    std::fprintf(stderr, "%-16s %-5s %-13s %9.1f %9.1f %9.1f  %s\n",
+                 std::string(ToString(run.setting)).c_str(),
+                 std::string(ToString(run.servo)).c_str(),
+                 std::string(ToString(run.outcome)).c_str(), 1e3 * run.lift, 1e3 * run.slip,
+                 run.slip_angle / kDeg, run.reason.c_str());
+  }
+  std::fprintf(stderr, "%s (%d threads, %.1f s)\n", result.BriefReport().c_str(), result.threads,
+               result.wall_time);
+  if (!o.out.empty()) {
+    json report;
+    report["format"] = "graspsynth-mujoco-sweep/1";
+    report["trajectory"] = o.trajectory;
+    report["theta_deg"] = trajectory.theta_deg;
+    if (trajectory.object_xy) {
+      report["object_xy"] = {trajectory.object_xy->x(), trajectory.object_xy->y()};
+    }
+    report["settings"] = {{"engine", "mujoco"},
+                          {"time_step_s", sweep.time_step},
+                          {"hold_s", trial.hold},
+                          {"lift_threshold_m", trial.lift_threshold}};
+    report.update(MujocoSweepJson<json>(result));
+    WriteFileAtomically(o.out, report.dump(2) + "\n");
+  }
+  return result.summary.success_fraction >= MujocoGateOptions{}.min_success ? 0 : 1;
+}
+
 int RunSimulate(const SimulateOptions& o, const request::SimulateRequest& r) {
   const TrialOptions trial = request::ToTrialOptions(r);
   const RobustnessOptions ro = request::ToRobustnessOptions(r);  // every option checked first
   const std::optional<MujocoTrialOptions> mujoco = MujocoOptionsOf(o, r);
+  if (r.engine.mujoco_sweep) {
+    if (!mujoco) throw InputError("--mujoco-sweep needs --engine mujoco");
+    return RunMujocoSweepCommand(o, r, trial, *mujoco);
+  }
   const SimulationModel model = LoadModel(o.robot, o.scene, o.object);
   // a graspsynth-trajectory/1 file, or the "trajectory" member of a graspsynth-grasp/1 file.
   JointTrajectory trajectory =
@@ -326,7 +381,9 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
       "nominal trial succeeds, 1 when it fails, 2 on bad input.\n\n"
       "With --engine mujoco the nominal trial is replayed in MuJoCo instead (the same\n"
       "controller and judgement; --mujoco-servo stiff|soft maps ODE's finger motor onto a\n"
-      "MuJoCo servo; docs/mujoco.md).\n\n"
+      "MuJoCo servo; docs/mujoco.md); --mujoco-sweep replays it under each of MuJoCo's 8\n"
+      "contact settings with both servo mappings and prints one line per run (exit 0 when\n"
+      "at least 95% of the 16 hold; --out writes a graspsynth-mujoco-sweep/1 report).\n\n"
       "Examples:\n"
       "  graspsynth simulate examples/grasp_60deg.json\n"
       "  graspsynth simulate examples/grasp_60deg.json --perturb 100 --out report.json\n"

@@ -185,6 +185,17 @@ void BindStudyResults(py::module_& m) {
         "a library over placements: the vertex used, or the vertices "
         "blended with their weights"}})
       .def("text", &FallbackReason::Text, "the reason in words, as synthesis.json writes it");
+  BindFieldClass<MujocoSweepSummary>(
+      m, "MujocoSweepSummary",
+      "A grasp in MuJoCo under its contact settings and servo mappings (engines ode,mujoco).",
+      {{"runs", "contact settings x servo mappings"},
+       {"successes", "runs that held"},
+       {"success_fraction", "successes / runs"},
+       {"slip_median", "median slip in the hand of the runs that held, m"},
+       {"slip_worst", "largest such slip, m"},
+       {"slip_angle_median", "median rotation in the hand of the runs that held, rad"},
+       {"slip_angle_worst", "largest such rotation, rad"},
+       {"failing", "the failed runs, \"setting/servo\" comma-separated"}});
   BindFieldClass<StudyRow>(
       m, "StudyRow",
       "One row of a synthesis table: one orientation (deg), one method, its physics gate. "
@@ -214,6 +225,7 @@ void BindStudyResults(py::module_& m) {
        {"failures", "perturbed failures by outcome, e.g. \"dropped 2, not_lifted 1\""},
        {"nominal_hold", "how the object sat in the hand after the nominal trial (HoldQuality)"},
        {"sensitivity", "the gate's sensitivity table (SensitivityResult), or None"},
+       {"mujoco", "the gate's MuJoCo sweep (MujocoSweepSummary), or None (engines ode)"},
        {"seed", "seed of the gate's perturbations"},
        {"synthesis_s", "wall time of the synthesis, s"},
        {"gate_s", "wall time of the gate, s"},

@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "common/orientation_list.hpp"
+#include "request/mujoco_request.hpp"
 #include "request/physics_options.hpp"
 #include "studies/study_method.hpp"
 
@@ -69,6 +70,7 @@ OptionList<R> MakeOptions() {
                                 [](R& r) -> int& { return r.threads; }));
   list.push_back(PhysicsFallbackOption<R>([](R& r) -> bool& { return r.physics_fallback; }));
   AppendPhysicsOptions<R>([](R& r) -> PhysicsPerturbationOptions& { return r.physics; }, &list);
+  AppendGateEngineOptions<R>([](R& r) -> MujocoGateOptions& { return r.mujoco; }, &list);
   return list;
 }
 
@@ -92,6 +94,9 @@ SynthesisTableOptions ToSynthesisTableOptions(const GeneralizeRequest& request) 
   perturbation.physics = request.physics;
   std::string why;
   if (!perturbation.IsValid(&why)) throw InputError("noise_scale: " + why);
+  table.gate.mujoco = request.mujoco;
+  if (!table.gate.mujoco.IsValid(&why)) throw InputError("engines: " + why);
+  RequireGateEngines(table.gate.mujoco);
   if (request.leave_one_out) {
     if (!request.x.empty() || !request.y.empty()) {
       throw InputError(

@@ -1,6 +1,8 @@
 #include "request/mujoco_request.hpp"
 
+#include "common/errors.hpp"
 #include "common/valid_options.hpp"
+#include "simulation_mujoco/mujoco_world.hpp"
 
 namespace graspsynth::request {
 namespace {
@@ -50,6 +52,14 @@ MujocoTrialOptions ToMujocoTrialOptions(const EngineSettings& settings, double t
   o.servo = ParseMujocoServo(settings.mujoco_servo, "--mujoco-servo");
   RequireValid(o, "bad MuJoCo option");
   return o;
+}
+
+void RequireGateEngines(const MujocoGateOptions& gate) {
+  if (gate.enabled && !MujocoAvailable()) {
+    throw InputError(
+        "--engines ode,mujoco: this graspsynth is built without MuJoCo (install libmujoco-dev, "
+        "or run scripts/setup.sh, and build again)");
+  }
 }
 
 }  // namespace graspsynth::request

@@ -14,6 +14,7 @@
 #include "request/option.hpp"
 #include "simulation_mujoco/mjcf_export.hpp"
 #include "simulation_mujoco/mujoco_trial.hpp"
+#include "solver/physics_gate.hpp"
 
 namespace graspsynth::request {
 
@@ -21,6 +22,9 @@ namespace graspsynth::request {
 struct EngineSettings {
   std::string engine = "ode";          ///< ode or mujoco
   std::string mujoco_servo = "stiff";  ///< stiff or soft (MujocoServo)
+  /// With engine mujoco: the contact settings' sweep (simulation_mujoco/mujoco_sweep.hpp, both
+  /// servo mappings) instead of the one trial.
+  bool mujoco_sweep = false;
 };
 
 /// What `graspsynth export-mjcf` writes.
@@ -49,7 +53,44 @@ void AppendEngineOptions(F ref, OptionList<R>* list) {
                            "velocity error) or soft (at 0.5 rad/s); docs/mujoco.md"),
                   {"stiff", "soft"}),
       [ref](R& r) -> std::string& { return ref(r).mujoco_servo; }));
+  list->push_back(FieldOption<R>(
+      MakeInfo("mujoco_sweep", OptionKind::kBool,
+               "With --engine mujoco: replay the trial under each of MuJoCo's 8 contact settings "
+               "with both servo mappings (16 runs; simulation_mujoco/mujoco_sweep.hpp) and "
+               "tabulate them"),
+      [ref](R& r) -> bool& { return ref(r).mujoco_sweep; }));
 }
+
+/// The gate's engine options of request type R through `ref`, which returns the request's
+/// MujocoGateOptions (`[](R& r) -> MujocoGateOptions& { return r.gate.mujoco; }`): engines
+/// (ode or ode,mujoco, read and written as MujocoGateOptions::enabled) and mujoco_min_success.
+template <class R, class F>
+void AppendGateEngineOptions(F ref, OptionList<R>* list) {
+  Option<R> engines;
+  engines.info =
+      WithChoices(MakeInfo("engines", OptionKind::kText,
+                           "The physics gate's engines: ode (the validator) or ode,mujoco (a grasp "
+                           "must also hold in MuJoCo under its 8 contact settings with both servo "
+                           "mappings; docs/mujoco.md)"),
+                  {"ode", "ode,mujoco"});
+  engines.get = [ref](const R& r) -> Value {
+    return std::string(ref(const_cast<R&>(r)).enabled ? "ode,mujoco" : "ode");
+  };
+  engines.set = [ref](R& r, const Value& v) {
+    ref(r).enabled = std::get<std::string>(v) == "ode,mujoco";
+  };
+  list->push_back(std::move(engines));
+  list->push_back(FieldOption<R>(
+      WithRange(MakeInfo("mujoco_min_success", OptionKind::kNumber,
+                         "With --engines ode,mujoco: the share of MuJoCo's 16 runs that must "
+                         "hold (0.95: every one)"),
+                0.0, 1.0),
+      [ref](R& r) -> double& { return ref(r).min_success; }));
+}
+
+/// Throws InputError when `gate` asks for MuJoCo and this build has none (the command then
+/// exits with status 2).
+void RequireGateEngines(const MujocoGateOptions& gate);
 
 /// The options of ExportMjcfRequest, in the order the front ends list them.
 const OptionList<ExportMjcfRequest>& ExportMjcfOptions();

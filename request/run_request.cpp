@@ -7,6 +7,7 @@
 #include "common/orientation_list.hpp"
 #include "common/valid_options.hpp"
 #include "learning_data/demo_directory.hpp"
+#include "request/mujoco_request.hpp"
 #include "request/physics_options.hpp"
 
 namespace graspsynth::request {
@@ -59,6 +60,7 @@ OptionList<R> MakeOptions() {
   list.push_back(PhysicsFallbackOption<R>([](R& r) -> bool& { return r.physics_fallback; }));
   list.push_back(AllReplaysOption<R>([](R& r) -> bool& { return r.all_replays; }, false));
   AppendPhysicsOptions<R>([](R& r) -> PhysicsPerturbationOptions& { return r.physics; }, &list);
+  AppendGateEngineOptions<R>([](R& r) -> MujocoGateOptions& { return r.mujoco; }, &list);
   return list;
 }
 
@@ -89,7 +91,9 @@ StudyOptions ToStudyOptions(const RunRequest& request, const SceneModel& scene,
   if (request.orientations) {
     options.orientations = ParseOrientationList(*request.orientations, "orientations");
   }
+  options.mujoco_gate = request.mujoco;
   RequireValid(options, "run");
+  RequireGateEngines(options.mujoco_gate);
   if (!std::filesystem::is_directory(options.demos)) {
     throw InputError("run: demos '" + options.demos.string() + "' is not a folder");
   }

@@ -35,6 +35,7 @@ struct RunRequest {
   bool physics_fallback = StudyOptions{}.physics_fallback;
   bool all_replays = !StudyOptions{}.selection_early_stop;
   PhysicsPerturbationOptions physics = StudyOptions{}.perturbation.physics;
+  MujocoGateOptions mujoco;  ///< the gate's engines: ode, or ode and MuJoCo's sweep
 };
 
 /// The options of RunRequest, in the order the front ends list them.

@@ -2,6 +2,7 @@
 
 #include <utility>
 
+#include "request/mujoco_request.hpp"
 #include "request/physics_options.hpp"
 #include "solver/reach_planning.hpp"
 
@@ -81,6 +82,7 @@ OptionList<R> MakeOptions() {
   AppendPhysicsOptions<R>(
       [](R& r) -> PhysicsPerturbationOptions& { return r.gate.robustness.perturbation.physics; },
       &list);
+  AppendGateEngineOptions<R>([](R& r) -> MujocoGateOptions& { return r.gate.mujoco; }, &list);
   return list;
 }
 
@@ -110,6 +112,7 @@ ValidatedSynthesisOptions ToValidatedSynthesisOptions(const SynthesizeRequest& r
   vo.gate = request.gate;
   RequireValid(so, "bad synthesis option");
   RequireValid(vo.gate, "bad physics gate option");
+  RequireGateEngines(vo.gate.mujoco);
   return vo;
 }
 

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "common/valid_options.hpp"
 #include "scene/triangle_mesh.hpp"
 
@@ -95,17 +96,23 @@ void Writer::Header() {
   // time constant at least two steps (MuJoCo's own floor: a stiffer reference oscillates).
   const double m = model_.object_inertia().mass * pv.object_mass;
   const double kp = so.contact_kp * pv.contact_stiffness, kd = so.contact_kd * pv.contact_damping;
-  const std::string solref = Num(std::max(std::sqrt(m / kp), 2.0 * options_.time_step)) + " " +
-                             Num(kd / (2.0 * std::sqrt(kp * m)));
+  const MjcfContact& c = options_.contact;
+  const double time_constant =
+      std::max(std::sqrt(m / kp), 2.0 * options_.time_step) * c.time_constant_scale;
+  const std::string solref = Num(time_constant) + " " + Num(kd / (2.0 * std::sqrt(kp * m)));
+  // MuJoCo's own settings in their shortest text (the defaults read as they always did).
+  const std::string solimp = ShortestNumber(c.solimp_dmin) + " " + ShortestNumber(c.solimp_dmax) +
+                             " " + ShortestNumber(c.solimp_width);
   Line(0, "<mujoco model=\"graspsynth\">");
   Line(1, "<compiler angle=\"radian\" inertiafromgeom=\"false\" balanceinertia=\"true\"/>");
   Line(1, "<option timestep=\"" + Num(options_.time_step) + "\" gravity=\"0 0 " + Num(-so.gravity) +
-              "\" integrator=\"implicit\" cone=\"elliptic\" impratio=\"10\"/>");
+              "\" integrator=\"implicit\" cone=\"" + (c.pyramidal ? "pyramidal" : "elliptic") +
+              "\" impratio=\"" + ShortestNumber(c.impratio) + "\"/>");
   Line(1, "<size njmax=\"4000\" nconmax=\"1000\"/>");
   Line(1, "<default>");
-  Line(2, "<geom contype=\"0\" conaffinity=\"0\" condim=\"3\" solref=\"" + solref +
-              "\" solimp=\"0.95 0.99 0.001\" rgba=\"0.7 0.7 0.7 1\"/>");
-  Line(2, "<pair solref=\"" + solref + "\" solimp=\"0.95 0.99 0.001\"/>");
+  Line(2, "<geom contype=\"0\" conaffinity=\"0\" condim=\"3\" solref=\"" + solref + "\" solimp=\"" +
+              solimp + "\" rgba=\"0.7 0.7 0.7 1\"/>");
+  Line(2, "<pair solref=\"" + solref + "\" solimp=\"" + solimp + "\"/>");
   Line(1, "</default>");
 }
 
@@ -360,7 +367,24 @@ bool MjcfOptions::IsValid(std::string* why) const {
     if (why) *why = "time_step (s, in (0, 0.02]) = " + std::to_string(time_step);
     return false;
   }
-  return physics.IsValid(why);
+  return physics.IsValid(why) && contact.IsValid(why);
+}
+
+bool MjcfContact::IsValid(std::string* why) const {
+  auto fail = [why](const std::string& text) {
+    if (why) *why = text;
+    return false;
+  };
+  if (!(std::isfinite(time_constant_scale) && time_constant_scale > 0.0))
+    return fail("contact time_constant_scale (> 0) = " + std::to_string(time_constant_scale));
+  if (!(solimp_dmin > 0.0 && solimp_dmin <= solimp_dmax && solimp_dmax < 1.0))
+    return fail("contact solimp dmin, dmax (0 < dmin <= dmax < 1) = " +
+                std::to_string(solimp_dmin) + ", " + std::to_string(solimp_dmax));
+  if (!(std::isfinite(solimp_width) && solimp_width > 0.0))
+    return fail("contact solimp width (m, > 0) = " + std::to_string(solimp_width));
+  if (!(std::isfinite(impratio) && impratio >= 1.0))
+    return fail("contact impratio (>= 1) = " + std::to_string(impratio));
+  return true;
 }
 
 MjcfModel ExportMjcf(const SimulationModel& model, const Placement& placement,

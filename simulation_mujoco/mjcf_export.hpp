@@ -44,6 +44,23 @@ MujocoServo ParseMujocoServo(std::string_view text, std::string_view what);
 /// The velocity error (rad/s) at which a servo of this mapping reaches its force cap.
 double SaturationVelocity(MujocoServo servo);
 
+/// MuJoCo's own contact settings of the exported model, beyond the mapping of ODE's
+/// (docs/mujoco.md, "Contacts"); the defaults are that mapping. The MuJoCo sweep
+/// (simulation_mujoco/mujoco_sweep.hpp) changes them one at a time.
+struct MjcfContact {
+  /// Factor on solref's time constant (the mapped sqrt(m / kp), after MuJoCo's floor of two
+  /// steps), > 0: 2 makes every contact's reference twice as slow (softer).
+  double time_constant_scale = 1.0;
+  /// solimp's dmin, dmax (in (0, 1), dmin <= dmax) and width (m, > 0): the impedance at zero
+  /// and at full penetration and the penetration between them.
+  double solimp_dmin = 0.95, solimp_dmax = 0.99, solimp_width = 0.001;
+  bool pyramidal = false;  ///< cone="pyramidal" instead of "elliptic"
+  double impratio = 10.0;  ///< friction's impedance over the normal's, >= 1 (MuJoCo's impratio)
+
+  /// True when every value is finite and in its range.
+  bool IsValid(std::string* why) const;
+};
+
 /// Options of the exported model.
 struct MjcfOptions {
   double time_step = 0.001;  ///< MuJoCo's step, s
@@ -53,8 +70,10 @@ struct MjcfOptions {
   /// Changes of the physics (friction, contact stiffness and damping, the object's mass and
   /// centre of mass, the finger servos' force caps), as the ODE world applies them.
   PhysicsVariation physics;
+  /// MuJoCo's contact settings (solref's time constant, solimp, the cone, impratio).
+  MjcfContact contact;
 
-  /// True when the step is finite and in (0, 0.02] s and the variation valid.
+  /// True when the step is finite and in (0, 0.02] s and the variation and contact valid.
   bool IsValid(std::string* why) const;
 };
 

@@ -55,7 +55,18 @@ bool MujocoTrialOptions::IsValid(std::string* why) const {
     if (why) *why = "mujoco time_step (s, 0 or up to 0.02) = " + std::to_string(time_step);
     return false;
   }
-  return true;
+  return contact.IsValid(why);
+}
+
+MjcfOptions MujocoTrialMjcfOptions(const TrialOptions& trial, const MujocoTrialOptions& options) {
+  MjcfOptions mjcf_options;
+  mjcf_options.time_step = trial.time_step > 0.0     ? trial.time_step
+                           : options.time_step > 0.0 ? options.time_step
+                                                     : 0.001;
+  mjcf_options.servo = options.servo;
+  mjcf_options.contact = options.contact;
+  mjcf_options.physics = trial.physics;
+  return mjcf_options;
 }
 
 TrialResult RunMujocoTrial(const SimulationModel& model, const JointTrajectory& trajectory,
@@ -65,12 +76,7 @@ TrialResult RunMujocoTrial(const SimulationModel& model, const JointTrajectory& 
   if (trajectory.samples.empty()) throw InputError("the trajectory has no samples");
   const auto wall_start = WallClock::now();
   const double cpu_start = ThreadCpuSeconds();
-  MjcfOptions mjcf_options;
-  mjcf_options.time_step = trial.time_step > 0.0     ? trial.time_step
-                           : options.time_step > 0.0 ? options.time_step
-                                                     : 0.001;
-  mjcf_options.servo = options.servo;
-  mjcf_options.physics = trial.physics;
+  const MjcfOptions mjcf_options = MujocoTrialMjcfOptions(trial, options);
   const MjcfModel mjcf = ExportMjcf(model, trajectory.placement(), mjcf_options);
   const MujocoModel mujoco(model, mjcf);
   MujocoData data(mujoco, trajectory.samples.front().arm, trajectory.samples.front().hand);

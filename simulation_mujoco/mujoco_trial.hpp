@@ -23,10 +23,17 @@ struct MujocoTrialOptions {
   /// MuJoCo's step, s; 0: 1 ms (TrialOptions::time_step, when set, wins).
   double time_step = 0.0;
   MujocoServo servo = MujocoServo::kStiff;  ///< the finger servos' mapping
+  /// MuJoCo's contact settings of the model (the defaults: docs/mujoco.md's mapping).
+  MjcfContact contact;
 
-  /// True when the step is finite and in [0, 0.02] s.
+  /// True when the step is finite and in [0, 0.02] s and the contact settings valid.
   bool IsValid(std::string* why) const;
 };
+
+/// The exported model's options of a MuJoCo trial with `trial` and `options` (the step:
+/// trial.time_step when set, else options.time_step, else 1 ms; the servo mapping, the contact
+/// settings and the trial's physics variation).
+MjcfOptions MujocoTrialMjcfOptions(const TrialOptions& trial, const MujocoTrialOptions& options);
 
 /// Plays `trajectory` (a valid one) for the object at trajectory.placement() in MuJoCo, holds
 /// its last command for trial.hold and judges it as RunTrial does. Throws InputError for invalid

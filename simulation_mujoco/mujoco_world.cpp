@@ -172,7 +172,13 @@ MujocoModel::MujocoModel(const SimulationModel& model, const MjcfModel& mjcf)
   }
   std::memcpy(vfs.filedata[mj_findFileVFS(&vfs, name)], mjcf.xml.data(), mjcf.xml.size());
   char error[1000] = "";
-  impl_->m = mj_loadXML(name, &vfs, error, sizeof(error));
+  {
+    // one compile at a time: the sweep compiles its runs' models on several threads, and
+    // MuJoCo 2.2 does not promise that its XML parser may run on two at once.
+    static std::mutex compile;
+    std::lock_guard<std::mutex> lock(compile);
+    impl_->m = mj_loadXML(name, &vfs, error, sizeof(error));
+  }
   mj_deleteVFS(&vfs);
   if (!impl_->m) throw InputError(std::string("MuJoCo rejected the MJCF model: ") + error);
   impl_->Index(mjcf);

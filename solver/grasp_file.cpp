@@ -11,6 +11,7 @@
 #include "common/json_reader.hpp"
 #include "kinematics/pose_math.hpp"
 #include "simulation/simulation_fields.hpp"
+#include "simulation_mujoco/mujoco_fields.hpp"
 
 namespace graspsynth {
 
@@ -137,6 +138,8 @@ json ValidationJson(const PhysicsGateResult& gate, bool forced) {
   } else {
     v["robustness"] = nullptr;
   }
+  // MuJoCo, when it was among the gate's engines and ran (the key is absent otherwise).
+  if (gate.mujoco) v["mujoco"] = MujocoSweepJson<json>(*gate.mujoco);
   return v;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ostream>
 #include <sstream>
 
 #include "common/errors.hpp"
@@ -27,8 +28,41 @@ bool PhysicsGateOptions::IsValid(std::string* why) const {
   // the replays' own checks, but their count (0 is the gate's nominal only).
   RobustnessOptions replays = robustness;
   replays.trials = std::max(replays.trials, 1);
-  return replays.IsValid(why) && quality.IsValid(why);
+  return replays.IsValid(why) && quality.IsValid(why) && mujoco.IsValid(why);
 }
+
+bool MujocoGateOptions::IsValid(std::string* why) const {
+  if (!(std::isfinite(min_success) && min_success >= 0.0 && min_success <= 1.0)) {
+    if (why) *why = "mujoco_min_success must be in [0, 1]";
+    return false;
+  }
+  MujocoSweepOptions sweep;
+  sweep.settings = settings;
+  sweep.servos = servos;
+  return sweep.IsValid(why);
+}
+
+namespace {
+
+// The MuJoCo sweep of a grasp that ODE passed, with the gate's nominal trial and threads; false
+// with the reason in `s` when its success fraction is below the gate's.
+bool RunMujocoEngine(const SimulationModel& model, const JointTrajectory& trajectory,
+                     const PhysicsGateOptions& options, PhysicsGateResult* r, std::ostream& s) {
+  MujocoSweepOptions sweep;
+  sweep.trial = options.robustness.trial;
+  sweep.settings = options.mujoco.settings;
+  sweep.servos = options.mujoco.servos;
+  sweep.threads = options.robustness.threads;
+  r->mujoco = EvaluateMujocoSweep(model, trajectory, sweep);
+  const MujocoSweepSummary& m = r->mujoco->summary;
+  if (m.success_fraction >= options.mujoco.min_success) return true;
+  s << "MuJoCo held " << m.successes << "/" << m.runs << " = " << m.success_fraction
+    << " of its contact settings' runs, below the threshold " << options.mujoco.min_success
+    << " (failing: " << m.failing << ")";
+  return false;
+}
+
+}  // namespace
 
 PhysicsGateResult RunPhysicsGate(const SimulationModel& model, const JointTrajectory& trajectory,
                                  const PhysicsGateOptions& options,
@@ -68,12 +102,18 @@ PhysicsGateResult RunPhysicsGate(const SimulationModel& model, const JointTrajec
   } else if (r.robustness_run && r.robustness.score < options.min_robustness) {
     s << "robustness " << r.robustness.successes << "/" << r.robustness.trials.size() << " = "
       << r.robustness.score << " is below the threshold " << options.min_robustness;
+  } else if (options.mujoco.enabled && !RunMujocoEngine(model, trajectory, options, &r, s)) {
+    // the reason is the sweep's.
   } else {
     r.passed = true;
     s << "nominal trial " << ToString(r.nominal.outcome) << " (lift " << r.nominal.lift << " m)";
     if (r.robustness_run) {
       s << ", robustness " << r.robustness.successes << "/" << r.robustness.trials.size() << " = "
         << r.robustness.score << " >= " << options.min_robustness;
+    }
+    if (r.mujoco) {
+      s << ", MuJoCo " << r.mujoco->summary.successes << "/" << r.mujoco->summary.runs
+        << " >= " << options.mujoco.min_success;
     }
   }
   r.reason = s.str();

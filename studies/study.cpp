@@ -89,6 +89,7 @@ bool StudyOptions::IsValid(std::string* why) const {
   if (!(min_robustness >= 0.0 && min_robustness <= 1.0)) {
     return fail("min_robustness: " + StreamNumber(min_robustness, 17) + " (needs [0, 1])");
   }
+  if (std::string mujoco_why; !mujoco_gate.IsValid(&mujoco_why)) return fail(mujoco_why);
   if (orientations.empty()) return fail("orientations: none given");
   for (size_t i = 0; i < orientations.size(); ++i) {
     if (!std::isfinite(orientations[i])) {
@@ -258,6 +259,7 @@ std::vector<StudyRow> SynthesisTable(const SimulationModel& model, const GraspLi
       row.nominal_reason = gate.nominal.reason;
       row.nominal_hold = gate.nominal.hold;
       row.sensitivity = gate.sensitivity;
+      if (gate.mujoco) row.mujoco = gate.mujoco->summary;
       if (gate.robustness_run) {
         row.trials = static_cast<int>(gate.robustness.trials.size());
         row.successes = gate.robustness.successes;
@@ -323,6 +325,7 @@ std::vector<StudyRow> SynthesisStage(const SimulationModel& model, const StudyOp
   table.gate.sensitivity_trials = options.sensitivity_trials;
   table.gate.min_robustness = options.min_robustness;
   table.physics_fallback = options.physics_fallback;
+  table.gate.mujoco = options.mujoco_gate;
   table.seed = options.seed;
   table.threads = options.threads;
   table.runner = options.runner;

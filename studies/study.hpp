@@ -92,6 +92,8 @@ struct StudyOptions {
   /// An interp blend whose nominal trial fails gives way to the unblendable bracket's
   /// fallbacks (solver/validated_synthesis.hpp).
   bool physics_fallback = true;
+  /// MuJoCo as the gate's second engine (`--engines ode,mujoco`; off: ODE alone).
+  MujocoGateOptions mujoco_gate;
   /// Object orientations to synthesize, deg, each finite (the study's: 20, 25, ..., 100).
   std::vector<double> orientations = DefaultStudyOrientations();
   /// The methods, each run at every orientation (default: interp with refinement, the line
@@ -178,6 +180,8 @@ struct StudyRow {
   HoldQuality nominal_hold;  ///< how the object sat in the hand at the end of the nominal trial
   /// The gate's sensitivity table (when the study asks for one and the replays ran).
   std::optional<SensitivityResult> sensitivity;
+  /// The MuJoCo sweep's summary, when MuJoCo was among the gate's engines and its sweep ran.
+  std::optional<MujocoSweepSummary> mujoco;
   uint64_t seed = 0;         ///< seed of the gate's perturbations
   double synthesis_s = 0.0;  ///< wall time of the synthesis (not in the deterministic files)
   double gate_s = 0.0;       ///< wall time of the gate (not in the deterministic files)

@@ -4,11 +4,12 @@
 /// The field lists (common/field_list.hpp) of the study's results: a synthesis table's row
 /// (StudyRow) and a method's totals (StudyMethodSummary). Each field is listed once, with its
 /// place in synthesis.json (a JSON pointer) and synthesis.csv (a column) where those files carry
-/// it; the list drives the job bytes (studies/study_codec.hpp, layout study-row/1), the JSON and
+/// it; the list drives the job bytes (studies/study_codec.hpp, layout study-row/2), the JSON and
 /// CSV writers (studies/study_report.hpp) and the Python classes (graspsynth.StudyRow).
 
 #include "common/field_list.hpp"
 #include "simulation/simulation_fields.hpp"
+#include "simulation_mujoco/mujoco_fields.hpp"
 #include "solver/solver_fields.hpp"
 #include "studies/study.hpp"
 
@@ -44,6 +45,7 @@ void VisitFields(V& v, Row& r) {
   v(Field("failures").Json("/robustness/failures").Csv(17), r.failures);
   v(Field("nominal_hold").Json("/hold").JsonNullIf(!r.gate_run), r.nominal_hold);
   v(Field("sensitivity").Json("/sensitivity"), r.sensitivity);
+  v(Field("mujoco").Json("/mujoco").OmitEmpty(), r.mujoco);
   v(Field("seed").Json("/robustness/seed"), r.seed);
   // wall times and sources: in the bytes and in Python, not in the deterministic files.
   v(Field("synthesis_s"), r.synthesis_s);

@@ -219,6 +219,27 @@ std::string HoldAndSensitivityMarkdown(const std::vector<StudyRow>& rows) {
   return md.str();
 }
 
+std::string EnginesMarkdown(const std::vector<StudyRow>& rows) {
+  std::ostringstream md;
+  for (const StudyRow& r : rows) {
+    if (!r.mujoco) continue;
+    if (md.tellp() == 0) {
+      md << "| theta (deg) | method | ODE nominal | ODE robustness | MuJoCo held | MuJoCo slip "
+            "median (mm / deg) | worst (mm / deg) | MuJoCo failing |\n"
+            "|---|---|---|---|---|---|---|---|\n";
+    }
+    const MujocoSweepSummary& m = *r.mujoco;
+    md << "| " << Where(r) << " | " << r.method << " | "
+       << (r.nominal_success ? "success" : "**" + NominalOutcomeName(r) + "**") << " | "
+       << (r.trials > 0 ? Format("%d/%d", r.successes, r.trials) : std::string("-")) << " | "
+       << Format("%d/%d", m.successes, m.runs) << " | "
+       << Format("%.1f / %.1f", 1e3 * m.slip_median, m.slip_angle_median / kDeg) << " | "
+       << Format("%.1f / %.1f", 1e3 * m.slip_worst, m.slip_angle_worst / kDeg) << " | "
+       << (m.failing.empty() ? std::string("-") : Cell(m.failing)) << " |\n";
+  }
+  return md.str();
+}
+
 std::string SummaryMarkdown(const std::vector<StudyRow>& rows) {
   std::ostringstream md;
   md << "| method | orientations | synthesized | nominal successes | mean robustness (all rows) "
@@ -467,6 +488,13 @@ std::string StudyReportMarkdown(const StudyResult& result) {
         "low · high end of its range (docs/architecture.md, \"Robustness under the contact "
         "model\").\n\n"
      << HoldAndSensitivityMarkdown(result.rows) << "\n";
+  // with --engines ode,mujoco only: a default study's report is unchanged.
+  if (const std::string engines = EnginesMarkdown(result.rows); !engines.empty()) {
+    md << "## ODE and MuJoCo side by side\n\n"
+       << "Each grasp that ODE passed, replayed in MuJoCo under its contact settings with both "
+          "servo mappings (docs/mujoco.md); slip over the MuJoCo runs that held.\n\n"
+       << engines << "\n";
+  }
   md << "## Where a method falls short\n\n";
   md << ShortfallMarkdown(result.rows);
   return md.str();

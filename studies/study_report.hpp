@@ -50,6 +50,12 @@ std::string SummaryMarkdown(const std::vector<StudyRow>& rows);
 /// row whose gate ran, as a Markdown table.
 std::string HoldAndSensitivityMarkdown(const std::vector<StudyRow>& rows);
 
+/// ODE and MuJoCo side by side, one line per row whose gate ran MuJoCo (StudyRow::mujoco): the
+/// nominal ODE outcome and robustness, MuJoCo's k/n runs held, its slip (median and worst, mm
+/// and deg, over the runs that held) and the runs that failed, as a Markdown table; "" when no
+/// row has MuJoCo's figures.
+std::string EnginesMarkdown(const std::vector<StudyRow>& rows);
+
 /// "Where a method falls short": every row that did not pass the gate with its reason from the
 /// simulator.
 std::string ShortfallMarkdown(const std::vector<StudyRow>& rows);

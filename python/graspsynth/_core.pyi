@@ -331,7 +331,8 @@ class Synthesizer:
                    stiffness_range: tuple[float, float] = (0.5, 2.0),
                    damping_range: tuple[float, float] = (0.5, 2.0), mass_spread: float = 0.2,
                    com_offset: float = 0.01, servo_force_spread: float = 0.2,
-                   fine_step: float = 0.001, fine_step_probability: float = 0.5) -> Grasp: ...
+                   fine_step: float = 0.001, fine_step_probability: float = 0.5,
+                   engines: str = "ode", mujoco_min_success: float = 0.95) -> Grasp: ...
     def _synthesize(self, options: dict[str, Any]) -> Grasp: ...
 
 # --- results and their enums (made from the C++ field lists; read-only) --------------------
@@ -439,6 +440,18 @@ class SensitivityResult:
     def to_dict(self) -> dict[str, Any]:
         """every field; enums as their labels, nested results as dicts"""
 
+class MujocoSweepSummary:
+    runs: int
+    successes: int
+    success_fraction: float
+    slip_median: float  # m
+    slip_worst: float  # m
+    slip_angle_median: float  # rad
+    slip_angle_worst: float  # rad
+    failing: str
+    def to_dict(self) -> dict[str, Any]:
+        """every field; enums as their labels, nested results as dicts"""
+
 class FallbackReason:
     kind: FallbackKind
     bracket_reason: str
@@ -482,6 +495,7 @@ class StudyRow:
     failures: str
     nominal_hold: HoldQuality
     sensitivity: Optional[SensitivityResult]
+    mujoco: Optional[MujocoSweepSummary]
     seed: int
     synthesis_s: float
     gate_s: float

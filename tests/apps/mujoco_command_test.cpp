@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -118,6 +119,64 @@ TEST_F(MujocoCommand, OdeReportHasNoEngineKey) {
   const json report = json::parse(ReadFileText(Path("ode.json")));
   EXPECT_FALSE(report["settings"].contains("engine"));
   EXPECT_EQ(report["settings"]["fidelity"], "fast");
+}
+
+// --engines: a value that is not an engine list is bad input (exit 2, the flag named); MuJoCo
+// asked for in a build without it is refused up front.
+TEST_F(MujocoCommand, BadEnginesExitTwo) {
+  auto r = RunGraspsynth("synthesize --theta 60 --engines ode,bullet --out " + Path("g.json"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("--engines"));
+  EXPECT_THAT(r.err, HasSubstr("ode,bullet"));
+  r = RunGraspsynth("run --quick --engines mujoco --out " + Path("study"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("--engines"));
+  r = RunGraspsynth("synthesize --theta 60 --engines ode,mujoco --mujoco-min-success 2 --out " +
+                    Path("g.json"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("--mujoco-min-success"));
+  EXPECT_FALSE(fs::exists(Path("g.json")));
+  if (!MujocoAvailable()) {
+    r = RunGraspsynth("synthesize --theta 60 --engines ode,mujoco --out " + Path("g.json"));
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_THAT(r.err, HasSubstr("built without MuJoCo"));
+  }
+}
+
+TEST_F(MujocoCommand, TheSweepNeedsTheMujocoEngine) {
+  const auto r = RunGraspsynth("simulate " + Example() + " --mujoco-sweep");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("--mujoco-sweep needs --engine mujoco"));
+}
+
+// the sweep of the open hand's first half second (cheap: 16 short runs), none lifts the pan;
+// one line per run and the report.
+TEST_F(MujocoCommand, SweepOfTheOpenHand) {
+  if (!MujocoAvailable()) GTEST_SKIP() << "built without MuJoCo";
+  ASSERT_EQ(
+      RunGraspsynth("scripted-grasp --theta 60 --keep-open --out " + Path("open.json")).exit_code,
+      0);
+  json open = json::parse(ReadFileText(Path("open.json")));
+  json samples = json::array();
+  for (const json& s : open["samples"]) {
+    if (s["t"].get<double>() <= 0.5) samples.push_back(s);
+  }
+  open["samples"] = samples;
+  open.erase("waypoints");
+  std::ofstream(Path("short.json")) << open.dump();
+  const auto r = RunGraspsynth("simulate " + Path("short.json") +
+                               " --engine mujoco --mujoco-sweep --hold 0.1 --threads 2 --out " +
+                               Path("sweep.json"));
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(Count(r.err, "not_lifted"), 16) << r.err;
+  const json report = json::parse(ReadFileText(Path("sweep.json")));
+  EXPECT_EQ(report["format"], "graspsynth-mujoco-sweep/1");
+  EXPECT_EQ(report["summary"]["runs"], 16);
+  EXPECT_EQ(report["summary"]["successes"], 0);
+  ASSERT_EQ(report["runs"].size(), 16u);
+  EXPECT_EQ(report["runs"][0]["setting"], "nominal");
+  EXPECT_EQ(report["runs"][1]["servo"], "soft");
+  EXPECT_EQ(report["runs"][15]["setting"], "friction_0.75");
 }
 
 }  // namespace

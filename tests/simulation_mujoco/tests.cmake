@@ -1,5 +1,6 @@
 graspsynth_test(simulation_mujoco/mjcf_export_test.cpp LIBS graspsynth::simulation_mujoco)
 graspsynth_test(simulation_mujoco/mujoco_world_test.cpp LIBS graspsynth::simulation_mujoco)
 graspsynth_test(simulation_mujoco/mujoco_trial_test.cpp LIBS graspsynth::simulation_mujoco)
+graspsynth_test(simulation_mujoco/mujoco_sweep_test.cpp LIBS graspsynth::simulation_mujoco)
 graspsynth_test(apps/mujoco_command_test.cpp LIBS graspsynth::simulation_mujoco)
 add_dependencies(apps_mujoco_command_test graspsynth)

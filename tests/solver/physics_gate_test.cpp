@@ -4,6 +4,7 @@
 
 #include "common/errors.hpp"
 #include "motion/scripted_grasp.hpp"
+#include "simulation_mujoco/mujoco_world.hpp"
 #include "tests/utils/simulation_fixtures.hpp"
 
 namespace graspsynth {
@@ -117,6 +118,40 @@ TEST(PhysicsGate, HandObjectContactsMatchTheContactReport) {
   });
   EXPECT_GT(steps_with_contacts, 10);
   EXPECT_GT(inward, 0.9 * total);
+}
+
+// "A pinch which slips in one engine is flagged": the scripted 60 deg grasp holds in ODE and
+// not in MuJoCo (docs/mujoco.md: not lifted with the stiff servos, knocked over with the soft),
+// so a gate with MuJoCo among its engines fails it and says why.
+TEST(PhysicsGate, WithMujocoFailsAGraspThatMujocoDrops) {
+  if (!MujocoAvailable()) GTEST_SKIP() << "built without MuJoCo";
+  PhysicsGateOptions o;
+  o.robustness.trials = 0;  // ODE's nominal trial only
+  o.mujoco.enabled = true;
+  o.mujoco.settings = {MujocoContactSetting::kNominal};  // 2 runs: stiff and soft
+  o.robustness.threads = 2;
+  const PhysicsGateResult r = RunPhysicsGate(ShippedSimulationModel(), Scripted(60.0), o);
+  EXPECT_TRUE(r.nominal.success()) << r.nominal.reason;
+  ASSERT_TRUE(r.mujoco.has_value());
+  EXPECT_EQ(r.mujoco->summary.runs, 2);
+  EXPECT_LT(r.mujoco->summary.success_fraction, o.mujoco.min_success);
+  EXPECT_FALSE(r.passed);
+  EXPECT_NE(r.reason.find("MuJoCo held"), std::string::npos) << r.reason;
+  EXPECT_NE(r.reason.find("nominal/stiff"), std::string::npos) << r.reason;
+  // ODE alone (the default) passes the same grasp and runs no MuJoCo.
+  o.mujoco.enabled = false;
+  const PhysicsGateResult ode = RunPhysicsGate(ShippedSimulationModel(), Scripted(60.0), o);
+  EXPECT_TRUE(ode.passed) << ode.reason;
+  EXPECT_FALSE(ode.mujoco.has_value());
+}
+
+TEST(PhysicsGate, MujocoOptionsAreChecked) {
+  PhysicsGateOptions o;
+  o.mujoco.min_success = 1.5;
+  EXPECT_FALSE(o.IsValid(nullptr));
+  o.mujoco.min_success = 0.95;
+  o.mujoco.servos.clear();
+  EXPECT_THROW(RunPhysicsGate(ShippedSimulationModel(), Scripted(60.0), o), InputError);
 }
 
 }  // namespace

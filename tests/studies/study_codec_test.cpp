@@ -33,6 +33,9 @@ TEST(StudyCodec, ARowComesBackWithEveryField) {
   EXPECT_EQ(back.sensitivity->rows[0].low.physics.variation.object_com_offset.y(), -0.02);
   EXPECT_EQ(back.sensitivity->rows[1].high.physics.time_step, 0.001);
   EXPECT_EQ(back.seed, row.seed);
+  ASSERT_TRUE(back.mujoco.has_value());
+  EXPECT_EQ(back.mujoco->slip_worst, 0.031);
+  EXPECT_EQ(back.mujoco->failing, "pyramidal/soft");
   EXPECT_EQ(back.source_thetas_deg, row.source_thetas_deg);
   // the files made from the row are the same bytes.
   EXPECT_EQ(StudySynthesisCsv({back}), StudySynthesisCsv({row}));
@@ -42,15 +45,16 @@ TEST(StudyCodec, ARowComesBackWithEveryField) {
   bare.method = "line";
   const StudyRow bare_back = DecodeStudyRow(EncodeStudyRow(bare), "test");
   EXPECT_FALSE(bare_back.at || bare_back.used || bare_back.status || bare_back.nominal_outcome ||
-               bare_back.sensitivity);
+               bare_back.sensitivity || bare_back.mujoco);
   EXPECT_EQ(StudySynthesisCsv({bare_back}), StudySynthesisCsv({bare}));
 }
 
-// The bytes of FullRow() as the hand-written codec of study-row/1 wrote them (fingerprinted):
-// the layout is kept, so resume folders of earlier builds of this layout still read.
-TEST(StudyCodec, TheLayoutIsStudyRow1) {
-  EXPECT_STREQ(kStudyRowLayout, "study-row/1");
-  EXPECT_EQ(Fingerprint(EncodeStudyRow(FullRow())), "2855651ea83c2f1c");
+// The bytes of FullRow() in study-row/2 (fingerprinted): study-row/1 (the hand-written codec's
+// layout) with the MuJoCo sweep's summary after the sensitivity table. A change of the bytes is
+// a change of the layout, and resume folders of another layout are refused.
+TEST(StudyCodec, TheLayoutIsStudyRow2) {
+  EXPECT_STREQ(kStudyRowLayout, "study-row/2");
+  EXPECT_EQ(Fingerprint(EncodeStudyRow(FullRow())), "41dc47cef98f38b5");
 }
 
 TEST(StudyCodec, BytesCutAnywhereOrWithMoreAreAnError) {

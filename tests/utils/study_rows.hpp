@@ -65,6 +65,16 @@ inline StudyRow FullRow() {
   s.rows = {sr, sr};
   s.wall_time = 3.5;
   row.sensitivity = s;
+  MujocoSweepSummary mujoco;
+  mujoco.runs = 16;
+  mujoco.successes = 15;
+  mujoco.success_fraction = 0.9375;
+  mujoco.slip_median = 0.002;
+  mujoco.slip_worst = 0.031;
+  mujoco.slip_angle_median = 0.01;
+  mujoco.slip_angle_worst = 0.2;
+  mujoco.failing = "pyramidal/soft";
+  row.mujoco = mujoco;
   row.seed = 0xFEDCBA9876543210ULL;
   row.synthesis_s = 1.25;
   row.gate_s = 4.5;
