@@ -98,7 +98,8 @@ int RunGeneralize(const GeneralizeOptions& o, const request::GeneralizeRequest& 
      << SummaryMarkdown(rows) << "\n## Where a method falls short\n\n"
      << ShortfallMarkdown(rows) << "\n## Every grasp\n\n"
      << SynthesisTableMarkdown(rows) << "## Hold quality and sensitivity to the physics\n\n"
-     << HoldAndSensitivityMarkdown(rows);
+     << HoldAndSensitivityMarkdown(rows) << "\n## Hold margin\n\n"
+     << HoldMarginMarkdown(rows, table.gate.hold_margin);
   const fs::path out = o.out;
   WriteFileAtomically(out / (o.name + ".csv"), StudySynthesisCsv(rows));
   WriteFileAtomically(out / (o.name + ".md"), md.str());

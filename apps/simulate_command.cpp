@@ -19,6 +19,7 @@
 #include "common/errors.hpp"
 #include "common/field_text.hpp"
 #include "common/format.hpp"
+#include "common/valid_options.hpp"
 #include "kinematics/pose_math.hpp"
 #include "motion/joint_trajectory.hpp"
 #include "motion/scripted_grasp.hpp"
@@ -30,6 +31,7 @@
 #include "simulation_mujoco/mujoco_trial.hpp"
 #include "simulation_mujoco/mujoco_world.hpp"
 #include "solver/grasp_file.hpp"
+#include "solver/hold_margin.hpp"
 #include "studies/trial_json.hpp"
 
 namespace graspsynth::apps {
@@ -205,6 +207,7 @@ std::optional<MujocoTrialOptions> MujocoOptionsOf(const SimulateOptions& o,
 
 int RunSimulate(const SimulateOptions& o, const request::SimulateRequest& r) {
   const TrialOptions trial = request::ToTrialOptions(r);
+  RequireValid(r.hold_margin, "bad hold margin option");
   const RobustnessOptions ro = request::ToRobustnessOptions(r);  // every option checked first
   const std::optional<MujocoTrialOptions> mujoco = MujocoOptionsOf(o, r);
   const SimulationModel model = LoadModel(o.robot, o.scene, o.object);
@@ -254,6 +257,14 @@ int RunSimulate(const SimulateOptions& o, const request::SimulateRequest& r) {
   n["simulated_s"] = Round(nominal.simulated_time);
   n["final_object_pose"] = PoseJson(nominal.final_object_pose);
   n["hold"] = HoldQualityJson<json>(nominal.hold);
+  // the hold margin (solver/hold_margin.hpp), the thresholds it misses and their reasons.
+  const HoldMargin margin = MeasureHoldMargin(model, nominal);
+  const std::string shortfall = HoldMarginShortfall(margin, r.hold_margin);
+  n["hold_margin"] = HoldMarginJson<json>(margin, Round);
+  n["hold_margin"]["shortfall"] = shortfall;
+  n["hold_margin"].update(HoldMarginOptionsJson<json>(r.hold_margin));
+  std::cerr << "hold margin: " << HoldMarginBrief(margin)
+            << (shortfall.empty() ? "" : "; misses " + shortfall) << "\n";
   AddPerturbedTrials(model, trajectory, ro, r, &report);
   AddSensitivity(model, trajectory, ro, r, &report);
   if (!o.out.empty()) {
@@ -263,7 +274,8 @@ int RunSimulate(const SimulateOptions& o, const request::SimulateRequest& r) {
   }
   if (!o.record.empty()) WriteFileAtomically(o.record, StatesCsv(nominal.states));
   if (recorded) WriteTrialRecord(o.trial_record, recorded->record);
-  return nominal.success() ? 0 : 1;
+  const bool margin_missed = r.hold_margin.require && !shortfall.empty();
+  return nominal.success() && !margin_missed ? 0 : 1;
 }
 
 int RunScripted(const ScriptedOptions& o, const request::ScriptedGraspRequest& request) {

@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "common/orientation_list.hpp"
+#include "request/hold_margin_options.hpp"
 #include "request/physics_options.hpp"
 #include "studies/study_method.hpp"
 
@@ -69,6 +70,7 @@ OptionList<R> MakeOptions() {
                                 [](R& r) -> int& { return r.threads; }));
   list.push_back(PhysicsFallbackOption<R>([](R& r) -> bool& { return r.physics_fallback; }));
   AppendPhysicsOptions<R>([](R& r) -> PhysicsPerturbationOptions& { return r.physics; }, &list);
+  AppendHoldMarginOptions<R>([](R& r) -> HoldMarginOptions& { return r.hold_margin; }, &list);
   return list;
 }
 
@@ -87,6 +89,7 @@ SynthesisTableOptions ToSynthesisTableOptions(const GeneralizeRequest& request) 
   table.seed = request.seed;
   table.threads = request.threads;
   table.physics_fallback = request.physics_fallback;
+  table.gate.hold_margin = request.hold_margin;
   PerturbationOptions& perturbation = table.gate.robustness.perturbation;
   perturbation.ScaleMotionNoise(request.noise_scale);
   perturbation.physics = request.physics;

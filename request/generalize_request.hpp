@@ -32,6 +32,7 @@ struct GeneralizeRequest {
   int threads = 0;  ///< 0: all cores
   bool physics_fallback = true;
   PhysicsPerturbationOptions physics = SynthesisTableOptions{}.gate.robustness.perturbation.physics;
+  HoldMarginOptions hold_margin;  ///< the gates' hold margin: thresholds, required or not
 };
 
 /// The options of GeneralizeRequest, in the order the front ends list them.

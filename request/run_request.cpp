@@ -7,6 +7,7 @@
 #include "common/orientation_list.hpp"
 #include "common/valid_options.hpp"
 #include "learning_data/demo_directory.hpp"
+#include "request/hold_margin_options.hpp"
 #include "request/physics_options.hpp"
 
 namespace graspsynth::request {
@@ -59,6 +60,7 @@ OptionList<R> MakeOptions() {
   list.push_back(PhysicsFallbackOption<R>([](R& r) -> bool& { return r.physics_fallback; }));
   list.push_back(AllReplaysOption<R>([](R& r) -> bool& { return r.all_replays; }, false));
   AppendPhysicsOptions<R>([](R& r) -> PhysicsPerturbationOptions& { return r.physics; }, &list);
+  AppendHoldMarginOptions<R>([](R& r) -> HoldMarginOptions& { return r.hold_margin; }, &list);
   return list;
 }
 
@@ -81,6 +83,7 @@ StudyOptions ToStudyOptions(const RunRequest& request, const SceneModel& scene,
   options.paper_object = scene.object.paper_object;
   options.perturbation.physics = request.physics;
   options.physics_fallback = request.physics_fallback;
+  options.hold_margin = request.hold_margin;
   options.selection_early_stop = !request.all_replays;
   if (request.quick) options.UseQuickStudy();
   if (request.sensitivity) options.sensitivity_trials = *request.sensitivity;

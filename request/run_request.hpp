@@ -35,6 +35,7 @@ struct RunRequest {
   bool physics_fallback = StudyOptions{}.physics_fallback;
   bool all_replays = !StudyOptions{}.selection_early_stop;
   PhysicsPerturbationOptions physics = StudyOptions{}.perturbation.physics;
+  HoldMarginOptions hold_margin = StudyOptions{}.hold_margin;  ///< the gates' hold margin
 };
 
 /// The options of RunRequest, in the order the front ends list them.

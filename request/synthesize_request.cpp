@@ -2,6 +2,7 @@
 
 #include <utility>
 
+#include "request/hold_margin_options.hpp"
 #include "request/physics_options.hpp"
 #include "solver/reach_planning.hpp"
 
@@ -81,6 +82,7 @@ OptionList<R> MakeOptions() {
   AppendPhysicsOptions<R>(
       [](R& r) -> PhysicsPerturbationOptions& { return r.gate.robustness.perturbation.physics; },
       &list);
+  AppendHoldMarginOptions<R>([](R& r) -> HoldMarginOptions& { return r.gate.hold_margin; }, &list);
   return list;
 }
 

@@ -121,6 +121,14 @@ json QualityJson(const PhysicsGateResult& gate) {
           {"message", q.message}};
 }
 
+// the nominal hold's margin, the thresholds it misses and the thresholds with their reasons.
+json HoldMarginReportJson(const PhysicsGateResult& gate) {
+  json m = HoldMarginJson<json>(gate.hold_margin, [](double x) { return x; });
+  m["shortfall"] = gate.hold_margin_shortfall;
+  m.update(HoldMarginOptionsJson<json>(gate.hold_margin_options));
+  return m;
+}
+
 json ValidationJson(const PhysicsGateResult& gate, bool forced) {
   const TrialResult& n = gate.nominal;
   json v = {{"passed", gate.passed},
@@ -137,6 +145,7 @@ json ValidationJson(const PhysicsGateResult& gate, bool forced) {
   } else {
     v["robustness"] = nullptr;
   }
+  v["hold_margin"] = HoldMarginReportJson(gate);
   return v;
 }
 

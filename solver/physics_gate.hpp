@@ -14,6 +14,7 @@
 
 #include "simulation/robustness.hpp"
 #include "solver/grasp_quality.hpp"
+#include "solver/hold_margin.hpp"
 
 namespace graspsynth {
 
@@ -29,6 +30,10 @@ struct PhysicsGateOptions {
   double min_robustness = 0.8;  ///< success fraction needed, [0, 1]
   bool require_nominal = true;  ///< the nominal trial must succeed
   GraspQualityOptions quality;
+  /// The hold margin's thresholds and whether the gate requires them (solver/hold_margin.hpp);
+  /// required, a nominal trial that succeeds with a margin below a threshold fails the gate,
+  /// without its perturbed replays.
+  HoldMarginOptions hold_margin;
 
   bool IsValid(std::string* why) const;
 };
@@ -43,7 +48,11 @@ struct PhysicsGateResult {
   std::optional<SensitivityResult> sensitivity;  ///< with options.sensitivity_trials > 0
   std::vector<GraspContact> contacts;            ///< the contacts the quality was computed from
   GraspQuality quality;
-  double time_s = 0.0;  ///< wall time of the gate
+  HoldMargin hold_margin;  ///< the nominal trial's hold margin
+  /// The thresholds the hold margin misses (HoldMarginShortfall); "" when it meets them all.
+  std::string hold_margin_shortfall;
+  HoldMarginOptions hold_margin_options;  ///< the thresholds it was judged by (the options')
+  double time_s = 0.0;                    ///< wall time of the gate
 };
 
 /// Simulates `trajectory` (limit-checked) in `model` and judges it. `progress` counts the

@@ -17,7 +17,7 @@ std::string EncodeStudyRow(const StudyRow& row);
 
 /// The layout of EncodeStudyRow's bytes, kept with them in resume folders; change it with the
 /// layout.
-inline constexpr const char* kStudyRowLayout = "study-row/1";
+inline constexpr const char* kStudyRowLayout = "study-row/2";
 
 /// The row EncodeStudyRow wrote. Throws InputError naming `source` for bytes that are not one.
 StudyRow DecodeStudyRow(std::string_view bytes, const std::string& source);

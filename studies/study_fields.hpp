@@ -4,7 +4,7 @@
 /// The field lists (common/field_list.hpp) of the study's results: a synthesis table's row
 /// (StudyRow) and a method's totals (StudyMethodSummary). Each field is listed once, with its
 /// place in synthesis.json (a JSON pointer) and synthesis.csv (a column) where those files carry
-/// it; the list drives the job bytes (studies/study_codec.hpp, layout study-row/1), the JSON and
+/// it; the list drives the job bytes (studies/study_codec.hpp, layout study-row/2), the JSON and
 /// CSV writers (studies/study_report.hpp) and the Python classes (graspsynth.StudyRow).
 
 #include "common/field_list.hpp"
@@ -43,6 +43,8 @@ void VisitFields(V& v, Row& r) {
   v(Field("force_closure").Json("/quality/force_closure").Csv(16), r.force_closure);
   v(Field("failures").Json("/robustness/failures").Csv(17), r.failures);
   v(Field("nominal_hold").Json("/hold").JsonNullIf(!r.gate_run), r.nominal_hold);
+  v(Field("hold_margin").Json("/hold_margin").JsonNullIf(!r.gate_run), r.hold_margin);
+  v(Field("hold_margin_shortfall").Json("/hold_margin_shortfall"), r.hold_margin_shortfall);
   v(Field("sensitivity").Json("/sensitivity"), r.sensitivity);
   v(Field("seed").Json("/robustness/seed"), r.seed);
   // wall times and sources: in the bytes and in Python, not in the deterministic files.

@@ -57,11 +57,11 @@ TEST(StudyFields, EveryListedFieldIsInTheJsonAndTheCsv) {
   const std::string header = csv.substr(0, csv.find('\n'));
   Places places{rows[0], header};
   VisitFields(places, row);
-  EXPECT_EQ(places.json_fields, 26);
+  EXPECT_EQ(places.json_fields, 28);
   EXPECT_EQ(places.csv_fields, 18);
-  EXPECT_EQ(FieldCount<StudyRow>(), 29u);
+  EXPECT_EQ(FieldCount<StudyRow>(), 31u);
   // the JSON has nothing the list does not put there.
-  EXPECT_EQ(rows[0].size(), 17u);
+  EXPECT_EQ(rows[0].size(), 19u);
 }
 
 // Sets the index-th field to its type's default.
