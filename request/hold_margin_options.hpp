@@ -56,7 +56,7 @@ OptionList<R> HoldMarginOptionList(F ref) {
   links.group = kHoldMarginGroup;
   list.push_back(
       FieldOption<R>(links, [ref](R& r) -> int& { return ref(r).min_load_bearing_links; }));
-  number("max_friction_use", &H::max_friction_use, 0.0, true, INFINITY);
+  number("max_friction_use_mean", &H::max_friction_use_mean, 0.0, true, INFINITY);
   return list;
 }
 

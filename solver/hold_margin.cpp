@@ -58,8 +58,8 @@ bool HoldMarginOptions::IsValid(std::string* why) const {
   if (min_load_bearing_links < 0 || min_load_bearing_links > kHandJoints + 1) {
     return fail("min_load_bearing_links (in [0, 21])", min_load_bearing_links);
   }
-  if (!(std::isfinite(max_friction_use) && max_friction_use > 0.0)) {
-    return fail("max_friction_use (> 0)", max_friction_use);
+  if (!(std::isfinite(max_friction_use_mean) && max_friction_use_mean > 0.0)) {
+    return fail("max_friction_use_mean (> 0)", max_friction_use_mean);
   }
   return true;
 }
@@ -67,19 +67,25 @@ bool HoldMarginOptions::IsValid(std::string* why) const {
 std::vector<HoldMarginThreshold> HoldMarginThresholds(const HoldMarginOptions& o) {
   return {
       {"max_slip_mm", o.max_slip_mm,
-       "largest slip of the object in the hand from lift-off to the end, mm: a grip that lets "
-       "the pan move further is held where the fingers slide"},
+       "largest slip of the object in the hand from lift-off to the end, mm: above every pan-study "
+       "grasp (up to 38.7 mm), since ODE's slip did not tell the grasps MuJoCo drops from those it "
+       "holds (6 of the 10 that hold in MuJoCo slip over 20 mm in ODE); it bounds a hold that "
+       "slides along the handle"},
       {"max_slip_deg", o.max_slip_deg,
-       "largest rotation of the object in the hand, deg: a pan that turns more pivots about a "
-       "pinch"},
+       "largest rotation of the object in the hand, deg: above every pan-study grasp (up to "
+       "6.7 deg); a pan that turns more pivots about its grip"},
       {"min_epsilon_weight", o.min_epsilon_weight,
-       "smallest Ferrari-Canny epsilon at the measured normal forces, in object weights: below "
-       "it the hold resists less than that share of the weight in its weakest direction"},
+       "smallest Ferrari-Canny epsilon of the contacts at their measured normal forces, in object "
+       "weights: the 3 pan-study grasps below 0.05 that ODE lifts all fail their hold in MuJoCo, "
+       "and none that holds in MuJoCo is below 0.08"},
       {"min_load_bearing_links", static_cast<double>(o.min_load_bearing_links),
        "fewest hand links carrying 10% of the contact force or more: one link alone holds by "
-       "friction at a point"},
-      {"max_friction_use", o.max_friction_use,
-       "largest |f_t| / (mu f_n) of a load-bearing contact: beyond it the contact slides"},
+       "friction at a point (every pan-study grasp has 3 or more)"},
+      {"max_friction_use_mean", o.max_friction_use_mean,
+       "largest force-weighted mean |f_t| / (mu f_n) of the load-bearing contacts: beyond 1 the "
+       "hold leans on friction outside the Coulomb cone, which ODE's solve can leave and MuJoCo "
+       "does not give (6 of the 13 pan-study grasps that fail their hold in MuJoCo are beyond it, "
+       "1 of the 10 that hold)"},
   };
 }
 
@@ -161,8 +167,9 @@ std::string HoldMarginShortfall(const HoldMargin& m, const HoldMarginOptions& o)
     misses.push_back(
         Format("%d load-bearing links < %d", m.load_bearing_links, o.min_load_bearing_links));
   }
-  if (m.friction_use_max > o.max_friction_use) {
-    misses.push_back(Format("friction use %.2f > %g", m.friction_use_max, o.max_friction_use));
+  if (m.friction_use_mean > o.max_friction_use_mean) {
+    misses.push_back(
+        Format("friction use mean %.2f > %g", m.friction_use_mean, o.max_friction_use_mean));
   }
   std::string text;
   for (const std::string& s : misses) text += (text.empty() ? "" : "; ") + s;

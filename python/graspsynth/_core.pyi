@@ -332,9 +332,10 @@ class Synthesizer:
                    damping_range: tuple[float, float] = (0.5, 2.0), mass_spread: float = 0.2,
                    com_offset: float = 0.01, servo_force_spread: float = 0.2,
                    fine_step: float = 0.001, fine_step_probability: float = 0.5,
-                   require_hold_margin: bool = False, max_slip_mm: float = 20.0,
+                   require_hold_margin: bool = False, max_slip_mm: float = 40.0,
                    max_slip_deg: float = 10.0, min_epsilon_weight: float = 0.05,
-                   min_load_bearing_links: int = 2, max_friction_use: float = 0.95) -> Grasp: ...
+                   min_load_bearing_links: int = 2,
+                   max_friction_use_mean: float = 1.0) -> Grasp: ...
     def _synthesize(self, options: dict[str, Any]) -> Grasp: ...
 
 # --- results and their enums (made from the C++ field lists; read-only) --------------------

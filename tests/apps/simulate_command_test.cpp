@@ -98,8 +98,8 @@ TEST_F(SimulateCommand, ReportsTheHoldMarginAndExitsOneWhenARequiredOneIsMissed)
   EXPECT_TRUE(margin["epsilon_weight"].is_number());
   EXPECT_TRUE(margin["contacts"]["thumb"].is_number());
   EXPECT_EQ(margin["required"], false);
-  EXPECT_EQ(margin["thresholds"]["max_slip_mm"], 20.0);
-  EXPECT_THAT(margin["reasons"]["max_slip_mm"].get<std::string>(), HasSubstr("slide"));
+  EXPECT_EQ(margin["thresholds"]["max_slip_mm"], 40.0);
+  EXPECT_THAT(margin["reasons"]["max_slip_mm"].get<std::string>(), HasSubstr("slides"));
   EXPECT_THAT(r.err, HasSubstr("hold margin: slip "));
 
   const auto required = RunGraspsynth("simulate " + Example() +

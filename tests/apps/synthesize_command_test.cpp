@@ -183,7 +183,8 @@ TEST_F(SynthesizeCommand, BadStartIsAnError) {
 }
 
 TEST_F(SynthesizeCommand, ABadHoldMarginThresholdIsAnError) {
-  for (const char* flags : {"--max-slip-mm -1", "--max-friction-use 0", "--max-slip-deg 181"}) {
+  for (const char* flags :
+       {"--max-slip-mm -1", "--max-friction-use-mean 0", "--max-slip-deg 181"}) {
     const testing::CommandOutput bad = RunGraspsynth(Args(std::string("--theta 50 ") + flags));
     EXPECT_EQ(bad.exit_code, 2) << flags << ": " << bad.err;
     EXPECT_NE(bad.err.find(std::string(flags).substr(0, std::string(flags).find(' '))),

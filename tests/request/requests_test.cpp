@@ -203,8 +203,9 @@ TEST(HoldMarginOptions, MapOntoEachGateAndBadThresholdsNameTheOption) {
       ToValidatedSynthesisOptions(SynthesizeRequest{.theta = 45.0}).gate.hold_margin.require);
 
   GeneralizeRequest g;
-  Apply(*FindOption(GeneralizeOptions(), "max_friction_use"), Value(0.7), "max_friction_use", &g);
-  EXPECT_EQ(ToSynthesisTableOptions(g).gate.hold_margin.max_friction_use, 0.7);
+  Apply(*FindOption(GeneralizeOptions(), "max_friction_use_mean"), Value(0.7),
+        "max_friction_use_mean", &g);
+  EXPECT_EQ(ToSynthesisTableOptions(g).gate.hold_margin.max_friction_use_mean, 0.7);
 
   RunRequest r;
   Apply(*FindOption(RunOptions(), "min_epsilon_weight"), Value(0.2), "min_epsilon_weight", &r);

@@ -107,13 +107,13 @@ TEST(HoldMargin, NothingInTheHandIsNotMeasured) {
 TEST(HoldMargin, TheShortfallNamesTheFigureItsValueAndTheThreshold) {
   HoldMargin m = MeasureHoldMargin(ShippedSimulationModel(), CubeHeld(50.0));
   EXPECT_EQ(HoldMarginShortfall(m, {}), "");
-  m.slip_mm = 31.7;
+  m.slip_mm = 41.7;
   m.slip_deg = 12.3;
-  m.friction_use_max = 1.2;
+  m.friction_use_mean = 1.2;
   m.load_bearing_links = 1;
   EXPECT_EQ(HoldMarginShortfall(m, {}),
-            "slip 31.7 mm > 20 mm; slip 12.3 deg > 10 deg; 1 load-bearing links < 2; friction "
-            "use 1.20 > 0.95");
+            "slip 41.7 mm > 40 mm; slip 12.3 deg > 10 deg; 1 load-bearing links < 2; friction "
+            "use mean 1.20 > 1");
 }
 
 TEST(HoldMargin, OptionsAreChecked) {
@@ -134,9 +134,9 @@ TEST(HoldMargin, OptionsAreChecked) {
   o.min_load_bearing_links = -1;
   EXPECT_FALSE(o.IsValid(&why));
   o = {};
-  o.max_friction_use = 0.0;
+  o.max_friction_use_mean = 0.0;
   EXPECT_FALSE(o.IsValid(&why));
-  EXPECT_THAT(why, HasSubstr("max_friction_use"));
+  EXPECT_THAT(why, HasSubstr("max_friction_use_mean"));
   // every threshold has its reason.
   for (const HoldMarginThreshold& t : HoldMarginThresholds({})) EXPECT_FALSE(t.reason.empty());
 }
