@@ -98,7 +98,8 @@ int RunGeneralize(const GeneralizeOptions& o, const request::GeneralizeRequest& 
      << SummaryMarkdown(rows) << "\n## Where a method falls short\n\n"
      << ShortfallMarkdown(rows) << "\n## Every grasp\n\n"
      << SynthesisTableMarkdown(rows) << "## Hold quality and sensitivity to the physics\n\n"
-     << HoldAndSensitivityMarkdown(rows);
+     << HoldAndSensitivityMarkdown(rows) << "\n## Hold margin\n\n"
+     << HoldMarginMarkdown(rows, table.gate.hold_margin);
   if (const std::string engines = EnginesMarkdown(rows); !engines.empty()) {
     md << "\n## ODE and MuJoCo side by side\n\n" << engines;  // with --engines ode,mujoco
   }

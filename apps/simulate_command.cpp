@@ -19,6 +19,7 @@
 #include "common/errors.hpp"
 #include "common/field_text.hpp"
 #include "common/format.hpp"
+#include "common/valid_options.hpp"
 #include "kinematics/pose_math.hpp"
 #include "motion/joint_trajectory.hpp"
 #include "motion/scripted_grasp.hpp"
@@ -33,6 +34,7 @@
 #include "simulation_mujoco/mujoco_world.hpp"
 #include "solver/grasp_file.hpp"
 #include "solver/physics_gate.hpp"
+#include "solver/hold_margin.hpp"
 #include "studies/trial_json.hpp"
 
 namespace graspsynth::apps {
@@ -256,6 +258,7 @@ int RunMujocoSweepCommand(const SimulateOptions& o, const request::SimulateReque
 
 int RunSimulate(const SimulateOptions& o, const request::SimulateRequest& r) {
   const TrialOptions trial = request::ToTrialOptions(r);
+  RequireValid(r.hold_margin, "bad hold margin option");
   const RobustnessOptions ro = request::ToRobustnessOptions(r);  // every option checked first
   const std::optional<MujocoTrialOptions> mujoco = MujocoOptionsOf(o, r);
   if (r.engine.mujoco_sweep) {
@@ -309,6 +312,14 @@ int RunSimulate(const SimulateOptions& o, const request::SimulateRequest& r) {
   n["simulated_s"] = Round(nominal.simulated_time);
   n["final_object_pose"] = PoseJson(nominal.final_object_pose);
   n["hold"] = HoldQualityJson<json>(nominal.hold);
+  // the hold margin (solver/hold_margin.hpp), the thresholds it misses and their reasons.
+  const HoldMargin margin = MeasureHoldMargin(model, nominal);
+  const std::string shortfall = HoldMarginShortfall(margin, r.hold_margin);
+  n["hold_margin"] = HoldMarginJson<json>(margin, Round);
+  n["hold_margin"]["shortfall"] = shortfall;
+  n["hold_margin"].update(HoldMarginOptionsJson<json>(r.hold_margin));
+  std::cerr << "hold margin: " << HoldMarginBrief(margin)
+            << (shortfall.empty() ? "" : "; misses " + shortfall) << "\n";
   AddPerturbedTrials(model, trajectory, ro, r, &report);
   AddSensitivity(model, trajectory, ro, r, &report);
   if (!o.out.empty()) {
@@ -318,7 +329,8 @@ int RunSimulate(const SimulateOptions& o, const request::SimulateRequest& r) {
   }
   if (!o.record.empty()) WriteFileAtomically(o.record, StatesCsv(nominal.states));
   if (recorded) WriteTrialRecord(o.trial_record, recorded->record);
-  return nominal.success() ? 0 : 1;
+  const bool margin_missed = r.hold_margin.require && !shortfall.empty();
+  return nominal.success() && !margin_missed ? 0 : 1;
 }
 
 int RunScripted(const ScriptedOptions& o, const request::ScriptedGraspRequest& request) {
@@ -381,9 +393,9 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
       "nominal trial succeeds, 1 when it fails, 2 on bad input.\n\n"
       "With --engine mujoco the nominal trial is replayed in MuJoCo instead (the same\n"
       "controller and judgement; --mujoco-servo stiff|soft maps ODE's finger motor onto a\n"
-      "MuJoCo servo; docs/mujoco.md); --mujoco-sweep replays it under each of MuJoCo's 8\n"
-      "contact settings with both servo mappings and prints one line per run (exit 0 when\n"
-      "at least 95% of the 16 hold; --out writes a graspsynth-mujoco-sweep/1 report).\n\n"
+      "MuJoCo servo; docs/mujoco.md); with --mujoco-sweep, 16 runs are printed one per line\n"
+      "(exit 0 when at least 95% of them hold; --out writes a graspsynth-mujoco-sweep/1\n"
+      "report).\n\n"
       "Examples:\n"
       "  graspsynth simulate examples/grasp_60deg.json\n"
       "  graspsynth simulate examples/grasp_60deg.json --perturb 100 --out report.json\n"

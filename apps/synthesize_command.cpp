@@ -91,6 +91,9 @@ int RunSynthesize(const SynthesizeOptions& o, const request::SynthesizeRequest& 
   std::cerr << "physics gate: " << (gate.passed ? "passed" : "FAILED") << ": " << gate.reason
             << "; quality: epsilon " << gate.quality.epsilon << ", volume " << gate.quality.volume
             << " (" << gate.contacts.size() << " contacts)\n";
+  std::cerr << "hold margin: " << HoldMarginBrief(gate.hold_margin)
+            << (gate.hold_margin_shortfall.empty() ? "" : "; misses " + gate.hold_margin_shortfall)
+            << (gate.hold_margin_options.require ? " (required)" : " (reported only)") << "\n";
   if (!gate.passed) {
     if (!o.force) {
       std::cerr << "graspsynth synthesize: the grasp failed the physics gate: " << gate.reason

@@ -67,6 +67,26 @@ void BindTrialResults(py::module_& m) {
        {"load_share",
         "share of the object-hand contact force at the end per finger (thumb, index, middle, "
         "ring), then the palm; sums to 1, all 0 without contact force"}});
+  BindFieldClass<HoldMargin>(
+      m, "HoldMargin",
+      "How securely the object sat in the hand at the end of a trial (solver/hold_margin.hpp): "
+      "slip (mm, deg), end tilt (deg), contacts and load share per finger and the palm, "
+      "load-bearing links, epsilon at the measured normal forces (object weights), friction use.",
+      {{"measured", "the trial ended with contact force on the object"},
+       {"slip_mm", "displacement of the object in the hand from lift-off to the end, mm"},
+       {"slip_deg", "rotation of the object in the hand over the same span, deg"},
+       {"end_tilt_deg", "angle of the object's up axis from vertical at the end, deg"},
+       {"contacts", "object-hand contact points at the end per finger, then the palm"},
+       {"load_share", "share of the contact force per finger, then the palm"},
+       {"load_bearing_links", "hand links carrying at least 10% of the contact force"},
+       {"fingertips_only", "every load-bearing link is a fingertip (a pinch)"},
+       {"epsilon_weight",
+        "Ferrari-Canny epsilon of the cones scaled by the measured normal forces, in object "
+        "weights (about the centre of mass, torques over torque_scale_m)"},
+       {"torque_scale_m", "the length that turns torques into forces, m"},
+       {"friction_use_max", "largest |f_t| / (mu f_n) of a load-bearing contact"},
+       {"friction_use_mean", "the same, mean weighted by each contact's force"},
+       {"normal_force_weight", "summed normal force over the object's weight"}});
   BindFieldClass<PhysicsVariation>(
       m, "PhysicsVariation",
       "A replay's physics: factors on the modelled values, the "
@@ -224,6 +244,8 @@ void BindStudyResults(py::module_& m) {
        {"force_closure", "the nominal hold is force closure"},
        {"failures", "perturbed failures by outcome, e.g. \"dropped 2, not_lifted 1\""},
        {"nominal_hold", "how the object sat in the hand after the nominal trial (HoldQuality)"},
+       {"hold_margin", "the nominal hold's margin (HoldMargin)"},
+       {"hold_margin_shortfall", "the hold-margin thresholds it misses; \"\" when none"},
        {"sensitivity", "the gate's sensitivity table (SensitivityResult), or None"},
        {"mujoco", "the gate's MuJoCo sweep (MujocoSweepSummary), or None (engines ode)"},
        {"seed", "seed of the gate's perturbations"},

@@ -4,6 +4,7 @@
 
 #include "common/orientation_list.hpp"
 #include "request/mujoco_request.hpp"
+#include "request/hold_margin_options.hpp"
 #include "request/physics_options.hpp"
 #include "studies/study_method.hpp"
 
@@ -71,6 +72,7 @@ OptionList<R> MakeOptions() {
   list.push_back(PhysicsFallbackOption<R>([](R& r) -> bool& { return r.physics_fallback; }));
   AppendPhysicsOptions<R>([](R& r) -> PhysicsPerturbationOptions& { return r.physics; }, &list);
   AppendGateEngineOptions<R>([](R& r) -> MujocoGateOptions& { return r.mujoco; }, &list);
+  AppendHoldMarginOptions<R>([](R& r) -> HoldMarginOptions& { return r.hold_margin; }, &list);
   return list;
 }
 
@@ -89,6 +91,7 @@ SynthesisTableOptions ToSynthesisTableOptions(const GeneralizeRequest& request) 
   table.seed = request.seed;
   table.threads = request.threads;
   table.physics_fallback = request.physics_fallback;
+  table.gate.hold_margin = request.hold_margin;
   PerturbationOptions& perturbation = table.gate.robustness.perturbation;
   perturbation.ScaleMotionNoise(request.noise_scale);
   perturbation.physics = request.physics;

@@ -33,6 +33,7 @@ struct GeneralizeRequest {
   bool physics_fallback = true;
   PhysicsPerturbationOptions physics = SynthesisTableOptions{}.gate.robustness.perturbation.physics;
   MujocoGateOptions mujoco;  ///< the gate's engines: ode, or ode and MuJoCo's sweep
+  HoldMarginOptions hold_margin;  ///< the gates' hold margin: thresholds, required or not
 };
 
 /// The options of GeneralizeRequest, in the order the front ends list them.

@@ -8,6 +8,7 @@
 #include "common/valid_options.hpp"
 #include "learning_data/demo_directory.hpp"
 #include "request/mujoco_request.hpp"
+#include "request/hold_margin_options.hpp"
 #include "request/physics_options.hpp"
 
 namespace graspsynth::request {
@@ -61,6 +62,7 @@ OptionList<R> MakeOptions() {
   list.push_back(AllReplaysOption<R>([](R& r) -> bool& { return r.all_replays; }, false));
   AppendPhysicsOptions<R>([](R& r) -> PhysicsPerturbationOptions& { return r.physics; }, &list);
   AppendGateEngineOptions<R>([](R& r) -> MujocoGateOptions& { return r.mujoco; }, &list);
+  AppendHoldMarginOptions<R>([](R& r) -> HoldMarginOptions& { return r.hold_margin; }, &list);
   return list;
 }
 
@@ -83,6 +85,7 @@ StudyOptions ToStudyOptions(const RunRequest& request, const SceneModel& scene,
   options.paper_object = scene.object.paper_object;
   options.perturbation.physics = request.physics;
   options.physics_fallback = request.physics_fallback;
+  options.hold_margin = request.hold_margin;
   options.selection_early_stop = !request.all_replays;
   if (request.quick) options.UseQuickStudy();
   if (request.sensitivity) options.sensitivity_trials = *request.sensitivity;

@@ -36,6 +36,7 @@ struct RunRequest {
   bool all_replays = !StudyOptions{}.selection_early_stop;
   PhysicsPerturbationOptions physics = StudyOptions{}.perturbation.physics;
   MujocoGateOptions mujoco;  ///< the gate's engines: ode, or ode and MuJoCo's sweep
+  HoldMarginOptions hold_margin = StudyOptions{}.hold_margin;  ///< the gates' hold margin
 };
 
 /// The options of RunRequest, in the order the front ends list them.

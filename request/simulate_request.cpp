@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "common/valid_options.hpp"
+#include "request/hold_margin_options.hpp"
 #include "request/physics_options.hpp"
 
 namespace graspsynth::request {
@@ -88,6 +89,7 @@ OptionList<SimulateRequest> MakeSimulateOptions() {
                                        "Finger joint noise, deg (standard deviation per joint)"),
                               &R::finger_noise_deg));
   AppendPhysicsOptions<R>([](R& r) -> PhysicsPerturbationOptions& { return r.physics; }, &list);
+  AppendHoldMarginOptions<R>([](R& r) -> HoldMarginOptions& { return r.hold_margin; }, &list);
   return list;
 }
 

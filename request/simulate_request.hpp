@@ -20,6 +20,7 @@
 #include "request/option.hpp"
 #include "simulation/robustness.hpp"
 #include "simulation/trial.hpp"
+#include "solver/hold_margin.hpp"
 
 namespace graspsynth::request {
 
@@ -46,6 +47,9 @@ struct SimulateRequest {
   double orientation_noise_deg = PerturbationOptions{}.orientation_sigma / kDeg;
   double finger_noise_deg = PerturbationOptions{}.finger_sigma / kDeg;
   PhysicsPerturbationOptions physics = PerturbationOptions{}.physics;
+  /// The nominal trial's hold margin: its thresholds for the report, and whether a miss makes
+  /// the command exit 1.
+  HoldMarginOptions hold_margin;
 };
 
 /// What Python's simulate (Simulation.trial) plays: one nominal trial.

@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "request/mujoco_request.hpp"
+#include "request/hold_margin_options.hpp"
 #include "request/physics_options.hpp"
 #include "solver/reach_planning.hpp"
 
@@ -83,6 +84,7 @@ OptionList<R> MakeOptions() {
       [](R& r) -> PhysicsPerturbationOptions& { return r.gate.robustness.perturbation.physics; },
       &list);
   AppendGateEngineOptions<R>([](R& r) -> MujocoGateOptions& { return r.gate.mujoco; }, &list);
+  AppendHoldMarginOptions<R>([](R& r) -> HoldMarginOptions& { return r.gate.hold_margin; }, &list);
   return list;
 }
 

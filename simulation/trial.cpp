@@ -114,6 +114,7 @@ void FinishTrial(const JudgedWorld& world, const TrialWatch& watch, double t_mot
   result->final_object_pose = world.object_pose();
   result->lift = result->final_object_pose.translation().z() - watch.X_WO_rest.translation().z();
   result->hold = MeasureHold(world, watch);
+  result->end_contacts = world.hand_object_contacts();
   const TrialVerdict verdict =
       early ? *early : JudgeTrial(world, watch, result->simulated_time - t_motion, options);
   result->outcome = verdict.outcome;

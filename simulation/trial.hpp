@@ -84,7 +84,10 @@ struct TrialResult {
   double wall_time = 0.0;        ///< s
   double cpu_time = 0.0;         ///< s of the calling thread's CPU time
   Eigen::Isometry3d final_object_pose = Eigen::Isometry3d::Identity();
-  HoldQuality hold;                ///< how the object sits in the hand at the end
+  HoldQuality hold;  ///< how the object sits in the hand at the end
+  /// The object-hand contacts of the last step, with their forces (the hold margin's,
+  /// solver/hold_margin.hpp); empty when nothing touched the object at the end.
+  std::vector<HandObjectContact> end_contacts;
   StepStatistics statistics;       ///< steps and where their time went
   WorldCounts counts;              ///< bodies, joints, geoms of the world
   std::vector<TrialState> states;  ///< when recording

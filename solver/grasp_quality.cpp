@@ -64,7 +64,8 @@ GraspQuality EvaluateGraspQuality(const std::vector<GraspContact>& contacts,
     const auto [t1, t2] = TangentBasis(n);
     for (int j = 0; j < options.cone_edges; ++j) {
       const double phi = 2.0 * M_PI * j / options.cone_edges;
-      const Eigen::Vector3d f = n + c.mu * (std::cos(phi) * t1 + std::sin(phi) * t2);
+      const Eigen::Vector3d f =
+          c.normal_force * (n + c.mu * (std::cos(phi) * t1 + std::sin(phi) * t2));
       Wrench w;
       w << f, (c.p_WC - p_WR).cross(f) / rho;
       wrenches.push_back(w);

@@ -21,6 +21,8 @@ struct GraspContact {
   Eigen::Vector3d p_WC = Eigen::Vector3d::Zero();  ///< contact point, m
   Eigen::Vector3d n_W = Eigen::Vector3d::UnitZ();  ///< unit normal, pointing into the object
   double mu = 1.0;                                 ///< Coulomb friction coefficient
+  /// Normal force that scales the contact's cone edges, N (1: Ferrari and Canny's unit force).
+  double normal_force = 1.0;
 };
 
 /// Options of EvaluateGraspQuality.

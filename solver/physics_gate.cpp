@@ -28,7 +28,8 @@ bool PhysicsGateOptions::IsValid(std::string* why) const {
   // the replays' own checks, but their count (0 is the gate's nominal only).
   RobustnessOptions replays = robustness;
   replays.trials = std::max(replays.trials, 1);
-  return replays.IsValid(why) && quality.IsValid(why) && mujoco.IsValid(why);
+  return replays.IsValid(why) && quality.IsValid(why) && mujoco.IsValid(why) &&
+         hold_margin.IsValid(why);
 }
 
 bool MujocoGateOptions::IsValid(std::string* why) const {
@@ -82,9 +83,16 @@ PhysicsGateResult RunPhysicsGate(const SimulationModel& model, const JointTrajec
   for (const HandObjectContact& c : last) r.contacts.push_back({c.p_WC, c.n_W, c.friction});
   r.quality = EvaluateGraspQuality(r.contacts, X_WO * model.object_inertia().p_OC, options.quality);
 
+  r.hold_margin = MeasureHoldMargin(model, r.nominal, options.quality);
+  r.hold_margin_shortfall = HoldMarginShortfall(r.hold_margin, options.hold_margin);
+  r.hold_margin_options = options.hold_margin;
+
   std::ostringstream s;
   const bool nominal_ok = r.nominal.success() || !options.require_nominal;
-  if (options.robustness.trials > 0 && nominal_ok) {
+  // a required margin that the nominal hold misses decides the verdict before any replay.
+  const bool margin_fails = nominal_ok && r.nominal.success() && options.hold_margin.require &&
+                            !r.hold_margin_shortfall.empty();
+  if (options.robustness.trials > 0 && nominal_ok && !margin_fails) {
     const int n = options.robustness.trials;
     r.robustness = EvaluateRobustness(model, trajectory, options.robustness, progress);
     r.robustness_run = true;
@@ -99,6 +107,8 @@ PhysicsGateResult RunPhysicsGate(const SimulationModel& model, const JointTrajec
   if (!nominal_ok) {
     s << "the nominal trial failed: " << ToString(r.nominal.outcome) << " (" << r.nominal.reason
       << ")";
+  } else if (margin_fails) {
+    s << "hold margin: " << r.hold_margin_shortfall;
   } else if (r.robustness_run && r.robustness.score < options.min_robustness) {
     s << "robustness " << r.robustness.successes << "/" << r.robustness.trials.size() << " = "
       << r.robustness.score << " is below the threshold " << options.min_robustness;

@@ -16,6 +16,7 @@
 #include "simulation/robustness.hpp"
 #include "simulation_mujoco/mujoco_sweep.hpp"
 #include "solver/grasp_quality.hpp"
+#include "solver/hold_margin.hpp"
 
 namespace graspsynth {
 
@@ -49,6 +50,10 @@ struct PhysicsGateOptions {
   bool require_nominal = true;  ///< the nominal trial must succeed
   GraspQualityOptions quality;
   MujocoGateOptions mujoco;  ///< MuJoCo as a second engine (off by default)
+  /// The hold margin's thresholds and whether the gate requires them (solver/hold_margin.hpp);
+  /// required, a nominal trial that succeeds with a margin below a threshold fails the gate,
+  /// without its perturbed replays.
+  HoldMarginOptions hold_margin;
 
   bool IsValid(std::string* why) const;
 };
@@ -66,7 +71,11 @@ struct PhysicsGateResult {
   /// The MuJoCo sweep, with options.mujoco.enabled when ODE's nominal trial succeeded (or was
   /// not required) and ODE's robustness reached its threshold.
   std::optional<MujocoSweepResult> mujoco;
-  double time_s = 0.0;  ///< wall time of the gate
+  HoldMargin hold_margin;  ///< the nominal trial's hold margin
+  /// The thresholds the hold margin misses (HoldMarginShortfall); "" when it meets them all.
+  std::string hold_margin_shortfall;
+  HoldMarginOptions hold_margin_options;  ///< the thresholds it was judged by (the options')
+  double time_s = 0.0;                    ///< wall time of the gate
 };
 
 /// Simulates `trajectory` (limit-checked) in `model` and judges it. `progress` counts the

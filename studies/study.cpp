@@ -90,6 +90,7 @@ bool StudyOptions::IsValid(std::string* why) const {
     return fail("min_robustness: " + StreamNumber(min_robustness, 17) + " (needs [0, 1])");
   }
   if (std::string mujoco_why; !mujoco_gate.IsValid(&mujoco_why)) return fail(mujoco_why);
+  if (std::string margin; !hold_margin.IsValid(&margin)) return fail(margin);
   if (orientations.empty()) return fail("orientations: none given");
   for (size_t i = 0; i < orientations.size(); ++i) {
     if (!std::isfinite(orientations[i])) {
@@ -258,6 +259,8 @@ std::vector<StudyRow> SynthesisTable(const SimulationModel& model, const GraspLi
       row.nominal_outcome = gate.nominal.outcome;
       row.nominal_reason = gate.nominal.reason;
       row.nominal_hold = gate.nominal.hold;
+      row.hold_margin = gate.hold_margin;
+      row.hold_margin_shortfall = gate.hold_margin_shortfall;
       row.sensitivity = gate.sensitivity;
       if (gate.mujoco) row.mujoco = gate.mujoco->summary;
       if (gate.robustness_run) {
@@ -324,6 +327,7 @@ std::vector<StudyRow> SynthesisStage(const SimulationModel& model, const StudyOp
   table.gate.robustness.perturbation = options.perturbation;
   table.gate.sensitivity_trials = options.sensitivity_trials;
   table.gate.min_robustness = options.min_robustness;
+  table.gate.hold_margin = options.hold_margin;
   table.physics_fallback = options.physics_fallback;
   table.gate.mujoco = options.mujoco_gate;
   table.seed = options.seed;

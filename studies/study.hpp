@@ -89,6 +89,8 @@ struct StudyOptions {
   /// The perturbation of every replay, in the selection and the gates: the motion's noise and
   /// time scaling and the physics' ranges.
   PerturbationOptions perturbation;
+  /// The gates' hold margin: its thresholds, and whether they are required (off by default).
+  HoldMarginOptions hold_margin;
   /// An interp blend whose nominal trial fails gives way to the unblendable bracket's
   /// fallbacks (solver/validated_synthesis.hpp).
   bool physics_fallback = true;
@@ -178,6 +180,9 @@ struct StudyRow {
   bool force_closure = false;
   std::string failures;      ///< perturbed failures by outcome, e.g. "dropped 2, not_lifted 1"
   HoldQuality nominal_hold;  ///< how the object sat in the hand at the end of the nominal trial
+  HoldMargin hold_margin;    ///< the nominal hold's margin (solver/hold_margin.hpp)
+  /// The margin's thresholds it misses (HoldMarginShortfall); "" when it meets them all.
+  std::string hold_margin_shortfall;
   /// The gate's sensitivity table (when the study asks for one and the replays ran).
   std::optional<SensitivityResult> sensitivity;
   /// The MuJoCo sweep's summary, when MuJoCo was among the gate's engines and its sweep ran.

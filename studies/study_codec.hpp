@@ -17,8 +17,8 @@ std::string EncodeStudyRow(const StudyRow& row);
 
 /// The layout of EncodeStudyRow's bytes, kept with them in resume folders; change it with the
 /// layout.
-/// study-row/2: study-row/1 with the MuJoCo sweep's summary (an optional) after the sensitivity
-/// table.
+/// study-row/2: study-row/1 with the nominal hold's margin (hold_margin, hold_margin_shortfall)
+/// after nominal_hold and the MuJoCo sweep's summary (an optional) after the sensitivity table.
 inline constexpr const char* kStudyRowLayout = "study-row/2";
 
 /// The row EncodeStudyRow wrote. Throws InputError naming `source` for bytes that are not one.

@@ -44,6 +44,8 @@ void VisitFields(V& v, Row& r) {
   v(Field("force_closure").Json("/quality/force_closure").Csv(16), r.force_closure);
   v(Field("failures").Json("/robustness/failures").Csv(17), r.failures);
   v(Field("nominal_hold").Json("/hold").JsonNullIf(!r.gate_run), r.nominal_hold);
+  v(Field("hold_margin").Json("/hold_margin").JsonNullIf(!r.gate_run), r.hold_margin);
+  v(Field("hold_margin_shortfall").Json("/hold_margin_shortfall"), r.hold_margin_shortfall);
   v(Field("sensitivity").Json("/sensitivity"), r.sensitivity);
   v(Field("mujoco").Json("/mujoco").OmitEmpty(), r.mujoco);
   v(Field("seed").Json("/robustness/seed"), r.seed);

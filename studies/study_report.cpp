@@ -49,6 +49,9 @@ using study_text::Where;
 struct RowJsonForms {
   json operator()(const FallbackReason& f) const { return f.Text(); }
   json operator()(const HoldQuality& h) const { return HoldQualityJson<json>(h); }
+  json operator()(const HoldMargin& m) const {
+    return HoldMarginJson<json>(m, [](double x) { return RoundForReport(x); });
+  }
   json operator()(const SensitivityResult& s) const {
     return SensitivityJson<json>(s, TrialOptions{}.step());
   }
@@ -74,6 +77,8 @@ std::string ShortfallReason(const StudyRow& r) {
   if (!r.nominal_success) {
     return "nominal trial " + NominalOutcomeName(r) + ": " + r.nominal_reason;
   }
+  // a required hold margin that the nominal hold missed: the gate ran no replays.
+  if (!r.passed && r.gate_reason.rfind("hold margin: ", 0) == 0) return r.gate_reason;
   if (!r.passed) {
     return "robustness " + Format("%d/%d", r.successes, r.trials) +
            (r.failures.empty() ? std::string() : " (failures: " + r.failures + ")") + ": " +
@@ -113,6 +118,7 @@ std::string StudySynthesisJson(const StudyResult& result) {
                {"min_robustness", o.min_robustness},
                {"sensitivity_trials", o.sensitivity_trials},
                {"physics_fallback", o.physics_fallback}};
+  j["gate"]["hold_margin"] = HoldMarginOptionsJson<json>(o.hold_margin);
   const PhysicsPerturbationOptions& p = o.perturbation.physics;
   j["physics_perturbation"] = {{"enabled", p.enabled},
                                {"friction_spread", p.friction},
@@ -188,6 +194,33 @@ std::string SynthesisTableMarkdown(const std::vector<StudyRow>& rows) {
     md << "\n";
   }
 
+  return md.str();
+}
+
+std::string HoldMarginMarkdown(const std::vector<StudyRow>& rows,
+                               const HoldMarginOptions& options) {
+  std::ostringstream md;
+  md << "Thresholds (" << (options.require ? "required by the gate" : "reported only") << "):\n\n";
+  for (const HoldMarginThreshold& t : HoldMarginThresholds(options)) {
+    md << "- " << t.name << " = " << Format("%g", t.value) << ": " << t.reason << "\n";
+  }
+  md << "\n| theta (deg) | method | passed | slip (mm) | slip (deg) | end tilt (deg) | contacts "
+        "t/i/m/r/l/palm | load-bearing links | epsilon (weights) | friction use max | mean | "
+        "squeeze (weights) | misses |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const StudyRow& r : rows) {
+    if (!r.gate_run) continue;
+    const HoldMargin& m = r.hold_margin;
+    std::string contacts;
+    for (int c : m.contacts) contacts += (contacts.empty() ? "" : "/") + std::to_string(c);
+    md << "| " << Where(r) << " | " << r.method << " | " << (r.passed ? "yes" : "no") << " | "
+       << Format("%.1f", m.slip_mm) << " | " << Format("%.1f", m.slip_deg) << " | "
+       << Format("%.1f", m.end_tilt_deg) << " | " << contacts << " | " << m.load_bearing_links
+       << (m.fingertips_only ? " (tips)" : "") << " | " << Format("%.3f", m.epsilon_weight) << " | "
+       << Format("%.2f", m.friction_use_max) << " | " << Format("%.2f", m.friction_use_mean)
+       << " | " << Format("%.2f", m.normal_force_weight) << " | "
+       << Cell(r.hold_margin_shortfall.empty() ? "-" : r.hold_margin_shortfall) << " |\n";
+  }
   return md.str();
 }
 
@@ -495,6 +528,14 @@ std::string StudyReportMarkdown(const StudyResult& result) {
           "servo mappings (docs/mujoco.md); slip over the MuJoCo runs that held.\n\n"
        << engines << "\n";
   }
+  md << "## Hold margin\n\n"
+     << "How securely the nominal trial's hold sits in the hand at its end "
+        "(solver/hold_margin.hpp): the pan's slip in the hand since it left the table, its tilt, "
+        "the contact points per finger and the palm, the hand links carrying at least 10% of the "
+        "contact force, the Ferrari-Canny epsilon of the contacts at their measured normal forces "
+        "in the pan's weights, the largest and the force-weighted mean |f_t| / (mu f_n) of the "
+        "load-bearing contacts, and the summed normal force in weights.\n\n"
+     << HoldMarginMarkdown(result.rows, result.options.hold_margin) << "\n";
   md << "## Where a method falls short\n\n";
   md << ShortfallMarkdown(result.rows);
   return md.str();

@@ -55,6 +55,10 @@ std::string HoldAndSensitivityMarkdown(const std::vector<StudyRow>& rows);
 /// and deg, over the runs that held) and the runs that failed, as a Markdown table; "" when no
 /// row has MuJoCo's figures.
 std::string EnginesMarkdown(const std::vector<StudyRow>& rows);
+/// The thresholds of `options` with their reasons, then the nominal hold's margin of every row
+/// whose gate ran (slip, end tilt, contacts per finger and palm, load-bearing links, epsilon at
+/// the measured forces, friction use, squeeze, the thresholds missed), as Markdown.
+std::string HoldMarginMarkdown(const std::vector<StudyRow>& rows, const HoldMarginOptions& options);
 
 /// "Where a method falls short": every row that did not pass the gate with its reason from the
 /// simulator.

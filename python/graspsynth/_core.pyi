@@ -332,7 +332,11 @@ class Synthesizer:
                    damping_range: tuple[float, float] = (0.5, 2.0), mass_spread: float = 0.2,
                    com_offset: float = 0.01, servo_force_spread: float = 0.2,
                    fine_step: float = 0.001, fine_step_probability: float = 0.5,
-                   engines: str = "ode", mujoco_min_success: float = 0.95) -> Grasp: ...
+                   engines: str = "ode", mujoco_min_success: float = 0.95,
+                   require_hold_margin: bool = False, max_slip_mm: float = 40.0,
+                   max_slip_deg: float = 10.0, min_epsilon_weight: float = 0.05,
+                   min_load_bearing_links: int = 2,
+                   max_friction_use_mean: float = 1.0) -> Grasp: ...
     def _synthesize(self, options: dict[str, Any]) -> Grasp: ...
 
 # --- results and their enums (made from the C++ field lists; read-only) --------------------
@@ -398,6 +402,23 @@ class HoldQuality:
     slip_angle: float  # rad
     contacts: int
     load_share: tuple[float, ...]  # the fingers, then the palm
+    def to_dict(self) -> dict[str, Any]:
+        """every field; enums as their labels, nested results as dicts"""
+
+class HoldMargin:
+    measured: bool
+    slip_mm: float
+    slip_deg: float
+    end_tilt_deg: float
+    contacts: tuple[int, ...]  # the fingers, then the palm
+    load_share: tuple[float, ...]  # the fingers, then the palm
+    load_bearing_links: int
+    fingertips_only: bool
+    epsilon_weight: float  # object weights
+    torque_scale_m: float
+    friction_use_max: float
+    friction_use_mean: float
+    normal_force_weight: float  # object weights
     def to_dict(self) -> dict[str, Any]:
         """every field; enums as their labels, nested results as dicts"""
 
@@ -494,6 +515,8 @@ class StudyRow:
     force_closure: bool
     failures: str
     nominal_hold: HoldQuality
+    hold_margin: HoldMargin
+    hold_margin_shortfall: str
     sensitivity: Optional[SensitivityResult]
     mujoco: Optional[MujocoSweepSummary]
     seed: int

@@ -87,6 +87,31 @@ TEST_F(SimulateCommand, ReportsPhysicsHoldAndSensitivity) {
       0);
 }
 
+// The nominal trial's hold margin reaches the report with the thresholds and their reasons; a
+// required margin that the hold misses makes the command exit 1, with the report written.
+TEST_F(SimulateCommand, ReportsTheHoldMarginAndExitsOneWhenARequiredOneIsMissed) {
+  const auto r = RunGraspsynth("simulate " + Example() + " --out " + Path("margin.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json margin = json::parse(ReadFileText(Path("margin.json")))["nominal"]["hold_margin"];
+  EXPECT_TRUE(margin["measured"].get<bool>());
+  EXPECT_TRUE(margin["slip_mm"].is_number());
+  EXPECT_TRUE(margin["epsilon_weight"].is_number());
+  EXPECT_TRUE(margin["contacts"]["thumb"].is_number());
+  EXPECT_EQ(margin["required"], false);
+  EXPECT_EQ(margin["thresholds"]["max_slip_mm"], 40.0);
+  EXPECT_THAT(margin["reasons"]["max_slip_mm"].get<std::string>(), HasSubstr("slides"));
+  EXPECT_THAT(r.err, HasSubstr("hold margin: slip "));
+
+  const auto required = RunGraspsynth("simulate " + Example() +
+                                      " --require-hold-margin --min-epsilon-weight 1000 --out " +
+                                      Path("required.json"));
+  EXPECT_EQ(required.exit_code, 1) << required.err;
+  const json report = json::parse(ReadFileText(Path("required.json")));
+  EXPECT_EQ(report["nominal"]["success"], true);
+  EXPECT_THAT(report["nominal"]["hold_margin"]["shortfall"].get<std::string>(),
+              HasSubstr("< 1000 weights"));
+}
+
 TEST_F(SimulateCommand, SimulatesTheExampleAndWritesReportAndRecord) {
   const auto r = RunGraspsynth("simulate " + Example() + " --perturb 3 --threads 2 --out " +
                                Path("report.json") + " --record " + Path("states.csv"));
@@ -224,7 +249,9 @@ TEST_F(SimulateCommand, ABadPhysicsFlagIsNamedBeforeAnyTrialRuns) {
   for (const auto& [flags, named] : std::vector<std::pair<std::string, std::string>>{
            {"--friction-spread 1.5", "--friction-spread: "},
            {"--stiffness-range 2 1", "--stiffness-range: "},
-           {"--fine-step-probability 2", "--fine-step-probability: "}}) {
+           {"--fine-step-probability 2", "--fine-step-probability: "},
+           {"--max-slip-mm 0", "--max-slip-mm: "},
+           {"--min-load-bearing-links -2", "--min-load-bearing-links: "}}) {
     const auto r =
         RunGraspsynth("simulate " + Example() + " " + flags + " --out " + Path("bad.json"));
     EXPECT_EQ(r.exit_code, 2) << flags;

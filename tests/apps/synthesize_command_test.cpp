@@ -182,6 +182,18 @@ TEST_F(SynthesizeCommand, BadStartIsAnError) {
   EXPECT_FALSE(fs::exists(out_));
 }
 
+TEST_F(SynthesizeCommand, ABadHoldMarginThresholdIsAnError) {
+  for (const char* flags :
+       {"--max-slip-mm -1", "--max-friction-use-mean 0", "--max-slip-deg 181"}) {
+    const testing::CommandOutput bad = RunGraspsynth(Args(std::string("--theta 50 ") + flags));
+    EXPECT_EQ(bad.exit_code, 2) << flags << ": " << bad.err;
+    EXPECT_NE(bad.err.find(std::string(flags).substr(0, std::string(flags).find(' '))),
+              std::string::npos)
+        << bad.err;
+  }
+  EXPECT_FALSE(fs::exists(out_));
+}
+
 TEST_F(SynthesizeCommand, WrongVersionAndCorruptLibrariesAreErrors) {
   std::string text = ReadFileText(library_);
   const size_t at = text.find("graspsynth-library/1");

@@ -186,6 +186,43 @@ TEST(RunRequest, OptionsMapOntoTheStudysAndBadOnesNameTheOption) {
                        "run: demos '/nonexistent/demos' is not a folder");
 }
 
+// The hold margin's options (request/hold_margin_options.hpp): one description for synthesize,
+// generalize and run, onto each one's gate; a threshold out of range names the option.
+TEST(HoldMarginOptions, MapOntoEachGateAndBadThresholdsNameTheOption) {
+  SynthesizeRequest s;
+  s.theta = 45.0;
+  const OptionList<SynthesizeRequest>& so = SynthesizeOptions();
+  Apply(*FindOption(so, "require_hold_margin"), Value(true), "require_hold_margin", &s);
+  Apply(*FindOption(so, "max_slip_mm"), Value(12.5), "max_slip_mm", &s);
+  Apply(*FindOption(so, "min_load_bearing_links"), Value(int64_t{3}), "min_load_bearing_links", &s);
+  const ValidatedSynthesisOptions vo = ToValidatedSynthesisOptions(s);
+  EXPECT_TRUE(vo.gate.hold_margin.require);
+  EXPECT_EQ(vo.gate.hold_margin.max_slip_mm, 12.5);
+  EXPECT_EQ(vo.gate.hold_margin.min_load_bearing_links, 3);
+  EXPECT_FALSE(
+      ToValidatedSynthesisOptions(SynthesizeRequest{.theta = 45.0}).gate.hold_margin.require);
+
+  GeneralizeRequest g;
+  Apply(*FindOption(GeneralizeOptions(), "max_friction_use_mean"), Value(0.7),
+        "max_friction_use_mean", &g);
+  EXPECT_EQ(ToSynthesisTableOptions(g).gate.hold_margin.max_friction_use_mean, 0.7);
+
+  RunRequest r;
+  Apply(*FindOption(RunOptions(), "min_epsilon_weight"), Value(0.2), "min_epsilon_weight", &r);
+  Apply(*FindOption(RunOptions(), "require_hold_margin"), Value(true), "require_hold_margin", &r);
+  const StudyOptions study = ToStudyOptions(r, ShippedScene());
+  EXPECT_EQ(study.hold_margin.min_epsilon_weight, 0.2);
+  EXPECT_TRUE(study.hold_margin.require);
+
+  GS_EXPECT_THROW_WITH(Apply(*FindOption(so, "max_slip_mm"), Value(0.0), "--max-slip-mm", &s),
+                       InputError, "--max-slip-mm: ");
+  GS_EXPECT_THROW_WITH(Apply(*FindOption(so, "max_slip_deg"), Value(200.0), "--max-slip-deg", &s),
+                       InputError, "--max-slip-deg: ");
+  GS_EXPECT_THROW_WITH(Apply(*FindOption(RunOptions(), "min_load_bearing_links"),
+                             Value(int64_t{-1}), "--min-load-bearing-links", &r),
+                       InputError, "--min-load-bearing-links: ");
+}
+
 TEST(RunRequest, AFileOfOptionsSetsThem) {
   const testing::TestFolder folder;
   const std::filesystem::path file = folder.path() / "run.json";

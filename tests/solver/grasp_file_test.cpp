@@ -55,6 +55,15 @@ TEST(GraspFile, HoldsEverySectionAndAPlayableTrajectory) {
   EXPECT_TRUE(j["validation"]["passed"].is_boolean());
   EXPECT_TRUE(j["validation"]["robustness"].is_null());
   EXPECT_TRUE(j["quality"].contains("epsilon"));
+  // the hold margin, its misses and the thresholds with their reasons.
+  const nlohmann::json& margin = j["validation"]["hold_margin"];
+  EXPECT_EQ(margin["slip_mm"].get<double>(), gate.hold_margin.slip_mm);
+  EXPECT_EQ(margin["epsilon_weight"].get<double>(), gate.hold_margin.epsilon_weight);
+  EXPECT_EQ(margin["load_bearing_links"].get<int>(), gate.hold_margin.load_bearing_links);
+  EXPECT_EQ(margin["shortfall"], gate.hold_margin_shortfall);
+  EXPECT_EQ(margin["required"], false);
+  EXPECT_EQ(margin["thresholds"].size(), margin["reasons"].size());
+  EXPECT_EQ(margin["thresholds"]["min_load_bearing_links"], 2.0);
   // the trajectory member is a graspsynth-trajectory/1 document.
   const JointTrajectory t = ParseJointTrajectory(j["trajectory"].dump(), "test");
   EXPECT_EQ(t.samples.size(), Synthesized().trajectory.samples.size());

@@ -1,5 +1,6 @@
 #include "solver/physics_gate.hpp"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "common/errors.hpp"
@@ -84,11 +85,40 @@ TEST(PhysicsGate, ProgressCountsTheReplaysThenTheSensitivityTable) {
   EXPECT_EQ(last_done, replays);
 }
 
+// A required hold margin that the nominal hold misses fails the gate with the figure, its value
+// and the threshold, before any replay; reported only, the same grasp passes with the miss named.
+TEST(PhysicsGate, AHoldMarginBelowARequiredThresholdFails) {
+  PhysicsGateOptions o;
+  o.robustness.trials = 2;
+  o.robustness.threads = 2;
+  o.hold_margin.min_epsilon_weight = 1e6;  // no hand holds a pan that firmly
+  const PhysicsGateResult reported = RunPhysicsGate(ShippedSimulationModel(), Scripted(60.0), o);
+  ASSERT_TRUE(reported.nominal.success()) << reported.nominal.reason;
+  ASSERT_TRUE(reported.hold_margin.measured);
+  EXPECT_TRUE(reported.passed) << reported.reason;
+  EXPECT_THAT(reported.hold_margin_shortfall, ::testing::HasSubstr("< 1e+06 weights"));
+
+  o.hold_margin.require = true;
+  const PhysicsGateResult required = RunPhysicsGate(ShippedSimulationModel(), Scripted(60.0), o);
+  EXPECT_FALSE(required.passed);
+  EXPECT_EQ(required.reason.rfind("hold margin: epsilon ", 0), 0u) << required.reason;
+  EXPECT_THAT(required.reason, ::testing::HasSubstr("weights < 1e+06 weights"));
+  EXPECT_FALSE(required.robustness_run);
+  // the same nominal trial, the same margin.
+  EXPECT_EQ(required.hold_margin.epsilon_weight, reported.hold_margin.epsilon_weight);
+  EXPECT_EQ(required.hold_margin.slip_mm, reported.hold_margin.slip_mm);
+}
+
 TEST(PhysicsGate, OptionsAreChecked) {
   PhysicsGateOptions o;
   o.min_robustness = 1.5;
   std::string why;
   EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_THROW(RunPhysicsGate(ShippedSimulationModel(), Scripted(60.0), o), InputError);
+  o = {};
+  o.hold_margin.max_slip_mm = 0.0;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_THAT(why, ::testing::HasSubstr("max_slip_mm"));
   EXPECT_THROW(RunPhysicsGate(ShippedSimulationModel(), Scripted(60.0), o), InputError);
 }
 

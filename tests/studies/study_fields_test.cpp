@@ -57,11 +57,11 @@ TEST(StudyFields, EveryListedFieldIsInTheJsonAndTheCsv) {
   const std::string header = csv.substr(0, csv.find('\n'));
   Places places{rows[0], header};
   VisitFields(places, row);
-  EXPECT_EQ(places.json_fields, 27);
+  EXPECT_EQ(places.json_fields, 29);
   EXPECT_EQ(places.csv_fields, 18);
-  EXPECT_EQ(FieldCount<StudyRow>(), 30u);
+  EXPECT_EQ(FieldCount<StudyRow>(), 32u);
   // the JSON has nothing the list does not put there.
-  EXPECT_EQ(rows[0].size(), 18u);
+  EXPECT_EQ(rows[0].size(), 20u);
 }
 
 // Sets the index-th field to its type's default.
