@@ -33,8 +33,8 @@
 #include "simulation_mujoco/mujoco_trial.hpp"
 #include "simulation_mujoco/mujoco_world.hpp"
 #include "solver/grasp_file.hpp"
-#include "solver/physics_gate.hpp"
 #include "solver/hold_margin.hpp"
+#include "solver/physics_gate.hpp"
 #include "studies/trial_json.hpp"
 
 namespace graspsynth::apps {

@@ -3,8 +3,8 @@
 #include <utility>
 
 #include "common/orientation_list.hpp"
-#include "request/mujoco_request.hpp"
 #include "request/hold_margin_options.hpp"
+#include "request/mujoco_request.hpp"
 #include "request/physics_options.hpp"
 #include "studies/study_method.hpp"
 

@@ -32,7 +32,7 @@ struct GeneralizeRequest {
   int threads = 0;  ///< 0: all cores
   bool physics_fallback = true;
   PhysicsPerturbationOptions physics = SynthesisTableOptions{}.gate.robustness.perturbation.physics;
-  MujocoGateOptions mujoco;  ///< the gate's engines: ode, or ode and MuJoCo's sweep
+  MujocoGateOptions mujoco;       ///< the gate's engines: ode, or ode and MuJoCo's sweep
   HoldMarginOptions hold_margin;  ///< the gates' hold margin: thresholds, required or not
 };
 

@@ -7,8 +7,8 @@
 #include "common/orientation_list.hpp"
 #include "common/valid_options.hpp"
 #include "learning_data/demo_directory.hpp"
-#include "request/mujoco_request.hpp"
 #include "request/hold_margin_options.hpp"
+#include "request/mujoco_request.hpp"
 #include "request/physics_options.hpp"
 
 namespace graspsynth::request {

@@ -2,8 +2,8 @@
 
 #include <utility>
 
-#include "request/mujoco_request.hpp"
 #include "request/hold_margin_options.hpp"
+#include "request/mujoco_request.hpp"
 #include "request/physics_options.hpp"
 #include "solver/reach_planning.hpp"
 
