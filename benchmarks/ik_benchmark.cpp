@@ -60,12 +60,13 @@ void ReportSuccess(benchmark::State& state, int64_t solved, int64_t attempts) {
       attempts > 0 ? static_cast<double>(solved) / static_cast<double>(attempts) : 0.0;
 }
 
-// every in-limit solution over the eight branches at the target's own arm angle; success means
-// the branch of the configuration that made the target is among them. The check runs after the
+// Every in-limit solution over the eight branches at the target's own arm angle, timed over
+// `targets` of `arm`; success means the branch of the configuration that made the target is
+// among them with an answer that passes `accept(answer, target)`. The check runs after the
 // timed loop, on the kept answers.
-void BM_AnalyticIkAllBranches(benchmark::State& state) {
-  const ArmModel& arm = Robot().arm;
-  const std::vector<ArmTarget>& targets = Targets();
+template <class Accept>
+void TimeAllBranches(benchmark::State& state, const ArmModel& arm,
+                     const std::vector<ArmTarget>& targets, Accept accept) {
   std::vector<std::vector<Vector7d>> answers(targets.size());
   size_t k = 0;
   for (auto _ : state) {
@@ -75,13 +76,18 @@ void BM_AnalyticIkAllBranches(benchmark::State& state) {
   int64_t solved = 0;
   for (size_t i = 0; i < std::min(k, targets.size()); ++i) {
     for (const Vector7d& q : answers[i]) {
-      if (BranchOf(q) == BranchOf(targets[i].q) && Reproduces(q, targets[i].X_WF)) {
+      if (BranchOf(arm, q) == BranchOf(arm, targets[i].q) && accept(q, targets[i])) {
         ++solved;
         break;
       }
     }
   }
   ReportSuccess(state, solved, static_cast<int64_t>(std::min(k, targets.size())));
+}
+
+void BM_AnalyticIkAllBranches(benchmark::State& state) {
+  TimeAllBranches(state, Robot().arm, Targets(),
+                  [](const Vector7d& q, const ArmTarget& t) { return Reproduces(q, t.X_WF); });
 }
 BENCHMARK(BM_AnalyticIkAllBranches)->Repetitions(5)->ReportAggregatesOnly(true);
 
@@ -90,23 +96,9 @@ BENCHMARK(BM_AnalyticIkAllBranches)->Repetitions(5)->ReportAggregatesOnly(true);
 void BM_AnalyticIkAllBranchesIiwa(benchmark::State& state) {
   const ArmModel& arm = IiwaArm();
   static const std::vector<ArmTarget> targets = ReachableTargets(arm, kTargetCount);
-  std::vector<std::vector<Vector7d>> answers(targets.size());
-  size_t k = 0;
-  for (auto _ : state) {
-    const size_t i = k++ % targets.size();
-    answers[i] = SolveArmIkAllBranches(arm, targets[i].X_WF, targets[i].psi);
-  }
-  int64_t solved = 0;
-  for (size_t i = 0; i < std::min(k, targets.size()); ++i) {
-    for (const Vector7d& q : answers[i]) {
-      if (BranchOf(arm, q) == BranchOf(arm, targets[i].q) &&
-          (q - targets[i].q).cwiseAbs().maxCoeff() < kPoseTol) {
-        ++solved;
-        break;
-      }
-    }
-  }
-  ReportSuccess(state, solved, static_cast<int64_t>(std::min(k, targets.size())));
+  TimeAllBranches(state, arm, targets, [](const Vector7d& q, const ArmTarget& t) {
+    return (q - t.q).cwiseAbs().maxCoeff() < kPoseTol;
+  });
 }
 BENCHMARK(BM_AnalyticIkAllBranchesIiwa)->Repetitions(5)->ReportAggregatesOnly(true);
 

@@ -14,33 +14,15 @@ namespace graspsynth {
 namespace {
 
 using testing::Deg;
+using testing::NearSingular;
+using testing::PoseError;
 using testing::PosesNear;
+using testing::RandomConfiguration;
 
 // FK(IK(x)) must reproduce x to this, in metres and rotation-matrix entries.
 constexpr double kPoseTol = 1e-9;
-// configurations closer than this (rad) to S2, E1 or W1 = 0 (or pi) are numerically singular.
-constexpr double kSingularMargin = 1e-3;
-
-Vector7d RandomConfiguration(const ArmModel& arm, std::mt19937_64* rng) {
-  Vector7d q;
-  for (int i = 0; i < kArmDof; ++i) {
-    q[i] = std::uniform_real_distribution<double>(arm.lower()[i], arm.upper()[i])(*rng);
-  }
-  return q;
-}
-
 double RandomPsi(std::mt19937_64* rng) {
   return std::uniform_real_distribution<double>(-M_PI, M_PI)(*rng);
-}
-
-bool NearSingular(const Vector7d& q) {
-  return std::abs(std::sin(q[1])) < kSingularMargin || std::abs(std::sin(q[3])) < kSingularMargin ||
-         std::abs(std::sin(q[5])) < kSingularMargin;
-}
-
-double PoseError(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
-  return std::max((a.translation() - b.translation()).norm(),
-                  (a.linear() - b.linear()).cwiseAbs().maxCoeff());
 }
 
 // |a - b| modulo 2*pi.

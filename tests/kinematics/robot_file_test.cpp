@@ -17,37 +17,21 @@
 #include "kinematics/robot_description.hpp"
 #include "tests/utils/eigen_matchers.hpp"
 #include "tests/utils/paths.hpp"
+#include "tests/utils/robot_fixtures.hpp"
 #include "tests/utils/test_folder.hpp"
 
 namespace graspsynth {
 namespace {
+
+using testing::NearSingular;
+using testing::PoseError;
+using testing::RandomConfiguration;
 
 namespace fs = std::filesystem;
 
 fs::path Models() { return fs::path(::testing::SourceDir()) / "models"; }
 fs::path IiwaFile() { return Models() / "iiwa14_allegro.robot.json"; }
 fs::path Pa10File() { return Models() / "pa10_gifu3.robot.json"; }
-
-// configurations closer than this (rad) to S2, E1 or W1 = 0 (or pi) are numerically singular.
-constexpr double kSingularMargin = 1e-3;
-
-Vector7d RandomConfiguration(const ArmModel& arm, std::mt19937_64* rng) {
-  Vector7d q;
-  for (int i = 0; i < kArmDof; ++i) {
-    q[i] = std::uniform_real_distribution<double>(arm.lower()[i], arm.upper()[i])(*rng);
-  }
-  return q;
-}
-
-bool NearSingular(const Vector7d& q) {
-  return std::abs(std::sin(q[1])) < kSingularMargin || std::abs(std::sin(q[3])) < kSingularMargin ||
-         std::abs(std::sin(q[5])) < kSingularMargin;
-}
-
-double PoseError(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
-  return std::max((a.translation() - b.translation()).norm(),
-                  (a.linear() - b.linear()).cwiseAbs().maxCoeff());
-}
 
 // The iiwa 14 R820's flange from its published figures, independent of the URDF and of the DH
 // table: the joints stacked straight up at q = 0 (0.1575, 0.2025, 0.2045, 0.2155, 0.1845,
