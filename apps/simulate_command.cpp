@@ -315,9 +315,7 @@ int RunSimulate(const SimulateOptions& o, const request::SimulateRequest& r) {
   // the hold margin (solver/hold_margin.hpp), the thresholds it misses and their reasons.
   const HoldMargin margin = MeasureHoldMargin(model, nominal);
   const std::string shortfall = HoldMarginShortfall(margin, r.hold_margin);
-  n["hold_margin"] = HoldMarginJson<json>(margin, Round);
-  n["hold_margin"]["shortfall"] = shortfall;
-  n["hold_margin"].update(HoldMarginOptionsJson<json>(r.hold_margin));
+  n["hold_margin"] = HoldMarginReportJson<json>(margin, shortfall, r.hold_margin, Round);
   std::cerr << "hold margin: " << HoldMarginBrief(margin)
             << (shortfall.empty() ? "" : "; misses " + shortfall) << "\n";
   AddPerturbedTrials(model, trajectory, ro, r, &report);

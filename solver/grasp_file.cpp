@@ -122,14 +122,6 @@ json QualityJson(const PhysicsGateResult& gate) {
           {"message", q.message}};
 }
 
-// the nominal hold's margin, the thresholds it misses and the thresholds with their reasons.
-json HoldMarginReportJson(const PhysicsGateResult& gate) {
-  json m = HoldMarginJson<json>(gate.hold_margin, [](double x) { return x; });
-  m["shortfall"] = gate.hold_margin_shortfall;
-  m.update(HoldMarginOptionsJson<json>(gate.hold_margin_options));
-  return m;
-}
-
 json ValidationJson(const PhysicsGateResult& gate, bool forced) {
   const TrialResult& n = gate.nominal;
   json v = {{"passed", gate.passed},
@@ -148,7 +140,9 @@ json ValidationJson(const PhysicsGateResult& gate, bool forced) {
   }
   // MuJoCo, when it was among the gate's engines and ran (the key is absent otherwise).
   if (gate.mujoco) v["mujoco"] = MujocoSweepJson<json>(*gate.mujoco);
-  v["hold_margin"] = HoldMarginReportJson(gate);
+  v["hold_margin"] =
+      HoldMarginReportJson<json>(gate.hold_margin, gate.hold_margin_shortfall,
+                                 gate.hold_margin_options, [](double x) { return x; });
   return v;
 }
 

@@ -172,4 +172,17 @@ Json HoldMarginOptionsJson(const HoldMarginOptions& options) {
   return Json{{"required", options.require}, {"thresholds", values}, {"reasons", reasons}};
 }
 
+/// The report of a nominal hold's margin (the grasp file's validation.hold_margin, the simulate
+/// report's nominal.hold_margin): HoldMarginJson of `m` with `round`, the thresholds it misses
+/// (`shortfall`, HoldMarginShortfall) and HoldMarginOptionsJson of the `options` it was judged
+/// by.
+template <class Json, class Round>
+Json HoldMarginReportJson(const HoldMargin& m, const std::string& shortfall,
+                          const HoldMarginOptions& options, const Round& round) {
+  Json report = HoldMarginJson<Json>(m, round);
+  report["shortfall"] = shortfall;
+  report.update(HoldMarginOptionsJson<Json>(options));
+  return report;
+}
+
 }  // namespace graspsynth
