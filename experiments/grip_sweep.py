@@ -16,7 +16,7 @@ on 2 busy cores; the grips measured for issue 45 are experiments/grips/pan_candi
 
     experiments/grip_sweep.py --grips experiments/grips/pan_candidates.json \
         --thetas 20,40,70,100 --out results.json [--operator learning_data/demos/operator.json]
-        [--object NAME] [--perturb 10] [--jobs 2] [--work /tmp/grips-sweep]
+        [--object NAME] [--perturb 10] [--jobs 2] [--work DIR]
 
 grips.json: {"name": {grip fields...}, ...}; {} (an empty grip) is the operator's own grip.
 Besides GraspStyle fields a grip may hold "@open" / "@closed" ({joint index: deg}, edits of the
@@ -32,6 +32,7 @@ import concurrent.futures
 import json
 import os
 import subprocess
+import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 NOISE = ("timing_spread", "position_noise", "height_noise", "yaw_noise_deg", "path_noise",
@@ -172,7 +173,8 @@ def main():
     p.add_argument("--strategy", type=int, default=0)
     p.add_argument("--perturb", type=int, default=0)
     p.add_argument("--jobs", type=int, default=2)
-    p.add_argument("--work", default="/tmp/grips-sweep")
+    p.add_argument("--work", default=os.path.join(tempfile.gettempdir(), "grips-sweep"),
+                   help="scratch folder of the trials (default: grips-sweep in the temp folder)")
     p.add_argument("--out", required=True)
     p.add_argument("--graspsynth", default=os.path.join(HERE, "..", "build", "apps",
                                                         "graspsynth"))
