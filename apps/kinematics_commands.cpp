@@ -1,6 +1,6 @@
 // graspsynth fk / ik: line-oriented forward and inverse kinematics of the arm. One JSON object
 // per input line on stdout; a malformed line gets {"error": ...} on stdout, its line number on
-// stderr, and the next line is read.
+// stderr, and the next line is read. graspsynth robots: the shipped robots.
 
 #include "apps/kinematics_commands.hpp"
 
@@ -9,8 +9,10 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "apps/request_flags.hpp"
+#include "common/data_dir.hpp"
 #include "common/errors.hpp"
 #include "common/format.hpp"
 #include "common/input_file.hpp"
@@ -247,18 +249,39 @@ void AddCommonOptions(CLI::App* cmd, KinematicsOptions* opts) {
   cmd->add_option("input", opts->input, "Input file, or - for standard input")
       ->capture_default_str();
   cmd->add_option("--robot", opts->robot,
-                  "Robot description (URDF), or a robot file (*.json, graspsynth-robot/1, e.g. "
-                  "models/iiwa14_allegro.robot.json: only its arm is read); default: "
-                  "models/pa10_gifu3.urdf of this checkout or "
+                  "A shipped robot's name ('graspsynth robots' lists them, e.g. iiwa14_allegro), "
+                  "a robot file (*.json, graspsynth-robot/1: only its arm is read) or a URDF; "
+                  "default: models/pa10_gifu3.urdf of this checkout or "
                   "$GRASPSYNTH_DATA_DIR/models/pa10_gifu3.urdf");
 }
 
 // fk and ik need only the arm: from the URDF's whole robot, or from a robot file's arm part.
 ArmModel LoadArm(const KinematicsOptions& opts) {
   if (opts.robot.empty()) return LoadRobotModel(DefaultRobotDescriptionPath()).arm;
-  const std::filesystem::path path(opts.robot);
+  const std::filesystem::path path = ResolveRobotPath(opts.robot);
   if (path.extension() == ".json") return LoadArmFromRobotFile(path);
   return LoadRobotModel(path).arm;
+}
+
+// `graspsynth robots`: one line per shipped robot (its name, the default marked, and its
+// comment), or their JSON array.
+void ListRobots(bool as_json) {
+  const std::vector<ShippedRobot> robots = ShippedRobots();
+  json list = json::array();
+  for (const ShippedRobot& robot : robots) {
+    const std::string file = DataRelativeName(robot.file);
+    if (as_json) {
+      list.push_back({{"name", robot.name},
+                      {"file", file},
+                      {"default", robot.name == kDefaultRobotName},
+                      {"comment", robot.comment}});
+      continue;
+    }
+    std::cout << robot.name << (robot.name == kDefaultRobotName ? " (default)" : "") << "\n"
+              << "  " << file << "\n";
+    if (!robot.comment.empty()) std::cout << "  " << robot.comment << "\n";
+  }
+  if (as_json) std::cout << list.dump(2) << "\n";
 }
 
 }  // namespace
@@ -315,6 +338,18 @@ void AddKinematicsCommands(CLI::App& app, int* exit_code) {
         opts->input, [&](std::string_view text) { return IkLine(arm, only, text); });
     if (bad > 0) *exit_code = 1;
   });
+
+  auto as_json = std::make_shared<bool>(false);
+  CLI::App* robots = app.add_subcommand(
+      "robots",
+      "List the shipped robots: the names that --robot takes\n"
+      "Each robot is a robot file, models/NAME.robot.json (graspsynth-robot/1, docs/formats.md),\n"
+      "beside its URDF. Prints each robot's name, its file (relative to the data folder) and what\n"
+      "it is; --json prints them as a JSON array of {name, file, default, comment}.\n"
+      "Example:\n"
+      "  graspsynth robots");
+  robots->add_flag("--json", *as_json, "Print a JSON array instead of text");
+  robots->callback([as_json] { ListRobots(*as_json); });
 }
 
 }  // namespace graspsynth::apps

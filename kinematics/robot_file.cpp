@@ -1,8 +1,11 @@
 #include "kinematics/robot_file.hpp"
 
+#include <algorithm>
 #include <sstream>
+#include <system_error>
 #include <utility>
 
+#include "common/data_dir.hpp"
 #include "common/errors.hpp"
 #include "common/input_file.hpp"
 #include "common/json_reader.hpp"
@@ -63,6 +66,7 @@ RobotFile ParseRobotFile(std::string_view json, const std::string& source,
   RobotFile file;
   file.source = source;
   file.name = NonEmptyString(top, "name");
+  if (top.Has("comment")) file.comment = top.String("comment");
   file.urdf = folder / NonEmptyString(top, "urdf");
   file.arm = ReadArm(top.Object("arm"));
   return file;
@@ -98,6 +102,47 @@ ArmModel ArmFromRobotFile(const RobotFile& file) {
         << " m, found " << e.what();
     throw InputError(msg.str());
   }
+}
+
+std::vector<ShippedRobot> ShippedRobots() {
+  constexpr std::string_view kSuffix = ".robot.json";
+  const std::filesystem::path models = DataDirectory() / "models";
+  std::error_code error;
+  std::filesystem::directory_iterator it(models, error);
+  if (error) {
+    throw InputError(models.string() + ": cannot list the shipped robots: " + error.message());
+  }
+  std::vector<ShippedRobot> robots;
+  for (const std::filesystem::directory_entry& entry : it) {
+    const std::string file_name = entry.path().filename().string();
+    if (file_name.size() <= kSuffix.size() || !file_name.ends_with(kSuffix)) continue;
+    const std::string stem = file_name.substr(0, file_name.size() - kSuffix.size());
+    const RobotFile file = LoadRobotFile(entry.path());
+    if (file.name != stem) {
+      throw InputError(file.source + ": field 'name': expected \"" + stem +
+                       "\" (the file's name), found \"" + file.name + "\"");
+    }
+    robots.push_back({file.name, entry.path(), file.comment});
+  }
+  std::sort(robots.begin(), robots.end(),
+            [](const ShippedRobot& a, const ShippedRobot& b) { return a.name < b.name; });
+  return robots;
+}
+
+std::filesystem::path ResolveRobotPath(std::string_view name_or_path) {
+  const std::string text(name_or_path);
+  if (text.find('/') != std::string::npos || text.ends_with(".json") || text.ends_with(".urdf")) {
+    return text;
+  }
+  const std::vector<ShippedRobot> robots = ShippedRobots();
+  std::string names;
+  for (const ShippedRobot& robot : robots) {
+    if (robot.name == text) return robot.file;
+    names += (names.empty() ? "" : ", ") + robot.name;
+  }
+  throw InputError("--robot: expected a shipped robot (" + names +
+                   "; 'graspsynth robots' lists them) or a robot file's path, found \"" + text +
+                   "\"");
 }
 
 }  // namespace graspsynth

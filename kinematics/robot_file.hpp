@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "kinematics/arm_model.hpp"
 
@@ -34,6 +35,7 @@ struct RobotFileArm {
 struct RobotFile {
   std::string source;          ///< the robot file, for messages
   std::string name;            ///< the robot's name
+  std::string comment;         ///< the file's `comment`: what the robot is ("" when it has none)
   std::filesystem::path urdf;  ///< the URDF: the file's `urdf` relative to its folder
   RobotFileArm arm;
 };
@@ -66,5 +68,28 @@ ArmModel LoadArmFromRobotFile(const std::filesystem::path& path);
 /// The arm of a parsed robot file (LoadArmFromRobotFile after its LoadRobotFile): reads the URDF
 /// at file.urdf. Throws as LoadArmFromRobotFile.
 ArmModel ArmFromRobotFile(const RobotFile& file);
+
+/// A robot shipped with graspsynth: the robot file DataDirectory()/models/<name>.robot.json.
+struct ShippedRobot {
+  std::string name;            ///< the robot file's `name`, which is its file's name
+  std::filesystem::path file;  ///< the robot file
+  std::string comment;         ///< the robot file's `comment`
+};
+
+/// The name of the robot every command uses when it is given none: "pa10_gifu3".
+inline constexpr std::string_view kDefaultRobotName = "pa10_gifu3";
+
+/// The shipped robots, sorted by name: every models/*.robot.json of DataDirectory(), each
+/// parsed (ParseRobotFile). Throws InputError when models/ cannot be listed, when one of them
+/// does not parse (its error), or when a file's `name` is not its file's name ("<file>: field
+/// 'name': expected \"<stem>\" (the file's name), found ...").
+std::vector<ShippedRobot> ShippedRobots();
+
+/// The robot file or URDF that `--robot` names: a shipped robot's name (ShippedRobots(), e.g.
+/// "iiwa14_allegro") gives its robot file; anything with a '/' or ending in ".json" or ".urdf"
+/// is a path and is returned as it is. Throws InputError for any other word, naming the
+/// shipped robots ("--robot: expected a shipped robot (pa10_gifu3, ...; 'graspsynth robots'
+/// lists them) or a robot file's path, found \"...\"").
+std::filesystem::path ResolveRobotPath(std::string_view name_or_path);
 
 }  // namespace graspsynth

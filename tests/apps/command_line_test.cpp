@@ -150,7 +150,7 @@ TEST(CommandLine, TheTopLevelHelpListsEachCommandOnOneLine) {
   EXPECT_LE(Lines(help.out).size(), 40u) << help.out;
   const std::map<std::string, int> commands = ListedCommands(help.out);
   for (const char* name : {"run", "analyze", "demos", "select", "synthesize", "generalize",
-                           "simulate", "scripted-grasp", "fk", "ik", "view", "teleop",
+                           "simulate", "scripted-grasp", "fk", "ik", "robots", "view", "teleop",
                            "teleop-client", "teleop-keygen", "version"}) {
     ASSERT_TRUE(commands.count(name)) << name << " is not listed:\n" << help.out;
   }

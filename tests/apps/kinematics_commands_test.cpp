@@ -274,6 +274,37 @@ TEST(FkCommand, TakesARobotFilesArm) {
   EXPECT_THAT(off.out, HasSubstr("A2"));
 }
 
+TEST(FkCommand, TakesAShippedRobotsName) {
+  const std::string q = "0.3 0.7 -0.2 1.1 0.5 -0.8 0.2\n";
+  const auto by_name = RunGraspsynth("fk --robot iiwa14_allegro", q);
+  ASSERT_EQ(by_name.exit_code, 0) << by_name.err;
+  EXPECT_EQ(by_name.out, RunGraspsynth("fk --robot " + IiwaRobotFile(), q).out);
+  // the PA-10 by its robot file: the same bytes as the default URDF.
+  const auto pa10 = RunGraspsynth("fk --robot pa10_gifu3", q);
+  ASSERT_EQ(pa10.exit_code, 0) << pa10.err;
+  EXPECT_EQ(pa10.out, RunGraspsynth("fk", q).out);
+  const auto unknown = RunGraspsynth("fk --robot panda", q);
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_THAT(unknown.err, HasSubstr("found \"panda\""));
+  EXPECT_THAT(unknown.err, HasSubstr("graspsynth robots"));
+}
+
+TEST(RobotsCommand, ListsTheShippedRobots) {
+  const auto text = RunGraspsynth("robots");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_THAT(text.out, HasSubstr("pa10_gifu3 (default)\n  models/pa10_gifu3.robot.json\n"));
+  EXPECT_THAT(text.out, HasSubstr("iiwa14_allegro\n  models/iiwa14_allegro.robot.json\n"));
+  const auto listed = RunGraspsynth("robots --json");
+  ASSERT_EQ(listed.exit_code, 0) << listed.err;
+  const json robots = json::parse(listed.out);
+  ASSERT_EQ(robots.size(), 2u);
+  EXPECT_EQ(robots[0]["name"], "iiwa14_allegro");
+  EXPECT_EQ(robots[0]["default"], false);
+  EXPECT_EQ(robots[1]["name"], "pa10_gifu3");
+  EXPECT_EQ(robots[1]["default"], true);
+  EXPECT_EQ(robots[1]["file"], "models/pa10_gifu3.robot.json");
+}
+
 TEST(IkCommand, SolvesARobotFilesArmOnItsDhBranches) {
   const std::vector<double> q = {0.3, 0.7, 0.0, 1.1, 0.5, -0.8, 0.2};
   std::ostringstream q_line;

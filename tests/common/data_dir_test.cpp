@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "tests/utils/data_dir_override.hpp"
 #include "tests/utils/paths.hpp"
 
 namespace graspsynth {
@@ -16,30 +17,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Sets $GRASPSYNTH_DATA_DIR for the scope of one test and restores it after.
-class DataDirOverride {
- public:
-  explicit DataDirOverride(const char* value) {
-    if (const char* saved = std::getenv("GRASPSYNTH_DATA_DIR")) saved_ = saved;
-    if (value) {
-      setenv("GRASPSYNTH_DATA_DIR", value, 1);
-    } else {
-      unsetenv("GRASPSYNTH_DATA_DIR");
-    }
-  }
-  ~DataDirOverride() {
-    if (saved_) {
-      setenv("GRASPSYNTH_DATA_DIR", saved_->c_str(), 1);
-    } else {
-      unsetenv("GRASPSYNTH_DATA_DIR");
-    }
-  }
-  DataDirOverride(const DataDirOverride&) = delete;
-  DataDirOverride& operator=(const DataDirOverride&) = delete;
-
- private:
-  std::optional<std::string> saved_;
-};
+using testing::DataDirOverride;
 
 TEST(DataRelativeName, AFileBelowTheDataDirectoryIsNamedRelativeToIt) {
   for (const char* root : {"/opt/gs", "/opt/gs/", "/opt/./gs"}) {

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "common/errors.hpp"
+#include "tests/utils/data_dir_override.hpp"
 #include "tests/utils/eigen_matchers.hpp"
 #include "tests/utils/robot_fixtures.hpp"
 
@@ -280,17 +281,17 @@ TEST(RobotDescription, CapsuleConventionIsApplied) {
 }
 
 TEST(RobotDescription, DefaultPathFollowsGraspsynthDataDir) {
-  const char* saved = std::getenv("GRASPSYNTH_DATA_DIR");
-  const std::optional<std::string> previous =
-      saved ? std::optional<std::string>(saved) : std::nullopt;
-  setenv("GRASPSYNTH_DATA_DIR", "/opt/graspsynth-data", 1);
-  EXPECT_EQ(DefaultRobotDescriptionPath(),
-            std::filesystem::path("/opt/graspsynth-data/models/pa10_gifu3.urdf"));
-  setenv("GRASPSYNTH_DATA_DIR", "", 1);
+  {
+    const testing::DataDirOverride data("/opt/graspsynth-data");
+    EXPECT_EQ(DefaultRobotDescriptionPath(),
+              std::filesystem::path("/opt/graspsynth-data/models/pa10_gifu3.urdf"));
+  }
+  {
+    const testing::DataDirOverride data("");
+    EXPECT_EQ(DefaultRobotDescriptionPath(), std::filesystem::path(testing::ShippedUrdfPath()));
+  }
+  const testing::DataDirOverride data(nullptr);
   EXPECT_EQ(DefaultRobotDescriptionPath(), std::filesystem::path(testing::ShippedUrdfPath()));
-  unsetenv("GRASPSYNTH_DATA_DIR");
-  EXPECT_EQ(DefaultRobotDescriptionPath(), std::filesystem::path(testing::ShippedUrdfPath()));
-  if (previous) setenv("GRASPSYNTH_DATA_DIR", previous->c_str(), 1);
 }
 
 TEST(RobotDescription, ParsingNeverPrints) {

@@ -15,6 +15,7 @@
 #include "common/errors.hpp"
 #include "kinematics/arm_ik.hpp"
 #include "kinematics/robot_description.hpp"
+#include "tests/utils/data_dir_override.hpp"
 #include "tests/utils/eigen_matchers.hpp"
 #include "tests/utils/paths.hpp"
 #include "tests/utils/robot_fixtures.hpp"
@@ -356,6 +357,35 @@ TEST(RobotFile, RefusesBadFieldsNamingThem) {
   // a URDF that is not there: named with the robot file's folder.
   const fs::path path = Write(dir.path(), "c.json", RobotJson(ArmJson("a", "b"), "missing.urdf"));
   GS_EXPECT_THROW_WITH(LoadArmFromRobotFile(path), InputError, "missing.urdf");
+}
+
+TEST(ShippedRobots, ListsEachRobotFileOfTheDataFolderByName) {
+  const std::vector<ShippedRobot> robots = ShippedRobots();
+  ASSERT_EQ(robots.size(), 2u);
+  EXPECT_EQ(robots[0].name, "iiwa14_allegro");
+  EXPECT_EQ(robots[0].file, IiwaFile());
+  EXPECT_THAT(robots[0].comment, ::testing::HasSubstr("KUKA LBR iiwa 14 R820"));
+  EXPECT_EQ(robots[1].name, kDefaultRobotName);
+  EXPECT_EQ(robots[1].file, Pa10File());
+}
+
+TEST(ShippedRobots, RefusesAFileWhoseNameIsNotItsFilesName) {
+  testing::TestFolder dir;
+  fs::create_directories(dir.path() / "models");
+  Write(dir.path() / "models", "mine.robot.json", RobotJson(ArmJson("base_link", "flange_link")));
+  const testing::DataDirOverride data(dir.path().c_str());
+  GS_EXPECT_THROW_WITH(ShippedRobots(), InputError, "mine.robot.json",
+                       "field 'name': expected \"mine\" (the file's name), found \"test\"");
+}
+
+TEST(ResolveRobotPath, NamesAShippedRobotOrTakesAPath) {
+  EXPECT_EQ(ResolveRobotPath("iiwa14_allegro"), IiwaFile());
+  EXPECT_EQ(ResolveRobotPath("pa10_gifu3"), Pa10File());
+  EXPECT_EQ(ResolveRobotPath("my.robot.json"), fs::path("my.robot.json"));
+  EXPECT_EQ(ResolveRobotPath("arm.urdf"), fs::path("arm.urdf"));
+  EXPECT_EQ(ResolveRobotPath("robots/panda"), fs::path("robots/panda"));
+  GS_EXPECT_THROW_WITH(ResolveRobotPath("panda"), InputError,
+                       "expected a shipped robot (iiwa14_allegro, pa10_gifu3;", "found \"panda\"");
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "common/errors.hpp"
 #include "simulation/random.hpp"
 #include "tests/learning_data/demo_fixtures.hpp"
+#include "tests/utils/data_dir_override.hpp"
 #include "tests/utils/eigen_matchers.hpp"
 #include "tests/utils/paths.hpp"
 #include "tests/utils/run_command.hpp"
@@ -89,8 +90,8 @@ GraspLibrary PlacementsLibrary() {
   GraspLibrary library = SampleLibrary();
   const std::vector<LibraryEntry> base = library.entries;
   library.entries.clear();
-  for (const Eigen::Vector2d& xy : {Eigen::Vector2d(-0.30, 0.80), Eigen::Vector2d(-0.30, 0.90),
-                                    Eigen::Vector2d(-0.2, 0.85)}) {
+  for (const Eigen::Vector2d& xy :
+       {Eigen::Vector2d(-0.30, 0.80), Eigen::Vector2d(-0.30, 0.90), Eigen::Vector2d(-0.2, 0.85)}) {
     for (LibraryEntry e : base) {
       const Eigen::Vector3d shift(xy.x() - e.motion.p_WO.x(), xy.y() - e.motion.p_WO.y(), 0.0);
       e.motion.p_WO.head<2>() = xy;
@@ -205,7 +206,8 @@ TEST(GraspLibrary, OnePositionIsVersion1AndSeveralAreVersion2) {
 TEST(GraspLibrary, Version2PlacementsMustIncreaseAndAgreeWithTheirMotions) {
   json j = json::parse(GraspLibraryToJson(PlacementsLibrary()));
   json swapped = j;
-  std::swap(swapped["entries"][1], swapped["entries"][2]);  // (-0.3, 0.8, 60.2) after (-0.3, 0.9, 40)
+  std::swap(swapped["entries"][1],
+            swapped["entries"][2]);  // (-0.3, 0.8, 60.2) after (-0.3, 0.9, 40)
   try {
     ParseGraspLibrary(swapped.dump(), "swapped.json");
     FAIL() << "entries out of order were accepted";
@@ -399,13 +401,14 @@ TEST_F(MalformedLibrary, ThetaThatDoesNotIncrease) {
 }
 
 TEST(GraspLibrary, DefaultPathIsUnderTheDataDirectory) {
-  ::unsetenv("GRASPSYNTH_DATA_DIR");
-  EXPECT_EQ(DefaultGraspLibraryPath(),
-            std::filesystem::path(::testing::SourceDir()) / "learning_data" / "library.json");
-  ::setenv("GRASPSYNTH_DATA_DIR", "/opt/graspsynth", 1);
+  {
+    const testing::DataDirOverride data(nullptr);
+    EXPECT_EQ(DefaultGraspLibraryPath(),
+              std::filesystem::path(::testing::SourceDir()) / "learning_data" / "library.json");
+  }
+  const testing::DataDirOverride data("/opt/graspsynth");
   EXPECT_EQ(DefaultGraspLibraryPath(),
             std::filesystem::path("/opt/graspsynth/learning_data/library.json"));
-  ::unsetenv("GRASPSYNTH_DATA_DIR");
 }
 
 }  // namespace
