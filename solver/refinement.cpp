@@ -193,7 +193,7 @@ CeresTerms AddCeresResiduals(const RobotModel& robot, const GraspingMotion& moti
                              1.0 / options.line_sigma}),
         nullptr, (*d)[n - 1].data()));
   }
-  const ArmBranch branch = BranchOf(inputs.q_start);
+  const ArmBranch branch = BranchOf(robot.arm, inputs.q_start);
   for (int i = 0; i < n; i += options.reach_stride) {
     const int k = (i + options.reach_stride >= n) ? n - 1 : i;
     const MotionWaypoint& w = motion.waypoints[k];
@@ -380,7 +380,7 @@ RefinementConstraints EvaluateRefinementConstraints(
   c.grasp_clearance = std::numeric_limits<double>::infinity();
   c.reachable = true;
   const CheckedStates s = ChooseStates(motion, options);
-  const ArmBranch branch = BranchOf(inputs.q_start);
+  const ArmBranch branch = BranchOf(robot.arm, inputs.q_start);
   double psi = ArmAngleOf(robot.arm, inputs.q_start);
   Vector7d q_near = inputs.q_start;
   SignedDistanceOptions sd;

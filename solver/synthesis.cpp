@@ -78,10 +78,10 @@ bool SynthesisOptions::IsValid(std::string* why) const {
   return true;
 }
 
-MotionGenerationOptions SynthesisOptions::Generation() const {
+MotionGenerationOptions SynthesisOptions::Generation(const ArmModel& arm) const {
   MotionGenerationOptions o = generation;
   o.min_psi_width = refinement.min_psi_width;
-  o.branch = start ? BranchOf(*start) : ArmBranch{};
+  o.branch = start ? BranchOf(arm, *start) : ArmBranch{};
   return o;
 }
 
@@ -263,7 +263,7 @@ SynthesisResult SynthesizeGrasp(const SynthesisModel& model, const SynthesisTask
   // 1. the grasping motion.
   const auto t_generate = Clock::now();
   const MotionGenerationResult generated =
-      GenerateGraspingMotion(model, task, options.Generation());
+      GenerateGraspingMotion(model, task, options.Generation(model.robot().arm));
   TakeGeneration(generated, &r);
   if (!generated.ok()) return r;
   r.unrefined = generated.motion;

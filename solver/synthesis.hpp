@@ -107,8 +107,9 @@ struct SynthesisOptions {
 
   /// True when at least one refinement stage runs.
   bool refines() const { return !refinement_stages.empty(); }
-  /// The options of the generation and reach stages, with what they take from the others.
-  MotionGenerationOptions Generation() const;
+  /// The options of the generation and reach stages, with what they take from the others
+  /// (the start's branch on `arm`, whose joints may turn against the DH table).
+  MotionGenerationOptions Generation(const ArmModel& arm) const;
   ReachPlanOptions Reach() const;
 };
 
