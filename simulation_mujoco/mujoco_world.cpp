@@ -190,6 +190,7 @@ MujocoModel::~MujocoModel() = default;
 struct Servo {
   int actuator = -1, qpos = -1, dof = -1;
   double kv = 0.0, cap = 0.0, gain = 0.0;
+  bool finger = false;  // a hand joint's servo (Drive's second bound)
 };
 
 struct MujocoData::Impl {
@@ -230,19 +231,27 @@ void MujocoData::Impl::MakeServos() {
     s.kv = -m_own->actuator_biasprm[mjNBIAS * s.actuator + 2];
     s.cap = m_own->actuator_forcerange[2 * s.actuator + 1];
     s.gain = arm ? so.arm_servo_gain : so.finger_servo_gain;
+    s.finger = !arm;
   }
 }
 
 // Drives servo `s` at joint velocity v (rad/s): force = kv (v - qdot), its damping integrated
 // implicitly (which keeps a stiff servo on a light link stable), with kv lowered where its force
-// would exceed the cap, to cap / |v - qdot|. MuJoCo 2.2's implicit integrator linearises a
-// servo's force without its cap: a capped servo of gain kv would act as a damper of gain kv,
-// as if its link were h kv heavier, and hit what it touches as a hammer; with the gain lowered,
-// the force stays at the cap and the linearisation is the capped servo's (docs/mujoco.md,
-// "Servos").
+// would exceed the cap. MuJoCo 2.2's implicit integrator linearises a servo's force without its
+// cap: a capped servo of gain kv acts in the step as a damper of gain kv, as if its link were
+// h kv heavier, and hits what it touches as a hammer. The gain is lowered to cap / |v - qdot|,
+// so that the force at the step's start is the cap; a finger's also to cap / |v|, so that the
+// linearised force stays within the cap for any end-of-step velocity between the current one
+// and rest: the step in which a closing finger meets the object stops it, and with the gain of
+// free motion (v - qdot near 0) its servo would push with kv |v|, |v| / v_sat times its cap (400
+// for a stiff finger at its 4 rad/s), where ODE's motor, solved with the contact, pushes with at
+// most the cap (docs/mujoco.md, "Servos").
+// The arm keeps the first bound only: its servos carry gravity, and ODE's fast trial moves it
+// kinematically.
 void MujocoData::Impl::Drive(Servo& s, double v) {
   const double error = std::abs(v - d->qvel[s.dof]);
-  const double kv = error * s.kv > s.cap ? s.cap / error : s.kv;
+  const double reach = s.finger ? std::max(error, std::abs(v)) : error;
+  const double kv = reach * s.kv > s.cap ? s.cap / reach : s.kv;
   m_own->actuator_gainprm[mjNGAIN * s.actuator] = s.gain * kv;
   mjtNum* bias = m_own->actuator_biasprm + mjNBIAS * s.actuator;
   bias[1] = -s.gain * kv;
