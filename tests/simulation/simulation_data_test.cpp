@@ -78,10 +78,10 @@ TEST(SimulationData, MeasuredJointsAndBodiesMatchTheKinematics) {
   EXPECT_TRUE(testing::PosesNear(data.wrist_pose(), X_WH, 1e-5));
   HandFrames hand_frames;
   HandLinkFrames(robot.hand, f, &hand_frames);
-  for (int j = 0; j < kHandJoints; ++j) {
-    EXPECT_TRUE(testing::PosesNear(data.hand_link_pose(j),
-                                   X_WH * hand_frames.X_HL[j / kFingerJoints][j % kFingerJoints],
-                                   1e-5))
+  for (int j = 0; j < robot.hand.joint_count(); ++j) {
+    const size_t i = static_cast<size_t>(robot.hand.joint_finger(j));
+    const size_t k = static_cast<size_t>(robot.hand.joint_in_finger(j));
+    EXPECT_TRUE(testing::PosesNear(data.hand_link_pose(j), X_WH * hand_frames.X_HL[i][k], 1e-5))
         << j;
   }
   // a positive velocity command turns a joint the positive way.
@@ -168,8 +168,10 @@ TEST(SimulationData, HandClosingInFreeAirReachesItsTargets) {
   EXPECT_TRUE(testing::MatricesNear(data.hand_positions(), target, Deg(0.5)));
   // every DIP follows its PIP.
   const HandJointVector q = data.hand_joint_positions();
-  for (int finger = 1; finger < kFingers; ++finger) {
-    EXPECT_NEAR(q[HandJointIndex(finger, 3)], q[HandJointIndex(finger, 2)], Deg(0.5));
+  const HandModel& hand = Model().robot().hand;
+  ASSERT_EQ(q.size(), hand.joint_count());
+  for (int finger = 1; finger < hand.finger_count(); ++finger) {
+    EXPECT_NEAR(q[hand.JointIndex(finger, 3)], q[hand.JointIndex(finger, 2)], Deg(0.5));
   }
   EXPECT_EQ(data.contacts().object_hand + data.contacts().finger_table, 0);
 }
