@@ -521,11 +521,12 @@ CollisionModel::CollisionModel(const RobotModel& robot, const SceneModel& scene,
   AddLinkShapes(hand.mount(), CollisionGroup::kHand, hand_body, {FrameKind::kHandMount, 0, 0},
                 m.get());
   AddLinkShapes(hand.palm(), CollisionGroup::kHand, hand_body, {FrameKind::kPalm, 0, 0}, m.get());
-  for (int fi = 0; fi < kFingers; ++fi) {
+  for (int fi = 0; fi < hand.finger_count(); ++fi) {
     int link_body = hand_body;
-    for (int k = 0; k < kFingerJoints; ++k) {
+    const std::vector<RigidLink>& links = hand.finger(fi).links;
+    for (int k = 0; k < static_cast<int>(links.size()); ++k) {
       link_body = new_body(link_body);
-      AddLinkShapes(hand.finger(fi).links[k], CollisionGroup::kHand, link_body,
+      AddLinkShapes(links[static_cast<size_t>(k)], CollisionGroup::kHand, link_body,
                     {FrameKind::kPhalanx, fi, k}, m.get());
     }
   }

@@ -1,6 +1,7 @@
 #include "kinematics/hand_model.hpp"
 
 #include <cmath>
+#include <set>
 #include <sstream>
 #include <utility>
 
@@ -50,7 +51,7 @@ Eigen::Isometry3d JointMotion(const RevoluteJoint& joint, double q) {
 }  // namespace
 
 HandModel::HandModel(std::string source, RigidLink mount, RigidLink palm,
-                     const Eigen::Isometry3d& X_HP, std::array<Finger, kFingers> fingers)
+                     const Eigen::Isometry3d& X_HP, std::vector<Finger> fingers)
     : source_(std::move(source)),
       mount_(std::move(mount)),
       palm_(std::move(palm)),
@@ -58,36 +59,68 @@ HandModel::HandModel(std::string source, RigidLink mount, RigidLink palm,
       fingers_(std::move(fingers)) {
   RequirePositiveMass(source_, mount_);
   RequirePositiveMass(source_, palm_);
+  CheckFingers();
+  CheckActuation();
+}
 
+// the fingers' names, joint and link counts, limits and masses; fills the joint numbering.
+void HandModel::CheckFingers() {
+  if (fingers_.empty()) throw InputError(source_ + ": the hand has no finger");
+  std::set<std::string> names;
+  for (size_t i = 0; i < fingers_.size(); ++i) {
+    const Finger& finger = fingers_[i];
+    const std::string where =
+        source_ + ": finger " + std::to_string(i) + " ('" + finger.name + "')";
+    if (finger.name.empty()) throw InputError(where + " has no name");
+    if (!names.insert(finger.name).second) throw InputError(where + " repeats a finger's name");
+    if (finger.joints.empty()) throw InputError(where + " has no joint");
+    if (finger.links.size() != finger.joints.size()) {
+      throw InputError(where + " has " + std::to_string(finger.joints.size()) + " joints but " +
+                       std::to_string(finger.links.size()) + " links; it needs one per joint");
+    }
+    first_joint_.push_back(static_cast<int>(joint_finger_.size()));
+    for (size_t k = 0; k < finger.joints.size(); ++k) {
+      CheckJointLimits(source_, finger.joints[k].joint);
+      RequirePositiveMass(source_, finger.links[k]);
+      joint_finger_.push_back(static_cast<int>(i));
+    }
+  }
+  // contact reports keep one bit per hand link and one for the palm (ContactReport).
+  if (joint_count() > 63) {
+    throw InputError(source_ + ": the hand has " + std::to_string(joint_count()) +
+                     " joints; at most 63 are supported");
+  }
+}
+
+// the actuated numbering f0..f15 and the couplings.
+void HandModel::CheckActuation() {
   std::array<int, kHandDof> seen;
   seen.fill(-1);
-  for (int i = 0; i < kFingers; ++i) {
-    const Finger& finger = fingers_[i];
-    if (finger.name != kFingerNames[i]) {
-      throw InputError(source_ + ": finger " + std::to_string(i) + " must be '" +
-                       std::string(kFingerNames[i]) + "', is '" + finger.name + "'");
-    }
-    for (int k = 0; k < kFingerJoints; ++k) {
-      const HandJoint& hj = finger.joints[k];
-      CheckJointLimits(source_, hj.joint);
-      RequirePositiveMass(source_, finger.links[k]);
-      const std::string where = source_ + ": hand joint '" + hj.joint.name + "'";
-      if (hj.is_actuated()) {
-        if (hj.actuated >= kHandDof) {
-          throw InputError(where + " has actuated index " + std::to_string(hj.actuated) +
-                           "; the hand has " + std::to_string(kHandDof) + " actuated joints");
-        }
-        if (seen[hj.actuated] >= 0) {
-          throw InputError(where + " has actuated index " + std::to_string(hj.actuated) +
-                           ", already used by '" + joint(seen[hj.actuated]).joint.name + "'");
-        }
-        if (hj.coupling) {
-          throw InputError(where + " is actuated and must not also have a coupling");
-        }
-        seen[hj.actuated] = HandJointIndex(i, k);
-      } else if (!hj.coupling) {
-        throw InputError(where + " is neither actuated nor coupled to another joint");
+  int actuated = 0;
+  for (int j = 0; j < joint_count(); ++j) actuated += joint(j).is_actuated() ? 1 : 0;
+  if (actuated != kHandDof) {
+    throw InputError(source_ + ": the hand has " + std::to_string(actuated) +
+                     " actuated joints (joints without a coupling); graspsynth needs " +
+                     std::to_string(kHandDof) + " for now");
+  }
+  for (int j = 0; j < joint_count(); ++j) {
+    const HandJoint& hj = joint(j);
+    const std::string where = source_ + ": hand joint '" + hj.joint.name + "'";
+    if (hj.is_actuated()) {
+      if (hj.actuated >= kHandDof) {
+        throw InputError(where + " has actuated index " + std::to_string(hj.actuated) +
+                         "; the hand has " + std::to_string(kHandDof) + " actuated joints");
       }
+      if (seen[hj.actuated] >= 0) {
+        throw InputError(where + " has actuated index " + std::to_string(hj.actuated) +
+                         ", already used by '" + joint(seen[hj.actuated]).joint.name + "'");
+      }
+      if (hj.coupling) {
+        throw InputError(where + " is actuated and must not also have a coupling");
+      }
+      seen[hj.actuated] = j;
+    } else if (!hj.coupling) {
+      throw InputError(where + " is neither actuated nor coupled to another joint");
     }
   }
   for (int a = 0; a < kHandDof; ++a) {
@@ -96,12 +129,12 @@ HandModel::HandModel(std::string source, RigidLink mount, RigidLink palm,
     }
   }
   // couplings are checked after every actuated joint is known.
-  for (int j = 0; j < kHandJoints; ++j) {
+  for (int j = 0; j < joint_count(); ++j) {
     const HandJoint& hj = joint(j);
     if (hj.is_actuated()) continue;
     const JointCoupling& c = *hj.coupling;
     const std::string where = source_ + ": hand joint '" + hj.joint.name + "'";
-    if (c.source < 0 || c.source >= kHandJoints || !joint(c.source).is_actuated()) {
+    if (c.source < 0 || c.source >= joint_count() || !joint(c.source).is_actuated()) {
       throw InputError(where + " must follow an actuated hand joint");
     }
     if (!std::isfinite(c.multiplier) || !std::isfinite(c.offset) || c.multiplier == 0.0) {
@@ -120,6 +153,12 @@ HandModel::HandModel(std::string source, RigidLink mount, RigidLink palm,
   }
 }
 
+std::vector<std::string> HandModel::finger_names() const {
+  std::vector<std::string> names;
+  for (const Finger& finger : fingers_) names.push_back(finger.name);
+  return names;
+}
+
 double HandModel::total_mass() const {
   double m = mount_.inertia.mass + palm_.inertia.mass;
   for (const Finger& finger : fingers_) {
@@ -132,14 +171,22 @@ bool HandModel::WithinLimits(const Eigen::Ref<const HandVector>& f, double tol) 
   return ((f.array() >= lower_.array() - tol) && (f.array() <= upper_.array() + tol)).all();
 }
 
+void HandFrames::Resize(const HandModel& hand) {
+  X_HL.resize(static_cast<size_t>(hand.finger_count()));
+  for (int i = 0; i < hand.finger_count(); ++i) {
+    X_HL[static_cast<size_t>(i)].resize(hand.finger(i).joints.size());
+  }
+  X_HT.resize(static_cast<size_t>(hand.finger_count()));
+}
+
 HandJointVector HandJointPositions(const HandModel& hand, const Eigen::Ref<const HandVector>& f) {
-  HandJointVector q;
-  for (int j = 0; j < kHandJoints; ++j) {
+  HandJointVector q(hand.joint_count());
+  for (int j = 0; j < hand.joint_count(); ++j) {
     const HandJoint& hj = hand.joint(j);
     if (hj.is_actuated()) q[j] = f[hj.actuated];
   }
   // the model guarantees that every coupling source is actuated, so one pass suffices.
-  for (int j = 0; j < kHandJoints; ++j) {
+  for (int j = 0; j < hand.joint_count(); ++j) {
     const HandJoint& hj = hand.joint(j);
     if (!hj.is_actuated()) {
       q[j] = hj.coupling->multiplier * q[hj.coupling->source] + hj.coupling->offset;
@@ -151,15 +198,16 @@ HandJointVector HandJointPositions(const HandModel& hand, const Eigen::Ref<const
 void HandLinkFrames(const HandModel& hand, const Eigen::Ref<const HandVector>& f,
                     HandFrames* frames) {
   const HandJointVector q = HandJointPositions(hand, f);
+  frames->Resize(hand);
   frames->X_HP = hand.X_HP();
-  for (int i = 0; i < kFingers; ++i) {
+  for (int i = 0; i < hand.finger_count(); ++i) {
     const Finger& finger = hand.finger(i);
     Eigen::Isometry3d X_HL = hand.X_HP();
-    for (int k = 0; k < kFingerJoints; ++k) {
-      X_HL = X_HL * JointMotion(finger.joints[k].joint, q[HandJointIndex(i, k)]);
-      frames->X_HL[i][k] = X_HL;
+    for (size_t k = 0; k < finger.joints.size(); ++k) {
+      X_HL = X_HL * JointMotion(finger.joints[k].joint, q[hand.JointIndex(i, static_cast<int>(k))]);
+      frames->X_HL[static_cast<size_t>(i)][k] = X_HL;
     }
-    frames->X_HT[i] = X_HL * finger.X_LT;
+    frames->X_HT[static_cast<size_t>(i)] = X_HL * finger.X_LT;
   }
 }
 

@@ -359,16 +359,57 @@ std::vector<const urdf::Joint*> ChainJoints(const urdf::ModelInterface& model,
   return chain;
 }
 
-Finger ReadFinger(Reader& reader, int finger_index) {
-  const std::string name(kFingerNames[finger_index]);
-  const bool is_thumb = finger_index == 0;
+// The hand joints' names in the order the URDF document lists them (urdfdom keeps its joints
+// by name, so the fingers' order is the document's).
+std::vector<std::string> JointsInDocumentOrder(std::string_view urdf_xml) {
+  std::vector<std::string> names;
+  TiXmlDocument document;
+  document.Parse(std::string(urdf_xml).c_str());
+  const TiXmlElement* robot = document.Error() ? nullptr : document.FirstChildElement("robot");
+  if (robot == nullptr) return names;
+  for (const TiXmlElement* joint = robot->FirstChildElement("joint"); joint != nullptr;
+       joint = joint->NextSiblingElement("joint")) {
+    const char* name = joint->Attribute("name");
+    if (name != nullptr) names.emplace_back(name);
+  }
+  return names;
+}
+
+// The fingers' names: the revolute joints whose parent is the palm, in document order, each
+// named <finger>_j1.
+std::vector<std::string> FingerNames(const Reader& reader, std::string_view urdf_xml) {
+  std::vector<std::string> fingers;
+  for (const std::string& name : JointsInDocumentOrder(urdf_xml)) {
+    const urdf::JointConstSharedPtr joint = reader.model().getJoint(name);
+    if (!joint || joint->parent_link_name != kPalmLink || joint->type == urdf::Joint::FIXED) {
+      continue;
+    }
+    const std::string suffix = "_j1";
+    if (name.size() <= suffix.size() || name.compare(name.size() - 3, 3, suffix) != 0) {
+      reader.Fail("hand joint " + Quoted(name) +
+                  " on the palm must be a finger's first joint, named <finger>_j1");
+    }
+    fingers.push_back(name.substr(0, name.size() - suffix.size()));
+  }
+  if (fingers.empty()) reader.Fail("the palm has no finger (no joint <finger>_j1 on 'palm')");
+  return fingers;
+}
+
+// The chain of finger `name`: <name>_j1 on the palm, then <name>_j2, ... each on the child of
+// the one before, as long as the URDF has them, then the fixed <name>_tip. A joint with a
+// <mimic> is coupled to the joint it names; every other joint is actuated, numbered from
+// `*actuated` on. Couplings name their source by joint name until every finger is read
+// (`*mimics`: joint name -> source joint name).
+Finger ReadFinger(Reader& reader, const std::string& name, int* actuated,
+                  std::map<std::string, const urdf::Joint*>* mimics) {
   Finger finger;
   finger.name = name;
   std::string parent = kPalmLink;
-  for (int k = 0; k < kFingerJoints; ++k) {
+  for (int k = 0;; ++k) {
     const std::string joint_name = name + "_j" + std::to_string(k + 1);
+    if (k > 0 && !reader.model().getJoint(joint_name)) break;
     const urdf::Joint& joint = reader.Joint(joint_name, "hand joint");
-    HandJoint& hj = finger.joints[k];
+    HandJoint hj;
     hj.joint = reader.Revolute(joint, "hand joint");
     if (joint.parent_link_name != parent) {
       reader.Fail(
@@ -376,30 +417,13 @@ Finger ReadFinger(Reader& reader, int finger_index) {
           Quoted(joint.parent_link_name) + "; it must be " + Quoted(parent) +
           (k == 0 ? " (the palm)" : " (the child of " + name + "_j" + std::to_string(k) + ")"));
     }
-    const bool coupled = !is_thumb && k == kFingerJoints - 1;
-    if (coupled) {
-      const std::string pip = name + "_j3";
-      if (!joint.mimic) {
-        reader.Fail("hand joint " + Quoted(joint_name) +
-                    " (DIP) has no <mimic>; it must follow its PIP: <mimic joint=\"" + pip +
-                    "\" multiplier=\"1\" offset=\"0\"/>");
-      }
-      if (joint.mimic->joint_name != pip) {
-        reader.Fail("hand joint " + Quoted(joint_name) + " (DIP) mimics " +
-                    Quoted(joint.mimic->joint_name) + "; it must mimic its PIP " + Quoted(pip));
-      }
-      hj.coupling = JointCoupling{HandJointIndex(finger_index, 2), joint.mimic->multiplier,
-                                  joint.mimic->offset};
+    if (joint.mimic) {
+      (*mimics)[joint_name] = &joint;
     } else {
-      if (joint.mimic) {
-        reader.Fail("hand joint " + Quoted(joint_name) +
-                    " is actuated and must not have a <mimic> (only the DIP joints j4 of index, "
-                    "middle, ring and little are coupled)");
-      }
-      // f0..f3 = thumb j1..j4, then j1..j3 of index, middle, ring, little.
-      hj.actuated = is_thumb ? k : 4 + 3 * (finger_index - 1) + k;
+      hj.actuated = (*actuated)++;
     }
-    finger.links[k] = reader.Body(joint.child_link_name, "hand");
+    finger.joints.push_back(std::move(hj));
+    finger.links.push_back(reader.Body(joint.child_link_name, "hand"));
     parent = joint.child_link_name;
   }
   const std::string tip_joint = name + "_tip";
@@ -407,7 +431,9 @@ Finger ReadFinger(Reader& reader, int finger_index) {
   reader.RequireFixed(tip, "fingertip joint");
   if (tip.parent_link_name != parent) {
     reader.Fail("fingertip joint " + Quoted(tip_joint) + " has parent link " +
-                Quoted(tip.parent_link_name) + "; it must be the distal link " + Quoted(parent));
+                Quoted(tip.parent_link_name) + "; it must be the distal link " + Quoted(parent) +
+                " (is joint " + Quoted(name + "_j" + std::to_string(finger.joints.size() + 1)) +
+                " missing?)");
   }
   const urdf::Link& tip_link = reader.Link(tip.child_link_name, "fingertip");
   if (tip_link.inertial || !tip_link.collision_array.empty() || !tip_link.child_joints.empty()) {
@@ -417,6 +443,37 @@ Finger ReadFinger(Reader& reader, int finger_index) {
   finger.tip_name = tip_link.name;
   finger.X_LT = ToIsometry(tip.parent_to_joint_origin_transform);
   return finger;
+}
+
+// The fingers in document order, their actuated joints numbered in that order (the Gifu's
+// f0..f15: thumb j1..j4, then j1..j3 of index, middle, ring, little) and each <mimic> a coupling
+// (q = multiplier * q_source + offset) to the hand joint it names, which must be actuated.
+std::vector<Finger> ReadFingers(Reader& reader, std::string_view urdf_xml) {
+  std::vector<Finger> fingers;
+  int actuated = 0;
+  std::map<std::string, const urdf::Joint*> mimics;
+  for (const std::string& name : FingerNames(reader, urdf_xml)) {
+    fingers.push_back(ReadFinger(reader, name, &actuated, &mimics));
+  }
+  std::map<std::string, std::pair<int, const HandJoint*>> index;  // joint name: index, joint
+  int j = 0;
+  for (const Finger& finger : fingers) {
+    for (const HandJoint& hj : finger.joints) index[hj.joint.name] = {j++, &hj};
+  }
+  for (Finger& finger : fingers) {
+    for (HandJoint& hj : finger.joints) {
+      const auto mimic = mimics.find(hj.joint.name);
+      if (mimic == mimics.end()) continue;
+      const urdf::JointMimic& m = *mimic->second->mimic;
+      const auto source = index.find(m.joint_name);
+      if (source == index.end() || !source->second.second->is_actuated()) {
+        reader.Fail("hand joint " + Quoted(hj.joint.name) + " mimics " + Quoted(m.joint_name) +
+                    "; it must mimic an actuated hand joint (one without a <mimic>)");
+      }
+      hj.coupling = JointCoupling{source->second.first, m.multiplier, m.offset};
+    }
+  }
+  return fingers;
 }
 
 }  // namespace
@@ -508,8 +565,7 @@ RobotModel ParseRobotModel(std::string_view urdf_xml, const std::string& source)
   reader.RequireParentChild(palm_joint, "palm joint", kHandMountLink, kPalmLink);
   RigidLink palm = reader.Body(kPalmLink, "hand");
 
-  std::array<Finger, kFingers> fingers;
-  for (int i = 0; i < kFingers; ++i) fingers[i] = ReadFinger(reader, i);
+  std::vector<Finger> fingers = ReadFingers(reader, urdf_xml);
   reader.RequireAllLinksUsed();
 
   HandModel hand(source, std::move(mount_link), std::move(palm),

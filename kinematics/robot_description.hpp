@@ -41,9 +41,13 @@ RobotModel LoadRobotModel(const std::filesystem::path& path);
 /// - the arm is not the SRS chain of reference/robot.md 1.3 (ArmModel's checks);
 /// - the fixed joint `hand_mount` (W2_link -> hand_mount_link) or the fixed joint to `palm` is
 ///   missing or of another type;
-/// - a hand joint `<finger>_j1..j4` is missing, not revolute, without limits, or not in the
-///   chain palm -> j1 -> j2 -> j3 -> j4 -> `<finger>_tip` (fixed); a DIP joint (j4 of index,
-///   middle, ring, little) does not mimic its PIP (j3) or another hand joint has a <mimic>;
+/// - a revolute joint on the palm is not named `<finger>_j1`, or a finger's chain is not palm ->
+///   `<finger>_j1` -> `<finger>_j2` -> ... (as many as the URDF has, each revolute with limits)
+///   -> `<finger>_tip` (fixed); the fingers are the palm's `<finger>_j1` joints in the
+///   document's order, their actuated joints (those without a <mimic>) numbered f0, f1, ... in
+///   that order, and a joint with a <mimic> follows the joint it names, which must be an actuated
+///   hand joint (the Gifu: each DIP j4 of index, middle, ring, little mimics its PIP j3);
+/// - the hand's model is refused (HandModel's checks), e.g. it has other than 16 actuated joints;
 /// - a link other than a fingertip frame has no positive mass or a non-physical inertia, or a
 ///   fingertip frame has mass or geometry;
 /// - a collision geometry is a mesh (only box, cylinder, sphere and capsules are used).

@@ -52,7 +52,7 @@ OptionList<R> HoldMarginOptionList(F ref) {
   number("min_epsilon_weight", &H::min_epsilon_weight, 0.0, false, INFINITY);
   OptionInfo links = WithRange(
       MakeInfo("min_load_bearing_links", OptionKind::kInt, help("min_load_bearing_links")), 0,
-      kHandJoints + 1);
+      kMaxLoadBearingLinks);
   links.group = kHoldMarginGroup;
   list.push_back(
       FieldOption<R>(links, [ref](R& r) -> int& { return ref(r).min_load_bearing_links; }));

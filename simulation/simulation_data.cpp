@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "common/demand.hpp"
 #include "common/errors.hpp"
@@ -64,15 +65,15 @@ Vector7d WorldImpl::ArmVelocity() {
 HandJointVector WorldImpl::HandVelocity(const HandJointVector& q) const {
   const HandModel& hand = robot().hand;
   const double gain = model->options().finger_servo_gain;
-  HandJointVector v;
-  for (int j = 0; j < kHandJoints; ++j) {
+  HandJointVector v(hand.joint_count());
+  for (int j = 0; j < hand.joint_count(); ++j) {
     const HandJoint& hj = hand.joint(j);
     double target_v = 0.0;
     if (hj.is_actuated()) {
       target_v = hand_mode == ServoMode::kPosition ? gain * (hand_command[hj.actuated] - q[j])
                                                    : hand_command[hj.actuated];
     } else {
-      // the DIP coupling: its target is the PIP's measured angle.
+      // a coupled joint (the Gifu's DIP): its target follows its source's measured angle.
       const JointCoupling& c = *hj.coupling;
       target_v = gain * (c.multiplier * q[c.source] + c.offset - q[j]);
     }
@@ -88,7 +89,9 @@ void WorldImpl::ReadJoints() {
     q_arm[i] += Wrap(raw - q_arm[i]);
   }
   if (hand_dynamic) {
-    for (int j = 0; j < kHandJoints; ++j) q_hand[j] = dJointGetHingeAngle(finger_joints[j]);
+    for (size_t j = 0; j < finger_joints.size(); ++j) {
+      q_hand[static_cast<Eigen::Index>(j)] = dJointGetHingeAngle(finger_joints[j]);
+    }
   }
 }
 
@@ -127,7 +130,7 @@ void WorldImpl::ControlStep() {
     }
   }
   const HandJointVector vh = HandVelocity(q_hand);
-  for (int j = 0; j < kHandJoints; ++j) {
+  for (int j = 0; j < static_cast<int>(finger_joints.size()); ++j) {
     dJointSetHingeParam(finger_joints[j], dParamVel, vh[j]);
     dJointSetHingeParam(finger_joints[j], dParamFMax, hand_fmax[j]);
     hand_vel[j] = vh[j];
@@ -180,7 +183,7 @@ void WorldImpl::StepKinematically() {
   const Vector7d qa_next = q_arm + h * va;
   const HandJointVector qh_next = q_hand + h * vh;
   ArmFrames af;
-  HandFrames hf;
+  HandFrames& hf = next_hand_frames;
   ComputeFrames(qa_next, qh_next, &af, &hf);
   const Eigen::Isometry3d X_WH0 = arm_frames.X_WL[kArmDof] * robot().X_FH;
   const Eigen::Isometry3d X_WH1 = af.X_WL[kArmDof] * robot().X_FH;
@@ -188,15 +191,17 @@ void WorldImpl::StepKinematically() {
     PlaceBody(arm[i], af.X_WL[i + 1]);
     SetBodyVelocity(arm[i], arm_frames.X_WL[i + 1], af.X_WL[i + 1], h);
   }
-  for (int j = 0; j < kHandJoints; ++j) {
-    const int i = j / kFingerJoints, k = j % kFingerJoints;
+  const HandModel& hand = robot().hand;
+  for (int j = 0; j < hand.joint_count(); ++j) {
+    const size_t i = static_cast<size_t>(hand.joint_finger(j));
+    const size_t k = static_cast<size_t>(hand.joint_in_finger(j));
     const Eigen::Isometry3d from = X_WH0 * hand_frames.X_HL[i][k];
     const Eigen::Isometry3d to = X_WH1 * hf.X_HL[i][k];
-    PlaceBody(fingers[j], to);
-    SetBodyVelocity(fingers[j], from, to, h);
+    PlaceBody(fingers[static_cast<size_t>(j)], to);
+    SetBodyVelocity(fingers[static_cast<size_t>(j)], from, to, h);
   }
   arm_frames = af;
-  hand_frames = hf;
+  std::swap(hand_frames, next_hand_frames);
   q_arm = qa_next;
   q_hand = qh_next;
   const auto t1 = Clock::now();
@@ -301,7 +306,7 @@ Eigen::Isometry3d SimulationData::arm_link_pose(int i) const {
 }
 
 Eigen::Isometry3d SimulationData::hand_link_pose(int j) const {
-  GS_DEMAND(j >= 0 && j < kHandJoints, "hand link index out of range");
+  GS_DEMAND(j >= 0 && j < impl_->robot().hand.joint_count(), "hand link index out of range");
   const BodyPart& b = impl_->fingers[j];
   return BodyPose(b.body) * Eigen::Translation3d(-b.p_LC);
 }
@@ -351,9 +356,10 @@ double SimulationData::MaxDynamicAngularSpeed() const {
 
 WorldCounts SimulationData::counts() const {
   WorldCounts c;
-  c.bodies = kArmDof + kHandJoints + 1;
-  c.dynamic_bodies = kHandJoints + 1 + impl_->dynamic_arm_joints();
-  c.joints = kHandJoints + impl_->dynamic_arm_joints();
+  const int hand_joints = impl_->robot().hand.joint_count();
+  c.bodies = kArmDof + hand_joints + 1;
+  c.dynamic_bodies = hand_joints + 1 + impl_->dynamic_arm_joints();
+  c.joints = hand_joints + impl_->dynamic_arm_joints();
   c.geoms = impl_->geom_count;
   return c;
 }

@@ -22,7 +22,8 @@
 ///   finger's hinge rows before the pivoting solve of the motors, stops and contacts
 ///   (WorldOptions::structured_solver; the same states to roundoff, trials 2.2-5.6x faster); the
 ///   other arm modes step with dWorldStep;
-/// - the 20 finger links are dynamic bodies on hinge joints, driven by implicit motors
+/// - the finger links (20 for the Gifu) are dynamic bodies on hinge joints, driven by implicit
+/// motors
 ///   (dParamVel, capped by dParamFMax = the joint's effort); each DIP's target is its PIP's
 ///   measured angle (the four DIP couplings);
 /// - the object is one dynamic body (cylinder + bar handle); the table a static box.
@@ -194,7 +195,7 @@ class SimulationData final : public JudgedWorld {
   Vector7d arm_positions() const;
   /// Measured actuated hand joints f0..f15, rad.
   HandVector hand_positions() const;
-  /// Measured values of all 20 hand joints (HandJointVector order), rad.
+  /// Measured values of every hand joint (HandJointVector order, the hand's joint count), rad.
   HandJointVector hand_joint_positions() const;
   /// Pose X_WO of the object frame (the pan body's centre).
   Eigen::Isometry3d object_pose() const override;
@@ -206,7 +207,7 @@ class SimulationData final : public JudgedWorld {
   Eigen::Isometry3d wrist_pose() const override;
   /// Pose X_WL of arm link i in 1..7 (7: the flange frame F).
   Eigen::Isometry3d arm_link_pose(int i) const;
-  /// Pose X_WL of hand link j (HandJointVector index 0..19: the child link of that joint).
+  /// Pose X_WL of hand link j (HandJointVector index: the child link of that joint).
   Eigen::Isometry3d hand_link_pose(int j) const;
   /// Contacts of the last collision pass.
   const ContactReport& contacts() const override;

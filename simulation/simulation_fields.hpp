@@ -26,7 +26,7 @@ struct EnumRange<PhysicsFactor> {
   static constexpr PhysicsFactor kLast = PhysicsFactor::kStep;
 };
 
-/// HoldQuality's fields (rad, m; load_share: the fingers in kFingerNames order, then the palm).
+/// HoldQuality's fields (rad, m; load_share: the groups of kLoadShareGroups, fingers then palm).
 template <class V, class Row>
 requires SameStruct<Row, HoldQuality>
 void VisitFields(V& v, Row& r) {

@@ -6,6 +6,7 @@
 
 #include "common/errors.hpp"
 #include "common/valid_options.hpp"
+#include "simulation/trial_judge.hpp"
 
 namespace graspsynth {
 namespace {
@@ -63,6 +64,16 @@ bool SimulationOptions::IsValid(std::string* why) const {
 SimulationModel::SimulationModel(RobotModel robot, SceneModel scene, SimulationOptions options)
     : robot_(std::move(robot)), scene_(std::move(scene)), options_(options) {
   RequireValid(options_, "invalid simulation option");
+  // a trial's load share counts each finger's contacts by its name (kLoadShareGroups).
+  for (const Finger& finger : robot_.hand.fingers()) {
+    bool known = false;
+    for (int k = 0; k < kLoadSharePalm; ++k) known = known || kLoadShareGroups[k] == finger.name;
+    if (!known) {
+      throw InputError(robot_.hand.source() + ": finger '" + finger.name +
+                       "': a simulated hand's fingers must be named thumb, index, middle, ring "
+                       "or little for now (the trials' load share is kept per such finger)");
+    }
+  }
   object_inertia_ = scene_.object.Inertia();
 }
 

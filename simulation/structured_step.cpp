@@ -154,9 +154,10 @@ void WorldImpl::AddContactRows(const PendingContact& pc) {
 // gyroscopic torque as ODE computes them.
 void WorldImpl::PrepareSolverBodies() {
   const SimulationOptions& so = model->options();
-  solver_bodies.resize(kHandJoints + 1);
-  for (int i = 0; i <= kHandJoints; ++i) {
-    const dBodyID b = i < kHandJoints ? fingers[i].body : object.body;
+  const int n = static_cast<int>(fingers.size());
+  solver_bodies.resize(static_cast<size_t>(n) + 1);
+  for (int i = 0; i <= n; ++i) {
+    const dBodyID b = i < n ? fingers[static_cast<size_t>(i)].body : object.body;
     dMass m;
     dBodyGetMass(b, &m);
     const Eigen::Matrix3d I_B = FromOdeMatrix(m.I);
@@ -184,11 +185,12 @@ void WorldImpl::PrepareSolverBodies() {
 void WorldImpl::StepStructured() {
   PrepareSolverBodies();
   rows.clear();
-  for (int j = 0; j < kHandJoints; ++j) {
-    hinge_row0[j] = static_cast<int>(rows.size());
+  const int n = static_cast<int>(fingers.size());
+  for (int j = 0; j < n; ++j) {
+    hinge_row0[static_cast<size_t>(j)] = static_cast<int>(rows.size());
     AddHingeRows(j);
   }
-  hinge_row0[kHandJoints] = static_cast<int>(rows.size());
+  hinge_row0[static_cast<size_t>(n)] = static_cast<int>(rows.size());
   contact_row0.clear();
   for (const PendingContact& pc : pending) {
     contact_row0.push_back(static_cast<int>(rows.size()));
@@ -208,8 +210,8 @@ void WorldImpl::StepStructured() {
 
   // velocities of the moving bodies, then every body moves (kinematic ones by their own
   // velocities, as in dWorldStep).
-  for (int i = 0; i <= kHandJoints; ++i) {
-    const dBodyID b = i < kHandJoints ? fingers[i].body : object.body;
+  for (int i = 0; i <= n; ++i) {
+    const dBodyID b = i < n ? fingers[static_cast<size_t>(i)].body : object.body;
     const SolverBody& sb = solver_bodies[i];
     dBodySetLinearVel(b, sb.v.x(), sb.v.y(), sb.v.z());
     dBodySetAngularVel(b, sb.w.x(), sb.w.y(), sb.w.z());
@@ -296,13 +298,14 @@ void WorldImpl::ReadVelocities(StepForces* out) const {
 // the state is restored afterwards.
 void WorldImpl::StepOde(StepForces* out) {
   const Snapshot before = Save();
-  std::vector<dJointFeedback> hinge_fb(kHandJoints), contact_fb(pending.size());
-  for (int j = 0; j < kHandJoints; ++j) dJointSetFeedback(finger_joints[j], &hinge_fb[j]);
+  const size_t n = finger_joints.size();
+  std::vector<dJointFeedback> hinge_fb(n), contact_fb(pending.size());
+  for (size_t j = 0; j < n; ++j) dJointSetFeedback(finger_joints[j], &hinge_fb[j]);
   for (size_t k = 0; k < pending.size(); ++k) {
     dJointSetFeedback(MakeContactJoint(pending[k]), &contact_fb[k]);
   }
   dWorldStep(world, h);
-  for (int j = 0; j < kHandJoints; ++j) {
+  for (size_t j = 0; j < n; ++j) {
     const dJointFeedback& fb = hinge_fb[j];
     Eigen::Matrix<double, 12, 1> v;
     v << Stack(fb.f1, fb.t1), Stack(fb.f2, fb.t2);
@@ -324,7 +327,7 @@ void WorldImpl::ReadStructuredForces(StepForces* out) const {
     for (size_t r = begin; r < end; ++r) v += Stack(rows[r].lin[k], rows[r].ang[k]) * lambda[r];
     return v;
   };
-  for (int j = 0; j < kHandJoints; ++j) {
+  for (size_t j = 0; j < finger_joints.size(); ++j) {
     Eigen::Matrix<double, 12, 1> v;
     v << sum(hinge_row0[j], hinge_row0[j + 1], 0), sum(hinge_row0[j], hinge_row0[j + 1], 1);
     out->hinges.push_back(v);

@@ -105,15 +105,15 @@ std::optional<TrialVerdict> PlayTrial(const SimulationModel& model,
 
 }  // namespace
 
-void FinishTrial(const JudgedWorld& world, const TrialWatch& watch, double t_motion,
-                 const std::optional<TrialVerdict>& early, const TrialJudgeOptions& options,
-                 TrialResult* result) {
+void FinishTrial(const JudgedWorld& world, const HandModel& hand, const TrialWatch& watch,
+                 double t_motion, const std::optional<TrialVerdict>& early,
+                 const TrialJudgeOptions& options, TrialResult* result) {
   result->max_lift = watch.max_lift;
   result->max_penetration = watch.max_penetration;
   result->simulated_time = world.time();
   result->final_object_pose = world.object_pose();
   result->lift = result->final_object_pose.translation().z() - watch.X_WO_rest.translation().z();
-  result->hold = MeasureHold(world, watch);
+  result->hold = MeasureHold(world, watch, hand);
   result->end_contacts = world.hand_object_contacts();
   const TrialVerdict verdict =
       early ? *early : JudgeTrial(world, watch, result->simulated_time - t_motion, options);
@@ -138,7 +138,7 @@ TrialResult RunTrial(const SimulationModel& model, const JointTrajectory& trajec
   const std::optional<TrialVerdict> early =
       PlayTrial(model, trajectory, options, observer, &data, &watch, &result);
 
-  FinishTrial(data, watch, t_motion, early, options, &result);
+  FinishTrial(data, model.robot().hand, watch, t_motion, early, options, &result);
   result.statistics = data.statistics();
   result.wall_time = SecondsSince(wall_start);
   result.cpu_time = ThreadCpuSeconds() - cpu_start;

@@ -111,9 +111,9 @@ TrialResult RunTrial(const SimulationModel& model, const JointTrajectory& trajec
 /// lift and deepest penetration, simulated time, final object pose and lift, hold, and outcome
 /// with its reason: `early` when the play ended with a verdict, else the judgement after the
 /// last command was held for the time past `t_motion` (s). The caller fills the rest (states,
-/// counts, the step statistics, the times).
-void FinishTrial(const JudgedWorld& world, const TrialWatch& watch, double t_motion,
-                 const std::optional<TrialVerdict>& early, const TrialJudgeOptions& options,
-                 TrialResult* result);
+/// counts, the step statistics, the times). `hand` numbers the world's hand links.
+void FinishTrial(const JudgedWorld& world, const HandModel& hand, const TrialWatch& watch,
+                 double t_motion, const std::optional<TrialVerdict>& early,
+                 const TrialJudgeOptions& options, TrialResult* result);
 
 }  // namespace graspsynth

@@ -1,4 +1,5 @@
 #include "simulation/trial_judge.hpp"
+#include "common/demand.hpp"
 #include "common/format.hpp"
 
 #include <algorithm>
@@ -162,20 +163,26 @@ TrialVerdict JudgeTrial(const JudgedWorld& data, const TrialWatch& watch, double
                  watch.max_lift * 1e3, options.lift_threshold * 1e3)};
 }
 
+int LoadShareGroup(const HandModel& hand, int hand_link) {
+  if (hand_link < 0 || hand_link >= hand.joint_count()) return kLoadSharePalm;
+  const std::string& name = hand.finger(hand.joint_finger(hand_link)).name;
+  for (int k = 0; k < kLoadSharePalm; ++k) {
+    if (kLoadShareGroups[static_cast<size_t>(k)] == name) return k;
+  }
+  return -1;
+}
+
 std::string HoldQuality::LoadBearers(double min_share) const {
   std::string text;
-  for (int k = 0; k <= kFingers; ++k) {
-    if (load_share[static_cast<size_t>(k)] < min_share ||
-        load_share[static_cast<size_t>(k)] == 0.0) {
-      continue;
-    }
+  for (size_t k = 0; k < load_share.size(); ++k) {
+    if (load_share[k] < min_share || load_share[k] == 0.0) continue;
     if (!text.empty()) text += "+";
-    text += k < kFingers ? std::string(kFingerNames[static_cast<size_t>(k)]) : "palm";
+    text += std::string(kLoadShareGroups[k]);
   }
   return text.empty() ? "none" : text;
 }
 
-HoldQuality MeasureHold(const JudgedWorld& data, const TrialWatch& watch) {
+HoldQuality MeasureHold(const JudgedWorld& data, const TrialWatch& watch, const HandModel& hand) {
   HoldQuality q;
   const Eigen::Isometry3d X_WO = data.object_pose();
   q.end_tilt = Tilt(X_WO);
@@ -189,7 +196,8 @@ HoldQuality MeasureHold(const JudgedWorld& data, const TrialWatch& watch) {
   double total = 0.0;
   for (const HandObjectContact& c : data.hand_object_contacts()) {
     ++q.contacts;
-    const int group = c.hand_link >= kHandJoints ? kFingers : c.hand_link / kFingerJoints;
+    const int group = LoadShareGroup(hand, c.hand_link);
+    GS_DEMAND(group >= 0, "a hand link outside the load share's groups");
     const double f = c.f_W.norm();
     q.load_share[static_cast<size_t>(group)] += f;
     total += f;

@@ -21,6 +21,7 @@
 #include <string_view>
 
 #include "kinematics/arm_model.hpp"
+#include "kinematics/hand_model.hpp"
 #include "simulation/simulation_data.hpp"
 
 namespace graspsynth {
@@ -88,6 +89,21 @@ struct TrialWatch {
   Eigen::Isometry3d X_HO_lifted = Eigen::Isometry3d::Identity();
 };
 
+/// The groups of HoldQuality::load_share, in order: five fingers by name, then the palm (and
+/// hand mount). For now a hand's fingers must bear some of these names (SimulationModel checks
+/// it; the Gifu's are all five): a finger's contacts count toward the group of its name, and a
+/// group the hand has no finger for stays 0. The file formats keep these six keys until the load
+/// share is sized by the hand (docs/robot-file-draft.md, step 3).
+inline constexpr std::array<std::string_view, 6> kLoadShareGroups = {"thumb", "index",  "middle",
+                                                                     "ring",  "little", "palm"};
+/// The index of the palm's group in kLoadShareGroups.
+inline constexpr int kLoadSharePalm = 5;
+
+/// The group in kLoadShareGroups of hand link `hand_link` (a HandJointVector index, or the
+/// hand's joint count for the palm and mount) of `hand`; -1 for a finger whose name is not a
+/// group's.
+int LoadShareGroup(const HandModel& hand, int hand_link);
+
 /// How the object sits in the hand at the end of a trial (reported for every trial).
 struct HoldQuality {
   double end_tilt = 0.0;  ///< angle of the object's up axis from vertical at the end, rad
@@ -98,9 +114,10 @@ struct HoldQuality {
   double slip = 0.0;
   double slip_angle = 0.0;
   int contacts = 0;  ///< object-hand contact points at the end
-  /// Share of the object-hand contact force at the end carried by each finger
-  /// (kFingerNames order) and the palm (last), summing to 1; all 0 without contact force.
-  std::array<double, kFingers + 1> load_share{};
+  /// Share of the object-hand contact force at the end carried by each group of
+  /// kLoadShareGroups (fingers by name, then the palm), summing to 1; all 0 without contact
+  /// force.
+  std::array<double, kLoadShareGroups.size()> load_share{};
 
   /// The fingers (and "palm") that carry at least `min_share` of the load, e.g.
   /// "thumb+index"; "none" without load.
@@ -134,8 +151,8 @@ TrialVerdict JudgeTrial(const JudgedWorld& data, const TrialWatch& watch, double
                         const TrialJudgeOptions& options);
 
 /// How the object sits in the hand at the end of a trial: the world's object pose and last
-/// object-hand contacts (with their forces) and the watch.
-HoldQuality MeasureHold(const JudgedWorld& data, const TrialWatch& watch);
+/// object-hand contacts (with their forces, their links numbered as in `hand`) and the watch.
+HoldQuality MeasureHold(const JudgedWorld& data, const TrialWatch& watch, const HandModel& hand);
 
 /// One physics step of a trial whose arm follows its controller kinematically: while
 /// `*free_space`, a kinematic step without contact detail (SimulationData::StepKinematically),

@@ -243,6 +243,7 @@ void WorldImpl::AttachShapes(const BodyPart& part, const RigidLink& link,
 // the world, its parameters, spaces and contact group; then the geometry, the bodies and the
 // joints, in an order that fixes the order of ODE's bodies (and so its results).
 void WorldImpl::Build(const Vector7d& arm_q, const HandVector& hand_f) {
+  SizeHand();
   CreateWorld();
   AddStaticGeometry();
   AddRobotBodies();
@@ -250,8 +251,9 @@ void WorldImpl::Build(const Vector7d& arm_q, const HandVector& hand_f) {
   AddArmJoints();
   AddFingerJoints();
   // the moving bodies' solver indices, plus one, in their user data (SolverIndex).
-  for (int i = 0; i <= kHandJoints; ++i) {
-    const dBodyID b = i < kHandJoints ? fingers[i].body : object.body;
+  const int n = robot().hand.joint_count();
+  for (int i = 0; i <= n; ++i) {
+    const dBodyID b = i < n ? fingers[static_cast<size_t>(i)].body : object.body;
     dBodySetData(b, reinterpret_cast<void*>(static_cast<std::intptr_t>(i) + 1));
   }
 
@@ -263,6 +265,23 @@ void WorldImpl::Build(const Vector7d& arm_q, const HandVector& hand_f) {
   PlaceAll(arm_frames, hand_frames);
   arm_command = arm_q;
   hand_command = hand_f;
+}
+
+void WorldImpl::SizeHand() {
+  const HandModel& hand = robot().hand;
+  const size_t n = static_cast<size_t>(hand.joint_count());
+  fingers.assign(n, BodyPart{});
+  finger_joints.assign(n, nullptr);
+  mounts.assign(static_cast<size_t>(hand.finger_count()), nullptr);
+  hinges.assign(n, HingeFrame{});
+  for (HandJointVector* v : {&hand_vmax, &hand_fmax, &hand_stop_lo, &hand_stop_hi, &hand_vel}) {
+    v->setZero(hand.joint_count());
+  }
+  q_hand.setZero(hand.joint_count());
+  hand_frames.Resize(hand);
+  next_hand_frames.Resize(hand);
+  inertias.assign(n + 1, BodyInertia{});
+  hinge_row0.assign(n + 1, 0);
 }
 
 void WorldImpl::CreateWorld() {
@@ -315,12 +334,14 @@ void WorldImpl::AddRobotBodies() {
     if (!joint_dynamic(i - 1)) dBodySetKinematic(arm[i - 1].body);
     AttachShapes(arm[i - 1], r.arm.link(i), Eigen::Isometry3d::Identity(), Role::kArm);
     if (i == kArmDof) {
-      AttachShapes(arm[i - 1], r.hand.mount(), r.X_FH, Role::kPalm, kHandJoints);
-      AttachShapes(arm[i - 1], r.hand.palm(), r.X_FH * r.hand.X_HP(), Role::kPalm, kHandJoints);
+      // the palm and the mount carry the hand's joint count as their hand index.
+      const int palm = r.hand.joint_count();
+      AttachShapes(arm[i - 1], r.hand.mount(), r.X_FH, Role::kPalm, palm);
+      AttachShapes(arm[i - 1], r.hand.palm(), r.X_FH * r.hand.X_HP(), Role::kPalm, palm);
     }
   }
-  for (int j = 0; j < kHandJoints; ++j) {
-    const RigidLink& link = r.hand.finger(j / kFingerJoints).links[j % kFingerJoints];
+  for (int j = 0; j < r.hand.joint_count(); ++j) {
+    const RigidLink& link = r.hand.link(j);
     MassSum sum;
     sum.Add(link.inertia, Eigen::Isometry3d::Identity());
     fingers[j] = MakeBody(world, sum);
@@ -385,8 +406,8 @@ void WorldImpl::AddArmJoints() {
 void WorldImpl::AddFingerJoints() {
   const SimulationOptions& so = model->options();
   const RobotModel& r = robot();
-  for (int j = 0; j < kHandJoints; ++j) {
-    const int finger = j / kFingerJoints, k = j % kFingerJoints;
+  for (int j = 0; j < r.hand.joint_count(); ++j) {
+    const int finger = r.hand.joint_finger(j), k = r.hand.joint_in_finger(j);
     const HandJoint& hj = r.hand.joint(j);
     const Eigen::Isometry3d X_WParent =
         arm_frames.X_WL[kArmDof] * r.X_FH *
@@ -455,28 +476,33 @@ void WorldImpl::ComputeFrames(const Vector7d& qa, const HandJointVector& qh, Arm
   HandFramesFromJoints(qh, hf);
 }
 
-// Hand FK from all 20 joint values (HandLinkFrames takes the 16 actuated ones and derives
-// the DIPs; here the DIPs are states of their own).
+// Hand FK from every joint's value (HandLinkFrames takes the actuated ones and derives the
+// coupled ones; here the coupled joints are states of their own).
 void WorldImpl::HandFramesFromJoints(const HandJointVector& qh, HandFrames* hf) const {
   const HandModel& hand = robot().hand;
+  hf->Resize(hand);
   hf->X_HP = hand.X_HP();
-  for (int i = 0; i < kFingers; ++i) {
+  for (int i = 0; i < hand.finger_count(); ++i) {
     const Finger& finger = hand.finger(i);
+    std::vector<Eigen::Isometry3d>& X_HL = hf->X_HL[static_cast<size_t>(i)];
     Eigen::Isometry3d X = hand.X_HP();
-    for (int k = 0; k < kFingerJoints; ++k) {
+    for (size_t k = 0; k < finger.joints.size(); ++k) {
       const RevoluteJoint& j = finger.joints[k].joint;
-      X = X * j.X_PJ * Eigen::AngleAxisd(qh[HandJointIndex(i, k)], j.axis_J);
-      hf->X_HL[i][k] = X;
+      X = X * j.X_PJ * Eigen::AngleAxisd(qh[hand.JointIndex(i, static_cast<int>(k))], j.axis_J);
+      X_HL[k] = X;
     }
-    hf->X_HT[i] = X * finger.X_LT;
+    hf->X_HT[static_cast<size_t>(i)] = X * finger.X_LT;
   }
 }
 
 void WorldImpl::PlaceAll(const ArmFrames& af, const HandFrames& hf) {
   for (int i = 0; i < kArmDof; ++i) PlaceBody(arm[i], af.X_WL[i + 1]);
   const Eigen::Isometry3d X_WH = af.X_WL[kArmDof] * robot().X_FH;
-  for (int j = 0; j < kHandJoints; ++j) {
-    PlaceBody(fingers[j], X_WH * hf.X_HL[j / kFingerJoints][j % kFingerJoints]);
+  const HandModel& hand = robot().hand;
+  for (int j = 0; j < hand.joint_count(); ++j) {
+    PlaceBody(fingers[static_cast<size_t>(j)],
+              X_WH * hf.X_HL[static_cast<size_t>(hand.joint_finger(j))]
+                            [static_cast<size_t>(hand.joint_in_finger(j))]);
   }
   for (int i = 0; i < kArmDof; ++i) {
     dBodySetLinearVel(arm[i].body, 0, 0, 0);

@@ -220,18 +220,21 @@ void Writer::Robot() {
     Shapes(depth + 1, r.arm.link(i), MjcfRole::kArm, -1);
   }
   OpenBody(depth, r.hand.mount().name, r.X_FH, r.hand.mount().inertia);
-  Shapes(depth + 1, r.hand.mount(), MjcfRole::kPalm, kHandJoints);
+  const int palm = r.hand.joint_count();  // the palm's and mount's hand index
+  Shapes(depth + 1, r.hand.mount(), MjcfRole::kPalm, palm);
   OpenBody(depth + 1, r.hand.palm().name, r.hand.X_HP(), r.hand.palm().inertia);
-  Shapes(depth + 2, r.hand.palm(), MjcfRole::kPalm, kHandJoints);
-  for (int f = 0; f < kFingers; ++f) {
+  Shapes(depth + 2, r.hand.palm(), MjcfRole::kPalm, palm);
+  for (int f = 0; f < r.hand.finger_count(); ++f) {
     const Finger& finger = r.hand.finger(f);
-    for (int k = 0; k < kFingerJoints; ++k) {
-      OpenBody(depth + 2 + k, finger.links[k].name, finger.joints[k].joint.X_PJ,
-               finger.links[k].inertia);
-      Joint(depth + 3 + k, finger.joints[k].joint, true);
-      Shapes(depth + 3 + k, finger.links[k], MjcfRole::kFinger, HandJointIndex(f, k));
+    const int joints = static_cast<int>(finger.joints.size());
+    for (int k = 0; k < joints; ++k) {
+      const size_t kk = static_cast<size_t>(k);
+      OpenBody(depth + 2 + k, finger.links[kk].name, finger.joints[kk].joint.X_PJ,
+               finger.links[kk].inertia);
+      Joint(depth + 3 + k, finger.joints[kk].joint, true);
+      Shapes(depth + 3 + k, finger.links[kk], MjcfRole::kFinger, r.hand.JointIndex(f, k));
     }
-    for (int k = kFingerJoints - 1; k >= 0; --k) Line(depth + 2 + k, "</body>");
+    for (int k = joints - 1; k >= 0; --k) Line(depth + 2 + k, "</body>");
   }
   Line(depth + 1, "</body>");
   Line(depth, "</body>");
@@ -260,8 +263,8 @@ void Writer::Object(const Placement& placement) {
   Line(2, "</body>");
 }
 
-// one servo per joint (the file comment of mjcf_export.hpp): arm joints S1..W2, then the 20
-// hand joints in HandJointVector order.
+// one servo per joint (the file comment of mjcf_export.hpp): arm joints S1..W2, then every
+// hand joint in HandJointVector order (20 for the Gifu).
 void Writer::Actuators() {
   const SimulationOptions& so = model_.options();
   const RobotModel& r = robot();
@@ -277,7 +280,7 @@ void Writer::Actuators() {
   for (int i = 0; i < kArmDof; ++i) {
     servo(r.arm.joint(i).name, r.arm.max_effort()[i], so.arm_servo_gain, MujocoServo::kStiff);
   }
-  for (int j = 0; j < kHandJoints; ++j) {
+  for (int j = 0; j < r.hand.joint_count(); ++j) {
     const RevoluteJoint& joint = r.hand.joint(j).joint;
     servo(joint.name, joint.max_effort * so.hand_effort_scale * options_.physics.hand_effort,
           so.finger_servo_gain, options_.servo);
@@ -309,7 +312,7 @@ void Writer::Keyframes(const Eigen::Isometry3d& X_WO, const JointTrajectory& tra
     std::string joints;
     for (int i = 0; i < kArmDof; ++i) joints += Num(s.arm[i]) + " ";
     const HandJointVector h = HandJointPositions(robot().hand, s.hand);
-    for (int j = 0; j < kHandJoints; ++j) joints += Num(h[j]) + " ";
+    for (int j = 0; j < robot().hand.joint_count(); ++j) joints += Num(h[j]) + " ";
     Line(2, "<key time=\"" + Num(s.t) + "\" qpos=\"" + joints + object + "\" ctrl=\"" + joints +
                 "\"/>");
   }

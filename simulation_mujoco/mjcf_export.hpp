@@ -85,7 +85,8 @@ struct MjcfGeom {
   std::string name;
   MjcfRole role = MjcfRole::kTable;
   std::string link;     ///< the robot link (or "table", or the object's name)
-  int hand_index = -1;  ///< finger link's HandJointVector index; kHandJoints for palm and mount
+  int hand_index = -1;  ///< finger link's HandJointVector index; the hand's joint count for
+                        ///< the palm and mount
 };
 
 /// The exported model: the MJCF text and its collision geoms.

@@ -90,7 +90,7 @@ TrialResult RunMujocoTrial(const SimulationModel& model, const JointTrajectory& 
   const std::optional<TrialVerdict> early =
       PlayTrial(model, trajectory, trial, mjcf_options.time_step, &data, &watch, &result);
 
-  FinishTrial(data, watch, t_motion, early, trial, &result);
+  FinishTrial(data, model.robot().hand, watch, t_motion, early, trial, &result);
   result.statistics = data.statistics();
   result.wall_time = SecondsSince(wall_start);
   result.cpu_time = ThreadCpuSeconds() - cpu_start;

@@ -110,9 +110,10 @@ struct MujocoModel::Impl {
   const SimulationModel* model = nullptr;
   mjModel* m = nullptr;
   std::array<int, kArmDof> arm_qpos{}, arm_dof{}, arm_body{};
-  std::array<int, kHandJoints> hand_qpos{}, hand_dof{}, hand_body{};
+  // by hand joint (HandJointVector order), sized by Index
+  std::vector<int> hand_qpos, hand_dof, hand_body;
   std::array<int, kArmDof> arm_actuator{};
-  std::array<int, kHandJoints> hand_actuator{};
+  std::vector<int> hand_actuator;
   int object_body = -1, object_qpos = -1, object_dof = -1, mount_body = -1;
   std::vector<MjcfGeom> geom_roles;  // by MuJoCo geom id
   std::vector<int> geom_has_role;
@@ -138,12 +139,14 @@ void MujocoModel::Impl::Index(const MjcfModel& mjcf) {
     arm_body[i] = Id(mjOBJ_BODY, r.arm.link(i + 1).name);
     arm_actuator[i] = Id(mjOBJ_ACTUATOR, r.arm.joint(i).name);
   }
-  for (int k = 0; k < kHandJoints; ++k) {
-    const int j = Id(mjOBJ_JOINT, r.hand.joint(k).joint.name);
+  const size_t n = static_cast<size_t>(r.hand.joint_count());
+  for (std::vector<int>* v : {&hand_qpos, &hand_dof, &hand_body, &hand_actuator}) v->assign(n, 0);
+  for (size_t k = 0; k < n; ++k) {
+    const int j = Id(mjOBJ_JOINT, r.hand.joint(static_cast<int>(k)).joint.name);
     hand_qpos[k] = m->jnt_qposadr[j];
     hand_dof[k] = m->jnt_dofadr[j];
     hand_body[k] = m->jnt_bodyid[j];
-    hand_actuator[k] = Id(mjOBJ_ACTUATOR, r.hand.joint(k).joint.name);
+    hand_actuator[k] = Id(mjOBJ_ACTUATOR, r.hand.joint(static_cast<int>(k)).joint.name);
   }
   object_body = Id(mjOBJ_BODY, "object");
   const int oj = Id(mjOBJ_JOINT, "object");
@@ -197,7 +200,7 @@ struct MujocoData::Impl {
   const MujocoModel::Impl* mm = nullptr;
   mjModel* m_own = nullptr;  // the model's copy whose servo parameters Drive() switches
   mjData* d = nullptr;
-  std::array<Servo, kArmDof + kHandJoints> servos;
+  std::vector<Servo> servos;  // the arm's, then the hand's joints (MakeServos)
   Vector7d arm_target = Vector7d::Zero(), arm_ff = Vector7d::Zero();
   HandVector hand_target = HandVector::Zero();
   int violation = -1;
@@ -222,8 +225,9 @@ struct MujocoData::Impl {
 
 void MujocoData::Impl::MakeServos() {
   const SimulationOptions& so = mm->model->options();
-  for (int k = 0; k < kArmDof + kHandJoints; ++k) {
-    Servo& s = servos[k];
+  servos.assign(static_cast<size_t>(kArmDof + robot().hand.joint_count()), Servo{});
+  for (int k = 0; k < static_cast<int>(servos.size()); ++k) {
+    Servo& s = servos[static_cast<size_t>(k)];
     const bool arm = k < kArmDof;
     s.actuator = arm ? mm->arm_actuator[k] : mm->hand_actuator[k - kArmDof];
     s.qpos = arm ? mm->arm_qpos[k] : mm->hand_qpos[k - kArmDof];
@@ -281,20 +285,20 @@ void MujocoData::Impl::Control() {
     Drive(servos[i], v);
   }
   const HandModel& hand = robot().hand;
-  for (int j = 0; j < kHandJoints; ++j) {
+  for (int j = 0; j < hand.joint_count(); ++j) {
     const HandJoint& hj = hand.joint(j);
-    const double qj = q(mm->hand_qpos[j]);
+    const double qj = q(mm->hand_qpos[static_cast<size_t>(j)]);
     double target = 0.0;
     if (hj.is_actuated()) {
       target = hand_target[hj.actuated];
     } else {
-      // the DIP coupling: its target is the PIP's measured angle.
+      // a coupled joint (the Gifu's DIP): its target follows its source's measured angle.
       const JointCoupling& c = *hj.coupling;
-      target = c.multiplier * q(mm->hand_qpos[c.source]) + c.offset;
+      target = c.multiplier * q(mm->hand_qpos[static_cast<size_t>(c.source)]) + c.offset;
     }
     const double v = std::clamp(so.finger_servo_gain * (target - qj), -hj.joint.max_velocity,
                                 hj.joint.max_velocity);
-    Drive(servos[kArmDof + j], v);
+    Drive(servos[static_cast<size_t>(kArmDof + j)], v);
   }
 }
 
@@ -374,7 +378,9 @@ void MujocoData::SetRobotPositions(const Vector7d& arm_q, const HandVector& hand
   mjData* d = impl_->d;
   const HandJointVector h = HandJointPositions(impl_->robot().hand, hand_f);
   for (int i = 0; i < kArmDof; ++i) d->qpos[mm.arm_qpos[i]] = arm_q[i];
-  for (int j = 0; j < kHandJoints; ++j) d->qpos[mm.hand_qpos[j]] = h[j];
+  for (size_t j = 0; j < mm.hand_qpos.size(); ++j) {
+    d->qpos[mm.hand_qpos[j]] = h[static_cast<Eigen::Index>(j)];
+  }
   for (int k = 0; k < impl_->m()->nv; ++k) d->qvel[k] = 0.0;
   impl_->arm_target = arm_q;
   impl_->arm_ff.setZero();

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 
+#include "common/demand.hpp"
 #include "common/format.hpp"
 
 namespace graspsynth {
@@ -16,25 +17,22 @@ constexpr double kLoadBearingLink = 0.1;
 // friction use is capped here: a contact that rubs without pushing has no finite use.
 constexpr double kMaxFrictionUse = 10.0;
 
-// the finger (kFingerNames order) or kFingers for the palm and mount of a hand link index.
-int FingerOf(int hand_link) {
-  return hand_link >= kHandJoints || hand_link < 0 ? kFingers : hand_link / kFingerJoints;
-}
-
-bool IsFingertip(int hand_link) {
-  return hand_link >= 0 && hand_link < kHandJoints &&
-         hand_link % kFingerJoints == kFingerJoints - 1;
+// whether a hand link index (HandJointVector order; the joint count for the palm and mount) is
+// a fingertip: its finger's distal link.
+bool IsFingertip(const HandModel& hand, int hand_link) {
+  return hand_link >= 0 && hand_link < hand.joint_count() && hand.is_distal(hand_link);
 }
 
 // the links' share of the force and whether each carrying one is a fingertip.
-void MeasureLinks(const std::vector<HandObjectContact>& contacts, double total, HoldMargin* m) {
+void MeasureLinks(const HandModel& hand, const std::vector<HandObjectContact>& contacts,
+                  double total, HoldMargin* m) {
   std::map<int, double> per_link;
   for (const HandObjectContact& c : contacts) per_link[c.hand_link] += c.f_W.norm();
   bool all_tips = true;
   for (const auto& [link, force] : per_link) {
     if (force < kLoadBearingLink * total) continue;
     ++m->load_bearing_links;
-    all_tips = all_tips && IsFingertip(link);
+    all_tips = all_tips && IsFingertip(hand, link);
   }
   m->fingertips_only = m->load_bearing_links > 0 && all_tips;
 }
@@ -55,7 +53,7 @@ bool HoldMarginOptions::IsValid(std::string* why) const {
   if (!(std::isfinite(min_epsilon_weight) && min_epsilon_weight >= 0.0)) {
     return fail("min_epsilon_weight (>= 0)", min_epsilon_weight);
   }
-  if (min_load_bearing_links < 0 || min_load_bearing_links > kHandJoints + 1) {
+  if (min_load_bearing_links < 0 || min_load_bearing_links > kMaxLoadBearingLinks) {
     return fail("min_load_bearing_links (in [0, 21])", min_load_bearing_links);
   }
   if (!(std::isfinite(max_friction_use_mean) && max_friction_use_mean > 0.0)) {
@@ -99,13 +97,15 @@ HoldMargin MeasureHoldMargin(const SimulationModel& model, const TrialResult& tr
   m.load_share = h.load_share;
   double total = 0.0;
   for (const HandObjectContact& c : trial.end_contacts) {
-    ++m.contacts[static_cast<size_t>(FingerOf(c.hand_link))];
+    const int group = LoadShareGroup(model.robot().hand, c.hand_link);
+    GS_DEMAND(group >= 0, "a hand link outside the load share's groups");
+    ++m.contacts[static_cast<size_t>(group)];
     total += c.f_W.norm();
   }
   const double weight = model.object_inertia().mass * model.options().gravity;
   if (trial.end_contacts.empty() || total <= 0.0 || weight <= 0.0) return m;
   m.measured = true;
-  MeasureLinks(trial.end_contacts, total, &m);
+  MeasureLinks(model.robot().hand, trial.end_contacts, total, &m);
 
   // the load-bearing contacts: their friction use and their force-scaled cones (a cone of
   // almost no normal force adds a sliver of wrenches that only blurs the hull).

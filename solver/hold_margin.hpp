@@ -21,6 +21,7 @@
 #include "kinematics/hand_model.hpp"
 #include "simulation/simulation_model.hpp"
 #include "simulation/trial.hpp"
+#include "simulation/trial_judge.hpp"
 #include "solver/grasp_quality.hpp"
 
 namespace graspsynth {
@@ -37,12 +38,12 @@ struct HoldMargin {
   double slip_mm = 0.0;
   double slip_deg = 0.0;
   double end_tilt_deg = 0.0;  ///< the object's up axis from vertical at the end, deg
-  /// Object-hand contact points at the end per finger (kFingerNames order), then the palm
-  /// (and hand mount).
-  std::array<int, kFingers + 1> contacts{};
+  /// Object-hand contact points at the end per group of kLoadShareGroups (fingers by name,
+  /// then the palm and hand mount).
+  std::array<int, kLoadShareGroups.size()> contacts{};
   /// Share of the sum of the contacts' force magnitudes per finger, then the palm (sums to 1;
   /// all 0 without force) (HoldQuality::load_share).
-  std::array<double, kFingers + 1> load_share{};
+  std::array<double, kLoadShareGroups.size()> load_share{};
   /// Hand links (finger segments, the palm) whose contacts together carry at least 10% of the
   /// contact force.
   int load_bearing_links = 0;
@@ -74,6 +75,10 @@ struct HoldMargin {
   double normal_force_weight = 0.0;
 };
 
+/// The most load-bearing links a threshold may ask for: the Gifu's 20 finger links and the palm
+/// (a hand with fewer links cannot meet a threshold above its count).
+inline constexpr int kMaxLoadBearingLinks = 21;
+
 /// The thresholds of a hold margin, and whether the physics gate requires them. Each one's reason
 /// (HoldMarginThresholds) comes from the pan study's grasps replayed in MuJoCo (both servo
 /// mappings): of the 32 grasps of `run`'s study that ODE lifts, 13 fail their hold in MuJoCo
@@ -93,7 +98,8 @@ struct HoldMarginOptions {
   /// Smallest epsilon_weight, object weights, >= 0. 0.05: the 3 study grasps below it that ODE
   /// lifts all fail their hold in MuJoCo; none that holds in MuJoCo is below 0.08.
   double min_epsilon_weight = 0.05;
-  /// Fewest load-bearing links, in [0, 21]. 2: one link alone holds by friction at a point
+  /// Fewest load-bearing links, in [0, kMaxLoadBearingLinks]. 2: one link alone holds by
+  /// friction at a point
   /// (every study grasp has 3 or more).
   int min_load_bearing_links = 2;
   /// Largest friction_use_mean, > 0. 1: beyond it the hold leans on friction outside the
@@ -139,11 +145,10 @@ template <class Json, class Round>
 Json HoldMarginJson(const HoldMargin& m, const Round& round) {
   Json contacts = Json::object();
   Json share = Json::object();
-  for (int k = 0; k <= kFingers; ++k) {
-    const std::string name =
-        k < kFingers ? std::string(kFingerNames[static_cast<size_t>(k)]) : "palm";
-    contacts[name] = m.contacts[static_cast<size_t>(k)];
-    share[name] = round(m.load_share[static_cast<size_t>(k)]);
+  for (size_t k = 0; k < kLoadShareGroups.size(); ++k) {
+    const std::string name(kLoadShareGroups[k]);
+    contacts[name] = m.contacts[k];
+    share[name] = round(m.load_share[k]);
   }
   return Json{{"measured", m.measured},
               {"slip_mm", round(m.slip_mm)},

@@ -45,8 +45,8 @@ void VisitFields(V& v, Row& r) {
   v(Field("used_placement"), r.used_placement);
 }
 
-/// HoldMargin's fields (mm, deg, object weights; contacts and load_share: the fingers in
-/// kFingerNames order, then the palm). The reports write HoldMarginJson.
+/// HoldMargin's fields (mm, deg, object weights; contacts and load_share: the groups of
+/// kLoadShareGroups, fingers then palm). The reports write HoldMarginJson.
 template <class V, class Row>
 requires SameStruct<Row, HoldMargin>
 void VisitFields(V& v, Row& r) {

@@ -26,9 +26,8 @@ inline double RoundForReport(double x) {
 template <class Json>
 Json HoldQualityJson(const HoldQuality& h) {
   Json share = Json::object();
-  for (int k = 0; k <= kFingers; ++k) {
-    share[k < kFingers ? std::string(kFingerNames[static_cast<size_t>(k)]) : "palm"] =
-        RoundForReport(h.load_share[static_cast<size_t>(k)]);
+  for (size_t k = 0; k < kLoadShareGroups.size(); ++k) {
+    share[std::string(kLoadShareGroups[k])] = RoundForReport(h.load_share[k]);
   }
   return Json{{"end_tilt_deg", RoundForReport(h.end_tilt / kDeg)},
               {"max_tilt_deg", RoundForReport(h.max_tilt / kDeg)},

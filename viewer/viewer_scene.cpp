@@ -127,9 +127,11 @@ ViewerCamera ParseViewerCamera(std::string_view text, const ViewerCamera& defaul
   return camera;
 }
 
+int ViewerLinkCount(const RobotModel& robot) { return kArmDof + 1 + 2 + robot.hand.joint_count(); }
+
 std::vector<ViewerBody> ViewerRobotBodies(const RobotModel& robot) {
   std::vector<ViewerBody> bodies;
-  bodies.reserve(kViewerLinkCount);
+  bodies.reserve(static_cast<size_t>(ViewerLinkCount(robot)));
   bodies.push_back({robot.arm.base().name, "arm", robot.arm.base().shapes});
   for (int i = 1; i <= kArmDof; ++i) {
     bodies.push_back({robot.arm.link(i).name, "arm", robot.arm.link(i).shapes});
@@ -196,7 +198,7 @@ std::vector<Eigen::Isometry3d> ViewerLinkPoses(const RobotModel& robot,
   const Eigen::Isometry3d X_WH = arm.X_WL[kArmDof] * robot.X_FH;
 
   std::vector<Eigen::Isometry3d> poses;
-  poses.reserve(kViewerLinkCount);
+  poses.reserve(static_cast<size_t>(ViewerLinkCount(robot)));
   poses.insert(poses.end(), arm.X_WL.begin(), arm.X_WL.end());
   poses.push_back(X_WH);
   poses.push_back(X_WH * hand.X_HP);
@@ -208,7 +210,7 @@ std::vector<Eigen::Isometry3d> ViewerLinkPoses(const RobotModel& robot,
 
 std::string ViewerFrameJson(const RobotModel& robot, const ViewerState& state) {
   std::string out;
-  out.reserve(64 * kViewerLinkCount + 128 + state.text.size());
+  out.reserve(64 * static_cast<size_t>(ViewerLinkCount(robot)) + 128 + state.text.size());
   out.append("{\"t\":");
   AppendNumber(state.t, &out);
   out.append(",\"links\":[");

@@ -22,7 +22,8 @@
 /// it); `sphere` with `radius`. Metres; poses are [x, y, z, qw, qx, qy, qz] (unit quaternion, w
 /// first), the shape in its body's frame. "links" are the robot's bodies in the order of
 /// ViewerLinkPoses: the arm's base_link and S1_link .. W2_link (8), the hand mount, the palm,
-/// then link1 .. link4 of thumb, index, middle, ring, little (20): kViewerLinkCount in all. A
+/// then every finger's links in the hand's order (the Gifu: link1 .. link4 of thumb, index,
+/// middle, ring, little, 20): ViewerLinkCount(robot) in all. A
 /// body without geometry (a finger knuckle) has no shapes but keeps its place. The table is
 /// static (its pose is in world); the object's pose comes with every frame.
 ///
@@ -51,8 +52,9 @@ namespace graspsynth::viewer {
 /// The `format` value of the scene document.
 inline constexpr std::string_view kViewerSceneFormat = "graspsynth-viewer-scene/1";
 
-/// Number of robot bodies in the scene and in every frame: 8 arm, mount, palm, 20 phalanges.
-inline constexpr int kViewerLinkCount = kArmDof + 1 + 2 + kFingers * kFingerJoints;
+/// Number of robot bodies in the scene and in every frame: 8 arm, mount, palm, then every
+/// phalanx of `robot`'s hand (20 for the Gifu: 30 in all).
+int ViewerLinkCount(const RobotModel& robot);
 
 /// The start view of the page (the user may orbit from there).
 struct ViewerCamera {
@@ -81,7 +83,7 @@ struct ViewerBody {
   std::vector<CollisionShape> shapes;
 };
 
-/// The robot's bodies in the scene's order (see the file comment): kViewerLinkCount of them.
+/// The robot's bodies in the scene's order (see the file comment): ViewerLinkCount(robot) of them.
 std::vector<ViewerBody> ViewerRobotBodies(const RobotModel& robot);
 
 /// The pan in its frame O: the body cylinder and the handle bar (as the collision scene and
@@ -95,7 +97,7 @@ std::string ViewerSceneJson(const RobotModel& robot, const SceneModel& scene,
 /// World poses X_WL of the robot's bodies in the scene's order at arm joints q (rad) and
 /// actuated hand joints f (rad, f0..f15): the arm's link frames (ArmLinkFrames), then
 /// X_WH = X_WF * X_FH for the mount, X_WH * X_HP for the palm and X_WH * X_HL for each
-/// phalanx (HandLinkFrames). kViewerLinkCount poses.
+/// phalanx (HandLinkFrames). ViewerLinkCount(robot) poses.
 std::vector<Eigen::Isometry3d> ViewerLinkPoses(const RobotModel& robot,
                                                const Eigen::Ref<const Vector7d>& q,
                                                const Eigen::Ref<const HandVector>& f);

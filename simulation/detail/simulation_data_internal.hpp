@@ -46,7 +46,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 struct GeomInfo {
   Role role = Role::kTable;
   std::string link;       ///< name of the link the geometry belongs to
-  int hand_index = -1;    ///< HandJointVector index of a finger link, 20 for the palm and mount
+  int hand_index = -1;    ///< HandJointVector index of a finger link; the hand's joint count
+                          ///< (HandModel::joint_count(), 20 for the Gifu) for the palm and mount
   double friction = 0.0;  ///< an object part's Coulomb coefficient with the fingers
   int id = 0;             ///< creation order (names a geom's contacts from step to step)
 };
@@ -173,13 +174,14 @@ struct WorldImpl {
   // arm bodies: arm[0..5] = links 1..6 (S1..W1), arm[6] = the wrist (W2 + mount + palm).
   std::array<BodyPart, kArmDof> arm;
   std::array<dJointID, kArmDof> arm_joints{};
-  // finger links, finger-major (HandJointVector order), and their joints.
-  std::array<BodyPart, kHandJoints> fingers;
-  std::array<dJointID, kHandJoints> finger_joints{};
+  // finger links, finger-major (HandJointVector order), and their joints (the model's hand
+  // joint count of each, sized by Build).
+  std::vector<BodyPart> fingers;
+  std::vector<dJointID> finger_joints;
   BodyPart object;
   // Each finger's base hinge hangs from a kinematic mount of its own when the wrist body is
   // kinematic (world_building.cpp, SyncMounts); null for none.
-  std::array<dBodyID, kFingers> mounts{};
+  std::vector<dBodyID> mounts;  // by finger
 
   // arm joint limits and caps
   Vector7d arm_lower, arm_upper, arm_vmax, arm_fmax;
@@ -189,9 +191,11 @@ struct WorldImpl {
   // hinges' parameters, for the structured step).
   HandJointVector hand_stop_lo, hand_stop_hi, hand_vel;
   // the finger hinges' frames as ODE keeps them (for the structured step's rows).
-  std::array<HingeFrame, kHandJoints> hinges;
+  std::vector<HingeFrame> hinges;
 
   void Build(const Vector7d& arm_q, const HandVector& hand_f);
+  /// Sizes every per-finger and per-hand-joint member to the model's hand.
+  void SizeHand();
   void CreateWorld();
   void AddStaticGeometry();
   void AddRobotBodies();
@@ -241,11 +245,12 @@ struct WorldImpl {
   double violation_value = 0.0;
   // measured (dynamic) or modelled (kinematic) joint state
   Vector7d q_arm = Vector7d::Zero();
-  HandJointVector q_hand = HandJointVector::Zero();
+  HandJointVector q_hand;     // sized by Build
   bool hand_dynamic = false;  // set by the first Step()
   // link poses of the current state, for kinematic placement
   ArmFrames arm_frames;
   HandFrames hand_frames;
+  HandFrames next_hand_frames;  // StepKinematically's scratch
   double time = 0.0;
   StepStatistics stats;
   bool broken = false;  // ODE raised an error inside a step of this world
@@ -284,11 +289,11 @@ struct WorldImpl {
   struct BodyInertia {
     Eigen::Matrix3d I_B = Eigen::Matrix3d::Zero(), inv_I_B = Eigen::Matrix3d::Zero();
   };
-  std::array<BodyInertia, kHandJoints + 1> inertias;
+  std::vector<BodyInertia> inertias;  // the hand's joint count + 1
   std::vector<ConstraintRow> rows;
   // the first row of each finger hinge (the last entry: the first contact row), and of each
   // pending contact.
-  std::array<int, kHandJoints + 1> hinge_row0{};
+  std::vector<int> hinge_row0;  // the hand's joint count + 1
   std::vector<int> contact_row0;
   ConstraintSolverData solver;
 

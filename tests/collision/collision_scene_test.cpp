@@ -389,9 +389,9 @@ HandLowest LowestHandPoint(const Eigen::Isometry3d& X_WH, const HandVector& f) {
   };
   visit(hand.mount(), X_WH);
   visit(hand.palm(), X_WH * frames.X_HP);
-  for (int i = 0; i < kFingers; ++i) {
-    for (int k = 0; k < kFingerJoints; ++k)
-      visit(hand.finger(i).links[k], X_WH * frames.X_HL[i][k]);
+  for (int j = 0; j < hand.joint_count(); ++j) {
+    visit(hand.link(j), X_WH * frames.X_HL[static_cast<size_t>(hand.joint_finger(j))]
+                                          [static_cast<size_t>(hand.joint_in_finger(j))]);
   }
   return best;
 }

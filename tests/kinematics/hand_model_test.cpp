@@ -2,10 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "common/errors.hpp"
 #include "kinematics/robot_description.hpp"
@@ -23,6 +25,11 @@ constexpr int kIndex = 1;
 constexpr int kMiddle = 2;
 constexpr int kRing = 3;
 constexpr int kLittle = 4;
+// the Gifu's layout, written out: five fingers of four joints.
+constexpr int kGifuFingers = 5;
+constexpr int kGifuFingerJoints = 4;
+const std::array<std::string, kGifuFingers> kGifuNames = {"thumb", "index", "middle", "ring",
+                                                          "little"};
 
 const HandModel& Hand() {
   static const RobotModel robot = LoadRobotModel(testing::ShippedUrdfPath());
@@ -37,7 +44,7 @@ struct FingerLayout {
   Eigen::Vector3d p_HM;  // MCP point in H
   double l1, l2, l3;     // phalanx lengths, m
 };
-const std::array<FingerLayout, kFingers> kLayout = {{
+const std::array<FingerLayout, kGifuFingers> kLayout = {{
     {Eigen::Vector3d::Zero(), 0.045, 0.032, 0.028},  // thumb: see ThumbBase() / ThumbAxis()
     {Eigen::Vector3d(0, 0.033, 0.098), 0.045, 0.028, 0.023},
     {Eigen::Vector3d(0, 0.011, 0.100), 0.045, 0.028, 0.023},
@@ -67,7 +74,17 @@ TEST(HandModel, ActuatedJointsAreNumberedThumbFirst) {
     EXPECT_EQ(Hand().actuated_names()[k], expected[k]) << "f" << k;
     EXPECT_EQ(Hand().joint(Hand().actuated_joint_index(k)).joint.name, expected[k]);
   }
-  for (int i = 0; i < kFingers; ++i) EXPECT_EQ(Hand().finger(i).name, kFingerNames[i]);
+  ASSERT_EQ(Hand().finger_count(), kGifuFingers);
+  ASSERT_EQ(Hand().joint_count(), kGifuFingers * kGifuFingerJoints);
+  for (int i = 0; i < kGifuFingers; ++i) EXPECT_EQ(Hand().finger(i).name, kGifuNames[i]);
+  EXPECT_EQ(Hand().finger_names(), std::vector<std::string>(kGifuNames.begin(), kGifuNames.end()));
+  for (int j = 0; j < Hand().joint_count(); ++j) {
+    EXPECT_EQ(Hand().joint_finger(j), j / kGifuFingerJoints);
+    EXPECT_EQ(Hand().joint_in_finger(j), j % kGifuFingerJoints);
+    EXPECT_EQ(Hand().JointIndex(j / kGifuFingerJoints, j % kGifuFingerJoints), j);
+    EXPECT_EQ(Hand().is_distal(j), j % kGifuFingerJoints == kGifuFingerJoints - 1);
+    EXPECT_EQ(&Hand().link(j), &Hand().finger(j / 4).links[static_cast<size_t>(j % 4)]);
+  }
 }
 
 TEST(HandModel, LimitsSpeedsAndEffortsAreTheDocumentedOnes) {
@@ -106,14 +123,14 @@ TEST(HandModel, LimitsSpeedsAndEffortsAreTheDocumentedOnes) {
 }
 
 TEST(HandModel, EachDipFollowsItsPipOneToOne) {
-  for (int i = 0; i < kFingers; ++i) {
-    for (int k = 0; k < kFingerJoints; ++k) {
+  for (int i = 0; i < kGifuFingers; ++i) {
+    for (int k = 0; k < kGifuFingerJoints; ++k) {
       const HandJoint& hj = Hand().finger(i).joints[k];
       const bool dip = i != kThumb && k == 3;
       EXPECT_EQ(hj.is_actuated(), !dip) << hj.joint.name;
       if (!dip) continue;
       ASSERT_TRUE(hj.coupling.has_value());
-      EXPECT_EQ(hj.coupling->source, HandJointIndex(i, 2)) << hj.joint.name;
+      EXPECT_EQ(hj.coupling->source, Hand().JointIndex(i, 2)) << hj.joint.name;
       EXPECT_DOUBLE_EQ(hj.coupling->multiplier, 1.0);
       EXPECT_DOUBLE_EQ(hj.coupling->offset, 0.0);
     }
@@ -134,10 +151,10 @@ TEST(HandJointPositions, CopiesTheActuatedJointsAndDrivesEachDipFromItsPip) {
   HandVector f;
   for (int k = 0; k < kHandDof; ++k) f[k] = u(rng);
   const HandJointVector q = HandJointPositions(Hand(), f);
-  for (int k = 0; k < 4; ++k) EXPECT_EQ(q[HandJointIndex(kThumb, k)], f[k]);
+  for (int k = 0; k < 4; ++k) EXPECT_EQ(q[Hand().JointIndex(kThumb, k)], f[k]);
   for (int i = kIndex; i <= kLittle; ++i) {
-    for (int k = 0; k < 3; ++k) EXPECT_EQ(q[HandJointIndex(i, k)], f[F(i, k)]);
-    EXPECT_EQ(q[HandJointIndex(i, 3)], f[F(i, 2)]);
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(q[Hand().JointIndex(i, k)], f[F(i, k)]);
+    EXPECT_EQ(q[Hand().JointIndex(i, 3)], f[F(i, 2)]);
   }
 }
 
@@ -147,7 +164,7 @@ TEST(HandFk, AllJointsZeroPutTheFingersStraightAlongZ) {
   for (int i = kIndex; i <= kLittle; ++i) {
     const FingerLayout& l = kLayout[i];
     const Eigen::Vector3d tip = l.p_HM + Eigen::Vector3d(0, 0, l.l1 + l.l2 + l.l3);
-    EXPECT_TRUE(MatricesNear(frames.X_HT[i].translation(), tip, 1e-12)) << kFingerNames[i];
+    EXPECT_TRUE(MatricesNear(frames.X_HT[i].translation(), tip, 1e-12)) << kGifuNames[i];
     EXPECT_TRUE(MatricesNear(frames.X_HT[i].linear(), Eigen::Matrix3d::Identity(), 1e-12));
     // the joints sit at the MCP and at the end of each phalanx.
     EXPECT_TRUE(MatricesNear(frames.X_HL[i][1].translation(), l.p_HM, 1e-12));
@@ -167,7 +184,7 @@ TEST(HandFk, IndexMcpFlexionOfNinetyDegreesPointsTheIndexAlongX) {
   const FingerLayout& l = kLayout[kIndex];
   const Eigen::Vector3d tip = l.p_HM + Eigen::Vector3d(l.l1 + l.l2 + l.l3, 0, 0);
   EXPECT_TRUE(MatricesNear(frames.X_HT[kIndex].translation(), tip, 1e-12));
-  for (int k = 1; k < kFingerJoints; ++k) {
+  for (int k = 1; k < kGifuFingerJoints; ++k) {
     EXPECT_TRUE(
         MatricesNear(frames.X_HL[kIndex][k].linear().col(2), Eigen::Vector3d::UnitX(), 1e-12));
   }
@@ -201,8 +218,7 @@ TEST(HandFk, AbductionTurnsTheFingerAboutX) {
     // positive ab/adduction turns the finger toward -y.
     const Eigen::Vector3d tip =
         l.p_HM + length * Eigen::Vector3d(0, -std::sin(angle), std::cos(angle));
-    EXPECT_TRUE(MatricesNear(frames.X_HT[finger].translation(), tip, 1e-12))
-        << kFingerNames[finger];
+    EXPECT_TRUE(MatricesNear(frames.X_HT[finger].translation(), tip, 1e-12)) << kGifuNames[finger];
   }
   // flexion turns about the abducted finger's own y axis: at 90 deg the finger points along +x
   // whatever its abduction.
@@ -278,8 +294,8 @@ TEST(HandFk, ThumbAndFingertipsPinchABar) {
   const double gap = 0.024 + 2 * 0.008;
   for (int i : {kIndex, kMiddle}) {
     const Eigen::Vector3d d = frames.X_HT[i].translation() - thumb;
-    EXPECT_NEAR(d.x(), 0.0, 0.003) << kFingerNames[i];
-    EXPECT_NEAR(d.z(), gap, 0.003) << kFingerNames[i];
+    EXPECT_NEAR(d.x(), 0.0, 0.003) << kGifuNames[i];
+    EXPECT_NEAR(d.z(), gap, 0.003) << kGifuNames[i];
     // the finger pads face the thumb (-z), the thumb pad faces the fingers (+z).
     EXPECT_LT(frames.X_HT[i].linear().col(0).z(), -0.9);
   }
@@ -310,10 +326,11 @@ TEST(HandFk, FingertipsMoveContinuously) {
     const HandVector g = (f + df).cwiseMax(hand.lower()).cwiseMin(hand.upper());
     const HandJointVector dq = HandJointPositions(hand, g) - HandJointPositions(hand, f);
     const HandFrames next = Fk(g);
-    for (int i = 0; i < kFingers; ++i) {
+    for (int i = 0; i < kGifuFingers; ++i) {
       const double moved = (next.X_HT[i].translation() - previous.X_HT[i].translation()).norm();
-      const double bound = 0.12 * dq.segment<kFingerJoints>(kFingerJoints * i).cwiseAbs().sum();
-      EXPECT_LE(moved, bound + 1e-12) << kFingerNames[i] << " at step " << n;
+      const double bound =
+          0.12 * dq.segment(hand.JointIndex(i, 0), kGifuFingerJoints).cwiseAbs().sum();
+      EXPECT_LE(moved, bound + 1e-12) << kGifuNames[i] << " at step " << n;
       largest = std::max(largest, moved);
     }
     f = g;
@@ -329,12 +346,12 @@ TEST(HandFk, LinkFramesChainThroughTheJoints) {
   for (int k = 0; k < kHandDof; ++k) f[k] = u(rng);
   const HandFrames frames = Fk(f);
   const HandJointVector q = HandJointPositions(Hand(), f);
-  for (int i = 0; i < kFingers; ++i) {
+  for (int i = 0; i < kGifuFingers; ++i) {
     const Finger& finger = Hand().finger(i);
     Eigen::Isometry3d X = frames.X_HP;
-    for (int k = 0; k < kFingerJoints; ++k) {
+    for (int k = 0; k < kGifuFingerJoints; ++k) {
       const RevoluteJoint& j = finger.joints[k].joint;
-      X = X * j.X_PJ * Eigen::AngleAxisd(q[HandJointIndex(i, k)], j.axis_J);
+      X = X * j.X_PJ * Eigen::AngleAxisd(q[Hand().JointIndex(i, k)], j.axis_J);
       EXPECT_TRUE(testing::PosesNear(frames.X_HL[i][k], X, 1e-12)) << j.name;
       EXPECT_TRUE(
           MatricesNear((frames.X_HL[i][k].linear().transpose() * frames.X_HL[i][k].linear()).eval(),
@@ -348,7 +365,7 @@ TEST(HandFk, LinkFramesChainThroughTheJoints) {
 struct HandParts {
   RigidLink mount = Hand().mount();
   RigidLink palm = Hand().palm();
-  std::array<Finger, kFingers> fingers = Hand().fingers();
+  std::vector<Finger> fingers = Hand().fingers();
   HandModel Build() const {
     return HandModel("hand.urdf", mount, palm, Eigen::Isometry3d::Identity(), fingers);
   }
@@ -363,7 +380,7 @@ TEST(HandModel, RejectsTwoJointsDrivingTheSameActuatedIndex) {
 
 TEST(HandModel, RejectsACouplingToACoupledJoint) {
   HandParts parts;
-  parts.fingers[kRing].joints[3].coupling->source = HandJointIndex(kMiddle, 3);
+  parts.fingers[kRing].joints[3].coupling->source = Hand().JointIndex(kMiddle, 3);
   GS_EXPECT_THROW_WITH(parts.Build(), InputError, "'ring_j4'", "must follow an actuated");
 }
 
@@ -383,10 +400,98 @@ TEST(HandModel, RejectsAnEmptyRangeAndAMasslessPhalanx) {
   GS_EXPECT_THROW_WITH(massless.Build(), InputError, "'little_link3'", "positive mass");
 }
 
-TEST(HandModel, RejectsFingersOutOfOrder) {
+TEST(HandModel, TakesTheFingersInTheGivenOrder) {
   HandParts parts;
   std::swap(parts.fingers[kIndex], parts.fingers[kMiddle]);
-  GS_EXPECT_THROW_WITH(parts.Build(), InputError, "finger 1 must be 'index'");
+  const HandModel hand = parts.Build();
+  EXPECT_EQ(hand.finger(kIndex).name, "middle");
+  EXPECT_EQ(hand.finger(kMiddle).name, "index");
+  // f4 is still index_j1, now the first joint of finger 2.
+  EXPECT_EQ(hand.actuated_joint_index(F(kIndex, 0)), hand.JointIndex(kMiddle, 0));
+  EXPECT_EQ(hand.joint(hand.actuated_joint_index(F(kIndex, 0))).joint.name, "index_j1");
+}
+
+// Renumbers the actuated joints of `parts` f0, f1, ... in finger order and points each coupling
+// at its source's new index (by the source joint's name in `before`).
+void Renumber(const HandModel& before, HandParts* parts) {
+  std::vector<std::string> names;
+  for (const Finger& finger : parts->fingers) {
+    for (const HandJoint& hj : finger.joints) names.push_back(hj.joint.name);
+  }
+  int actuated = 0;
+  for (Finger& finger : parts->fingers) {
+    for (HandJoint& hj : finger.joints) {
+      if (hj.is_actuated()) hj.actuated = actuated++;
+      if (!hj.coupling) continue;
+      const std::string& source = before.joint(hj.coupling->source).joint.name;
+      hj.coupling->source =
+          static_cast<int>(std::find(names.begin(), names.end(), source) - names.begin());
+    }
+  }
+}
+
+TEST(HandModel, HoldsAnyNumberOfFingersOfAnyNumberOfJoints) {
+  // thumb 4, index 4 and middle 4 joints all actuated, ring as shipped (DIP coupled), little
+  // cut to its first joint: 16 actuated of 17 joints.
+  HandParts parts;
+  for (int i : {kIndex, kMiddle}) {
+    HandJoint& dip = parts.fingers[static_cast<size_t>(i)].joints[3];
+    dip.coupling.reset();
+    dip.actuated = 0;  // renumbered below
+  }
+  Finger& little = parts.fingers[kLittle];
+  little.joints.resize(1);
+  little.links.resize(1);
+  Renumber(Hand(), &parts);
+  const HandModel hand = parts.Build();
+  EXPECT_EQ(hand.finger_count(), 5);
+  EXPECT_EQ(hand.joint_count(), 17);
+  EXPECT_EQ(hand.JointIndex(kLittle, 0), 16);
+  EXPECT_EQ(hand.joint_finger(16), kLittle);
+  EXPECT_TRUE(hand.is_distal(16));
+  EXPECT_FALSE(hand.is_distal(hand.JointIndex(kRing, 2)));
+  EXPECT_EQ(hand.joint(hand.JointIndex(kRing, 3)).coupling->source, hand.JointIndex(kRing, 2));
+  EXPECT_EQ(hand.actuated_names()[15], "little_j1");
+
+  HandVector f;
+  for (int k = 0; k < kHandDof; ++k) f[k] = 0.01 * (k + 1);
+  const HandJointVector q = HandJointPositions(hand, f);
+  ASSERT_EQ(q.size(), 17);
+  EXPECT_EQ(q[hand.JointIndex(kRing, 3)], q[hand.JointIndex(kRing, 2)]);
+  EXPECT_EQ(q[16], f[15]);
+  HandFrames frames;
+  HandLinkFrames(hand, f, &frames);
+  ASSERT_EQ(frames.X_HL.size(), 5u);
+  EXPECT_EQ(frames.X_HL[kLittle].size(), 1u);
+  EXPECT_EQ(frames.X_HL[kIndex].size(), 4u);
+  EXPECT_TRUE(
+      testing::PosesNear(frames.X_HT[kLittle], frames.X_HL[kLittle][0] * little.X_LT, 1e-15));
+}
+
+TEST(HandModel, RejectsOtherThanSixteenActuatedJoints) {
+  HandParts parts;
+  parts.fingers[kThumb].joints[3].actuated = -1;
+  parts.fingers[kThumb].joints[3].coupling = JointCoupling{Hand().JointIndex(kThumb, 2), 1.0, 0.0};
+  GS_EXPECT_THROW_WITH(parts.Build(), InputError, "hand.urdf", "15 actuated joints", "16");
+  HandParts fewer;
+  fewer.fingers.pop_back();
+  GS_EXPECT_THROW_WITH(fewer.Build(), InputError, "13 actuated joints");
+}
+
+TEST(HandModel, RejectsNoFingerAnEmptyFingerAndARepeatedName) {
+  HandParts none;
+  none.fingers.clear();
+  GS_EXPECT_THROW_WITH(none.Build(), InputError, "hand.urdf", "no finger");
+  HandParts empty;
+  empty.fingers[kLittle].joints.clear();
+  empty.fingers[kLittle].links.clear();
+  GS_EXPECT_THROW_WITH(empty.Build(), InputError, "finger 4 ('little')", "no joint");
+  HandParts links;
+  links.fingers[kRing].links.pop_back();
+  GS_EXPECT_THROW_WITH(links.Build(), InputError, "finger 3 ('ring')", "4 joints but 3 links");
+  HandParts twice;
+  twice.fingers[kRing].name = "middle";
+  GS_EXPECT_THROW_WITH(twice.Build(), InputError, "finger 3 ('middle')", "repeats");
 }
 
 }  // namespace

@@ -246,7 +246,7 @@ TEST(RobotDescription, InertiasFollowFromThePrimitiveShapes) {
       EXPECT_TRUE(MatricesNear(link.inertia.p_LCm, Eigen::Vector3d::Zero(), 1e-15));
     }
   }
-  EXPECT_EQ(without_geometry, kFingers);
+  EXPECT_EQ(without_geometry, robot.hand.finger_count());
 }
 
 TEST(RobotDescription, CapsuleConventionIsApplied) {
@@ -259,7 +259,7 @@ TEST(RobotDescription, CapsuleConventionIsApplied) {
       MatricesNear(proximal.shapes[0].X_LG.translation(), Eigen::Vector3d(0, 0, 0.0225), 1e-15));
   // every phalanx is a capsule, the flange disc a plain cylinder, the palm a box.
   for (const Finger& finger : robot.hand.fingers()) {
-    for (int k = 1; k < kFingerJoints; ++k) {
+    for (size_t k = 1; k < finger.links.size(); ++k) {
       ASSERT_EQ(finger.links[k].shapes.size(), 1u) << finger.links[k].name;
       const CollisionShape& s = finger.links[k].shapes[0];
       EXPECT_EQ(s.kind, CollisionShape::Kind::kCapsule) << finger.links[k].name;
@@ -362,26 +362,45 @@ TEST(RobotDescriptionErrors, HandMountThatIsNotFixed) {
 TEST(RobotDescriptionErrors, MissingHandJoint) {
   GS_EXPECT_THROW_WITH(
       ParseEdited(EditElement(ShippedText(), Joint("ring_j2"), "\"ring_j2\"", "\"ring_j2b\"")),
-      InputError, "edited.urdf", "hand joint 'ring_j2' is missing");
+      InputError, "edited.urdf", "fingertip joint 'ring_tip' has parent link 'ring_link4'",
+      "'ring_link1'", "is joint 'ring_j2' missing?");
 }
 
+// a DIP without its <mimic> is actuated: 17 actuated joints.
 TEST(RobotDescriptionErrors, DipWithoutMimic) {
   GS_EXPECT_THROW_WITH(
       ParseEdited(EditElement(ShippedText(), Joint("middle_j4"), "<mimic", "<nomimic")), InputError,
-      "edited.urdf", "hand joint 'middle_j4' (DIP) has no <mimic>", "middle_j3");
+      "edited.urdf", "the hand has 17 actuated joints", "needs 16");
 }
 
-TEST(RobotDescriptionErrors, DipMimickingAnotherJoint) {
+// a coupling is what the URDF says: index_j4 may follow index_j2.
+TEST(RobotDescription, ADipFollowsTheJointItsMimicNames) {
+  const RobotModel robot = ParseEdited(
+      EditElement(ShippedText(), Joint("index_j4"), "joint=\"index_j3\"", "joint=\"index_j2\""));
+  const HandJoint& dip = robot.hand.finger(1).joints[3];
+  ASSERT_TRUE(dip.coupling.has_value());
+  EXPECT_EQ(dip.coupling->source, robot.hand.JointIndex(1, 1));
+}
+
+TEST(RobotDescriptionErrors, MimicOfACoupledJoint) {
   GS_EXPECT_THROW_WITH(ParseEdited(EditElement(ShippedText(), Joint("index_j4"),
-                                               "joint=\"index_j3\"", "joint=\"index_j2\"")),
-                       InputError, "'index_j4' (DIP) mimics 'index_j2'", "'index_j3'");
+                                               "joint=\"index_j3\"", "joint=\"middle_j4\"")),
+                       InputError, "'index_j4' mimics 'middle_j4'",
+                       "must mimic an actuated hand joint");
 }
 
+// a thumb joint with a <mimic> is coupled: 15 actuated joints.
 TEST(RobotDescriptionErrors, ThumbJointWithMimic) {
   GS_EXPECT_THROW_WITH(
       ParseEdited(EditElement(ShippedText(), Joint("thumb_j4"), "<limit",
                               "<mimic joint=\"thumb_j3\" multiplier=\"1\" offset=\"0\"/>\n<limit")),
-      InputError, "hand joint 'thumb_j4' is actuated and must not have a <mimic>");
+      InputError, "edited.urdf", "the hand has 15 actuated joints");
+}
+
+TEST(RobotDescriptionErrors, PalmJointNotNamedAsAFingersFirst) {
+  GS_EXPECT_THROW_WITH(
+      ParseEdited(EditElement(ShippedText(), Joint("ring_j1"), "\"ring_j1\"", "\"ring_base\"")),
+      InputError, "edited.urdf", "'ring_base' on the palm", "<finger>_j1");
 }
 
 TEST(RobotDescriptionErrors, MeshGeometry) {

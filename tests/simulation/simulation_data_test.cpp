@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "common/errors.hpp"
 #include "scene/triangle_mesh.hpp"
@@ -78,10 +81,10 @@ TEST(SimulationData, MeasuredJointsAndBodiesMatchTheKinematics) {
   EXPECT_TRUE(testing::PosesNear(data.wrist_pose(), X_WH, 1e-5));
   HandFrames hand_frames;
   HandLinkFrames(robot.hand, f, &hand_frames);
-  for (int j = 0; j < kHandJoints; ++j) {
-    EXPECT_TRUE(testing::PosesNear(data.hand_link_pose(j),
-                                   X_WH * hand_frames.X_HL[j / kFingerJoints][j % kFingerJoints],
-                                   1e-5))
+  for (int j = 0; j < robot.hand.joint_count(); ++j) {
+    const size_t i = static_cast<size_t>(robot.hand.joint_finger(j));
+    const size_t k = static_cast<size_t>(robot.hand.joint_in_finger(j));
+    EXPECT_TRUE(testing::PosesNear(data.hand_link_pose(j), X_WH * hand_frames.X_HL[i][k], 1e-5))
         << j;
   }
   // a positive velocity command turns a joint the positive way.
@@ -168,8 +171,10 @@ TEST(SimulationData, HandClosingInFreeAirReachesItsTargets) {
   EXPECT_TRUE(testing::MatricesNear(data.hand_positions(), target, Deg(0.5)));
   // every DIP follows its PIP.
   const HandJointVector q = data.hand_joint_positions();
-  for (int finger = 1; finger < kFingers; ++finger) {
-    EXPECT_NEAR(q[HandJointIndex(finger, 3)], q[HandJointIndex(finger, 2)], Deg(0.5));
+  const HandModel& hand = Model().robot().hand;
+  ASSERT_EQ(q.size(), hand.joint_count());
+  for (int finger = 1; finger < hand.finger_count(); ++finger) {
+    EXPECT_NEAR(q[hand.JointIndex(finger, 3)], q[hand.JointIndex(finger, 2)], Deg(0.5));
   }
   EXPECT_EQ(data.contacts().object_hand + data.contacts().finger_table, 0);
 }
@@ -210,6 +215,58 @@ TEST(SimulationData, NonFiniteStatesAreErrorsNotCrashes) {
         for (int i = 0; i < 3; ++i) data.Step();
       },
       OdeError);
+}
+
+// The Gifu's fingers with index and middle fully actuated and the little finger cut to its
+// first joint: 17 joints, 16 actuated (f15 = little_j1); ring_j4 still follows ring_j3.
+RobotModel OtherLayout(const std::string& ring_name = "ring") {
+  const RobotModel& gifu = Model().robot();
+  std::vector<Finger> fingers = gifu.hand.fingers();
+  for (size_t i : {1u, 2u}) fingers[i].joints[3].coupling.reset();
+  fingers[4].joints.resize(1);
+  fingers[4].links.resize(1);
+  fingers[3].name = ring_name;
+  int actuated = 0;
+  for (Finger& finger : fingers) {
+    for (HandJoint& hj : finger.joints) {
+      if (!hj.coupling) hj.actuated = actuated++;
+    }
+  }
+  return RobotModel{"other.urdf", gifu.arm, gifu.X_FH,
+                    HandModel("other.urdf", gifu.hand.mount(), gifu.hand.palm(), gifu.hand.X_HP(),
+                              std::move(fingers))};
+}
+
+TEST(SimulationData, AHandOfAnotherLayoutHasItsBodiesAndHingesAndReachesItsTargets) {
+  const SimulationModel model(OtherLayout(), Model().scene());
+  const HandModel& hand = model.robot().hand;
+  ASSERT_EQ(hand.joint_count(), 17);
+  WorldOptions options;
+  options.time_step = 0.002;
+  SimulationData data(model, options, HighArm(), HandVector::Zero());
+  const WorldCounts counts = data.counts();
+  EXPECT_EQ(counts.bodies, kArmDof + 17 + 1);
+  EXPECT_EQ(counts.joints, 17);                         // the kinematic arm has no hinges
+  const HandVector target = HandVector::Constant(0.1);  // inside every joint's range
+  data.SetHandCommand(ServoMode::kPosition, target);
+  for (int i = 0; i < 500; ++i) data.Step();
+  EXPECT_TRUE(testing::MatricesNear(data.hand_positions(), target, Deg(0.5)));
+  const HandJointVector q = data.hand_joint_positions();
+  ASSERT_EQ(q.size(), 17);
+  EXPECT_NEAR(q[hand.JointIndex(3, 3)], q[hand.JointIndex(3, 2)], Deg(0.5));
+  EXPECT_NEAR(q[16], 0.1, Deg(0.5));  // the little finger's only joint
+  // the little finger's link where the hand's kinematics put it.
+  ArmFrames arm_frames;
+  ArmLinkFrames(model.robot().arm, data.arm_positions(), &arm_frames);
+  HandFrames hand_frames;
+  HandLinkFrames(hand, data.hand_positions(), &hand_frames);
+  const Eigen::Isometry3d X_WH = arm_frames.X_WL[kArmDof] * model.robot().X_FH;
+  EXPECT_TRUE(testing::PosesNear(data.hand_link_pose(16), X_WH * hand_frames.X_HL[4][0], 1e-3));
+}
+
+TEST(SimulationModel, RefusesAFingerOutsideTheLoadShareGroups) {
+  GS_EXPECT_THROW_WITH(SimulationModel(OtherLayout("annular"), Model().scene()), InputError,
+                       "other.urdf", "finger 'annular'", "thumb, index, middle, ring or little");
 }
 
 }  // namespace

@@ -43,10 +43,12 @@ double WorstDifference(const std::vector<Vector>& a, const std::vector<Vector>& 
 }
 
 void Compare(const StepComparison& c, Tally* tally) {
-  ASSERT_EQ(c.structured.hinges.size(), static_cast<size_t>(kHandJoints));
+  ASSERT_EQ(c.structured.hinges.size(),
+            static_cast<size_t>(ShippedSimulationModel().robot().hand.joint_count()));
   ASSERT_EQ(c.ode.hinges.size(), c.structured.hinges.size());
   ASSERT_EQ(c.ode.contacts.size(), c.structured.contacts.size());
-  ASSERT_EQ(c.structured.velocities.size(), static_cast<size_t>(kHandJoints + 1));
+  ASSERT_EQ(c.structured.velocities.size(),
+            static_cast<size_t>(ShippedSimulationModel().robot().hand.joint_count() + 1));
   ASSERT_EQ(c.ode.velocities.size(), c.structured.velocities.size());
   double largest = 1.0, unused = 0.0;  // N or N m
   const double force = std::max(WorstDifference(c.structured.hinges, c.ode.hinges, &largest),

@@ -49,7 +49,7 @@ TEST(HoldMargin, EpsilonGrowsWithTheMeasuredNormalForces) {
   EXPECT_FALSE(one.fingertips_only);     // the palm carries a sixth
   EXPECT_EQ(one.friction_use_max, 0.0);  // pure normal forces
   EXPECT_NEAR(one.torque_scale_m, 0.05, 1e-12);
-  // one contact on each finger (kFingerNames order), one on the palm.
+  // one contact on each finger (kLoadShareGroups order), one on the palm.
   EXPECT_THAT(one.contacts, ::testing::ElementsAre(1, 1, 1, 1, 1, 1));
 }
 

@@ -33,8 +33,8 @@ std::vector<const RigidLink*> RobotLinks(const RobotModel& robot) {
   for (int i = 1; i <= kArmDof; ++i) links.push_back(&robot.arm.link(i));
   links.push_back(&robot.hand.mount());
   links.push_back(&robot.hand.palm());
-  for (int finger = 0; finger < kFingers; ++finger) {
-    for (int k = 0; k < kFingerJoints; ++k) links.push_back(&robot.hand.finger(finger).links[k]);
+  for (int finger = 0; finger < robot.hand.finger_count(); ++finger) {
+    for (const RigidLink& link : robot.hand.finger(finger).links) links.push_back(&link);
   }
   return links;
 }
@@ -55,7 +55,8 @@ TEST(ViewerScene, ListsEveryLinkWithItsShapes) {
   const json scene = json::parse(ViewerSceneJson(Robot(), Scene(), DefaultViewerCamera(Scene())));
   EXPECT_EQ(scene["format"], "graspsynth-viewer-scene/1");
   const std::vector<const RigidLink*> links = RobotLinks(Robot());
-  ASSERT_EQ(links.size(), static_cast<size_t>(kViewerLinkCount));
+  ASSERT_EQ(links.size(), static_cast<size_t>(ViewerLinkCount(Robot())));
+  EXPECT_EQ(ViewerLinkCount(Robot()), 30);  // the Gifu: 8 arm, mount, palm, 20 phalanges
   ASSERT_EQ(scene["links"].size(), links.size());
   int shapes = 0;
   for (size_t i = 0; i < links.size(); ++i) {
@@ -96,10 +97,10 @@ TEST(ViewerScene, ListsEveryLinkWithItsShapes) {
   // none on the knuckles (link1 of each finger).
   EXPECT_EQ(shapes, 11 + 2 + 15);
   for (int i = 0; i < kArmDof + 3; ++i) EXPECT_FALSE(scene["links"][i]["shapes"].empty());
-  for (int finger = 0; finger < kFingers; ++finger) {
-    const int first = kArmDof + 3 + finger * kFingerJoints;
+  for (int finger = 0; finger < Robot().hand.finger_count(); ++finger) {
+    const int first = kArmDof + 3 + Robot().hand.JointIndex(finger, 0);
     EXPECT_TRUE(scene["links"][first]["shapes"].empty());
-    for (int k = 1; k < kFingerJoints; ++k) {
+    for (int k = 1; k < static_cast<int>(Robot().hand.finger(finger).links.size()); ++k) {
       EXPECT_EQ(scene["links"][first + k]["shapes"][0]["kind"], "capsule");
     }
   }
@@ -196,7 +197,7 @@ TEST(ViewerScene, FramePosesEqualForwardKinematics) {
     EXPECT_DOUBLE_EQ(frame["t"].get<double>(), state.t);
     EXPECT_EQ(frame["text"], state.text);
     EXPECT_TRUE(testing::PosesNear(PoseFromJson(frame["object"]), state.X_WO, 1e-5));
-    ASSERT_EQ(frame["links"].size(), static_cast<size_t>(kViewerLinkCount));
+    ASSERT_EQ(frame["links"].size(), static_cast<size_t>(ViewerLinkCount(robot)));
 
     ArmFrames arm;
     ArmLinkFrames(robot.arm, state.arm, &arm);
@@ -212,9 +213,9 @@ TEST(ViewerScene, FramePosesEqualForwardKinematics) {
     HandLinkFrames(robot.hand, state.hand, &hand);
     EXPECT_TRUE(
         testing::PosesNear(PoseFromJson(frame["links"][kArmDof + 2]), X_WH * hand.X_HP, 1e-5));
-    for (int finger = 0; finger < kFingers; ++finger) {
-      for (int k = 0; k < kFingerJoints; ++k) {
-        const int index = kArmDof + 3 + finger * kFingerJoints + k;
+    for (int finger = 0; finger < robot.hand.finger_count(); ++finger) {
+      for (int k = 0; k < static_cast<int>(robot.hand.finger(finger).links.size()); ++k) {
+        const int index = kArmDof + 3 + robot.hand.JointIndex(finger, k);
         EXPECT_TRUE(testing::PosesNear(PoseFromJson(frame["links"][index]),
                                        X_WH * hand.X_HL[finger][k], 1e-5))
             << index;
@@ -227,7 +228,7 @@ TEST(ViewerScene, FrameIsCompactAndWritesNonFiniteValuesAsNull) {
   ViewerState state;
   state.t = 1.0 / 3.0;
   const std::string text = ViewerFrameJson(Robot(), state);
-  EXPECT_LT(text.size(), 64u * kViewerLinkCount);
+  EXPECT_LT(text.size(), 64u * static_cast<size_t>(ViewerLinkCount(Robot())));
   EXPECT_NE(text.find("\"t\":0.333333,"), std::string::npos) << text;
   EXPECT_EQ(text.find("-0,"), std::string::npos) << text;
   EXPECT_EQ(text.find('\n'), std::string::npos);
