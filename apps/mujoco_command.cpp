@@ -12,8 +12,8 @@
 #include "apps/request_flags.hpp"
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
+#include "gate/grasp_file.hpp"
 #include "request/mujoco_request.hpp"
-#include "solver/grasp_file.hpp"
 
 namespace graspsynth::apps {
 namespace {

@@ -20,6 +20,9 @@
 #include "common/field_text.hpp"
 #include "common/format.hpp"
 #include "common/valid_options.hpp"
+#include "gate/grasp_file.hpp"
+#include "gate/hold_margin.hpp"
+#include "gate/physics_gate.hpp"
 #include "kinematics/pose_math.hpp"
 #include "motion/joint_trajectory.hpp"
 #include "motion/scripted_grasp.hpp"
@@ -32,9 +35,6 @@
 #include "simulation_mujoco/mujoco_sweep.hpp"
 #include "simulation_mujoco/mujoco_trial.hpp"
 #include "simulation_mujoco/mujoco_world.hpp"
-#include "solver/grasp_file.hpp"
-#include "solver/hold_margin.hpp"
-#include "solver/physics_gate.hpp"
 #include "studies/trial_json.hpp"
 
 namespace graspsynth::apps {
@@ -312,7 +312,7 @@ int RunSimulate(const SimulateOptions& o, const request::SimulateRequest& r) {
   n["simulated_s"] = Round(nominal.simulated_time);
   n["final_object_pose"] = PoseJson(nominal.final_object_pose);
   n["hold"] = HoldQualityJson<json>(nominal.hold);
-  // the hold margin (solver/hold_margin.hpp), the thresholds it misses and their reasons.
+  // the hold margin (gate/hold_margin.hpp), the thresholds it misses and their reasons.
   const HoldMargin margin = MeasureHoldMargin(model, nominal);
   const std::string shortfall = HoldMarginShortfall(margin, r.hold_margin);
   n["hold_margin"] = HoldMarginReportJson<json>(margin, shortfall, r.hold_margin, Round);

@@ -13,13 +13,13 @@
 #include "apps/cli_helpers.hpp"
 #include "apps/request_flags.hpp"
 #include "common/errors.hpp"
+#include "gate/grasp_file.hpp"
+#include "gate/physics_gate.hpp"
+#include "gate/validated_synthesis.hpp"
 #include "learning_data/grasp_library.hpp"
 #include "request/synthesize_request.hpp"
 #include "simulation/simulation_model.hpp"
-#include "solver/grasp_file.hpp"
-#include "solver/physics_gate.hpp"
 #include "solver/synthesis.hpp"
-#include "solver/validated_synthesis.hpp"
 
 namespace graspsynth::apps {
 namespace {

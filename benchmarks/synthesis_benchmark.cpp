@@ -10,9 +10,9 @@
 
 #include <benchmark/benchmark.h>
 
+#include "gate/physics_gate.hpp"
 #include "learning_data/grasp_library.hpp"
 #include "simulation/simulation_model.hpp"
-#include "solver/physics_gate.hpp"
 #include "solver/synthesis.hpp"
 #include "tests/utils/scripted_library.hpp"
 

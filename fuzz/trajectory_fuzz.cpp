@@ -1,8 +1,8 @@
 // Joint trajectories and grasp files (graspsynth-trajectory/1, graspsynth-grasp/1:
-// solver/grasp_file.hpp), with the joint limits of the shipped robot.
+// gate/grasp_file.hpp), with the joint limits of the shipped robot.
 #include "fuzz/fuzz_support.hpp"
+#include "gate/grasp_file.hpp"
 #include "kinematics/robot_description.hpp"
-#include "solver/grasp_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace graspsynth;

@@ -11,6 +11,9 @@
 #include <vector>
 
 #include "common/errors.hpp"
+#include "gate/grasp_file.hpp"
+#include "gate/physics_gate.hpp"
+#include "gate/validated_synthesis.hpp"
 #include "kinematics/robot_description.hpp"
 #include "learning_data/demo_directory.hpp"
 #include "learning_data/grasp_library.hpp"
@@ -22,13 +25,10 @@
 #include "request/synthesize_request.hpp"
 #include "scene/scene_model.hpp"
 #include "simulation/simulation_model.hpp"
-#include "solver/grasp_file.hpp"
 #include "solver/motion_generation.hpp"
-#include "solver/physics_gate.hpp"
 #include "solver/reach_planning.hpp"
 #include "solver/synthesis.hpp"
 #include "solver/synthesis_model.hpp"
-#include "solver/validated_synthesis.hpp"
 
 namespace graspsynth::python {
 namespace {

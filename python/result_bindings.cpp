@@ -69,7 +69,7 @@ void BindTrialResults(py::module_& m) {
         "ring), then the palm; sums to 1, all 0 without contact force"}});
   BindFieldClass<HoldMargin>(
       m, "HoldMargin",
-      "How securely the object sat in the hand at the end of a trial (solver/hold_margin.hpp): "
+      "How securely the object sat in the hand at the end of a trial (gate/hold_margin.hpp): "
       "slip (mm, deg), end tilt (deg), contacts and load share per finger and the palm, "
       "load-bearing links, epsilon at the measured normal forces (object weights), friction use.",
       {{"measured", "the trial ended with contact force on the object"},

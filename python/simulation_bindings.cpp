@@ -12,6 +12,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
+#include "gate/grasp_file.hpp"
 #include "kinematics/pose_math.hpp"
 #include "kinematics/robot_description.hpp"
 #include "motion/joint_trajectory.hpp"
@@ -24,7 +25,6 @@
 #include "simulation/robustness.hpp"
 #include "simulation/simulation_fields.hpp"
 #include "simulation/trial.hpp"
-#include "solver/grasp_file.hpp"
 
 namespace graspsynth::python {
 namespace {

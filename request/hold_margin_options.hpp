@@ -1,7 +1,7 @@
 #pragma once
 
 /// @file
-/// The options of the hold margin (solver/hold_margin.hpp) for every request whose grasps go
+/// The options of the hold margin (gate/hold_margin.hpp) for every request whose grasps go
 /// through the physics gate or whose trial reports the margin (synthesize, generalize, run,
 /// simulate): whether the gate requires it, and its thresholds. The thresholds' help is their
 /// reason (HoldMarginThresholds), and their ranges are HoldMarginOptions::IsValid's.
@@ -12,8 +12,8 @@
 #include <utility>
 #include <vector>
 
+#include "gate/hold_margin.hpp"
 #include "request/option.hpp"
-#include "solver/hold_margin.hpp"
 
 namespace graspsynth::request {
 

@@ -11,10 +11,10 @@
 
 #include <Eigen/Core>
 
+#include "gate/physics_gate.hpp"
 #include "request/option.hpp"
 #include "simulation_mujoco/mjcf_export.hpp"
 #include "simulation_mujoco/mujoco_trial.hpp"
-#include "solver/physics_gate.hpp"
 
 namespace graspsynth::request {
 

@@ -15,12 +15,12 @@
 
 #include <Eigen/Core>
 
+#include "gate/hold_margin.hpp"
 #include "motion/scripted_grasp.hpp"
 #include "request/mujoco_request.hpp"
 #include "request/option.hpp"
 #include "simulation/robustness.hpp"
 #include "simulation/trial.hpp"
-#include "solver/hold_margin.hpp"
 
 namespace graspsynth::request {
 

@@ -13,9 +13,9 @@
 
 #include <Eigen/Core>
 
+#include "gate/validated_synthesis.hpp"
 #include "kinematics/types.hpp"
 #include "request/option.hpp"
-#include "solver/validated_synthesis.hpp"
 
 namespace graspsynth::request {
 

@@ -86,7 +86,7 @@ struct TrialResult {
   Eigen::Isometry3d final_object_pose = Eigen::Isometry3d::Identity();
   HoldQuality hold;  ///< how the object sits in the hand at the end
   /// The object-hand contacts of the last step, with their forces (the hold margin's,
-  /// solver/hold_margin.hpp); empty when nothing touched the object at the end.
+  /// gate/hold_margin.hpp); empty when nothing touched the object at the end.
   std::vector<HandObjectContact> end_contacts;
   StepStatistics statistics;       ///< steps and where their time went
   WorldCounts counts;              ///< bodies, joints, geoms of the world

@@ -11,9 +11,9 @@
 #include "common/parallel.hpp"
 #include "common/stopwatch.hpp"
 #include "common/valid_options.hpp"
+#include "gate/validated_synthesis.hpp"
 #include "kinematics/arm_ik.hpp"
 #include "kinematics/pose_math.hpp"
-#include "solver/validated_synthesis.hpp"
 #include "studies/study_codec.hpp"
 #include "studies/study_report.hpp"
 

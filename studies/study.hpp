@@ -26,12 +26,12 @@
 
 #include "analysis/analysis_report.hpp"
 #include "common/job_runner.hpp"
+#include "gate/physics_gate.hpp"
 #include "learning_data/representative_selection.hpp"
 #include "simulation/perturbation.hpp"
 #include "simulation/robustness.hpp"
 #include "simulation/simulation_model.hpp"
 #include "simulation/trial.hpp"
-#include "solver/physics_gate.hpp"
 #include "solver/synthesis.hpp"
 #include "studies/study_method.hpp"
 
@@ -92,7 +92,7 @@ struct StudyOptions {
   /// The gates' hold margin: its thresholds, and whether they are required (off by default).
   HoldMarginOptions hold_margin;
   /// An interp blend whose nominal trial fails gives way to the unblendable bracket's
-  /// fallbacks (solver/validated_synthesis.hpp).
+  /// fallbacks (gate/validated_synthesis.hpp).
   bool physics_fallback = true;
   /// MuJoCo as the gate's second engine (`--engines ode,mujoco`; off: ODE alone).
   MujocoGateOptions mujoco_gate;
@@ -180,7 +180,7 @@ struct StudyRow {
   bool force_closure = false;
   std::string failures;      ///< perturbed failures by outcome, e.g. "dropped 2, not_lifted 1"
   HoldQuality nominal_hold;  ///< how the object sat in the hand at the end of the nominal trial
-  HoldMargin hold_margin;    ///< the nominal hold's margin (solver/hold_margin.hpp)
+  HoldMargin hold_margin;    ///< the nominal hold's margin (gate/hold_margin.hpp)
   /// The margin's thresholds it misses (HoldMarginShortfall); "" when it meets them all.
   std::string hold_margin_shortfall;
   /// The gate's sensitivity table (when the study asks for one and the replays ran).
@@ -257,7 +257,7 @@ struct SynthesisTableOptions {
   uint64_t seed = 1;  ///< rows are seeded by StudyRowSeed(seed, theta, label)
   int threads = 0;
   /// An interp blend whose nominal trial fails gives way to the unblendable bracket's
-  /// fallbacks (solver/validated_synthesis.hpp).
+  /// fallbacks (gate/validated_synthesis.hpp).
   bool physics_fallback = true;
   /// Where the rows run (common/job_runner.hpp): spread over the processes of an MPI job, or
   /// kept in a resume folder as they finish; nullptr: on this process's threads. Not owned.

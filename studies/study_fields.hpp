@@ -8,6 +8,7 @@
 /// CSV writers (studies/study_report.hpp) and the Python classes (graspsynth.StudyRow).
 
 #include "common/field_list.hpp"
+#include "gate/gate_fields.hpp"
 #include "simulation/simulation_fields.hpp"
 #include "simulation_mujoco/mujoco_fields.hpp"
 #include "solver/solver_fields.hpp"

@@ -530,7 +530,7 @@ std::string StudyReportMarkdown(const StudyResult& result) {
   }
   md << "## Hold margin\n\n"
      << "How securely the nominal trial's hold sits in the hand at its end "
-        "(solver/hold_margin.hpp): the pan's slip in the hand since it left the table, its tilt, "
+        "(gate/hold_margin.hpp): the pan's slip in the hand since it left the table, its tilt, "
         "the contact points per finger and the palm, the hand links carrying at least 10% of the "
         "contact force, the Ferrari-Canny epsilon of the contacts at their measured normal forces "
         "in the pan's weights, the largest and the force-weighted mean |f_t| / (mu f_n) of the "

@@ -17,14 +17,18 @@ set(graspsynth_include_cases
   "forbidden studies viewer/viewer_scene.hpp"
   "forbidden studies request/option.hpp"
   "forbidden simulation simulation_mujoco/mjcf_export.hpp"
-  "forbidden simulation_mujoco solver/physics_gate.hpp"
+  "forbidden simulation_mujoco gate/physics_gate.hpp"
+  "forbidden solver gate/physics_gate.hpp"
+  "forbidden solver simulation_mujoco/mujoco_sweep.hpp"
   "allowed studies kinematics/arm_model.hpp"
   "allowed solver analysis/wrist_line.hpp"
   "allowed teleop viewer/viewer_scene.hpp"
   "allowed request studies/study.hpp"
   "allowed simulation_mujoco simulation/trial_judge.hpp"
   "allowed request simulation_mujoco/mujoco_trial.hpp"
-  "allowed solver simulation_mujoco/mujoco_sweep.hpp")
+  "allowed gate simulation_mujoco/mujoco_sweep.hpp"
+  "allowed gate solver/synthesis.hpp"
+  "allowed studies gate/validated_synthesis.hpp")
 set(case_targets)
 foreach(case ${graspsynth_include_cases})
   string(REPLACE " " ";" fields "${case}")

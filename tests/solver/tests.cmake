@@ -1,16 +1,9 @@
-# Tests of grasp synthesis (solver/) and of `graspsynth synthesize`.
+# Tests of grasp synthesis (solver/).
 graspsynth_test(solver/bracket_test.cpp LIBS graspsynth::solver)
 graspsynth_test(solver/line_principle_test.cpp LIBS graspsynth::solver)
 graspsynth_test(solver/placement_cell_test.cpp LIBS graspsynth::solver)
 graspsynth_test(solver/placement_motion_test.cpp LIBS graspsynth::solver)
 graspsynth_test(solver/refinement_test.cpp LIBS graspsynth::solver)
-graspsynth_test(solver/physics_gate_test.cpp LIBS graspsynth::solver)
-graspsynth_test(solver/hold_margin_test.cpp LIBS graspsynth::solver)
 graspsynth_test(solver/synthesis_test.cpp LIBS graspsynth::solver)
 graspsynth_test(solver/synthesis_stages_test.cpp LIBS graspsynth::solver)
-graspsynth_test(solver/validated_synthesis_test.cpp LIBS graspsynth::solver)
-graspsynth_test(solver/grasp_file_test.cpp LIBS graspsynth::solver nlohmann_json::nlohmann_json)
-graspsynth_test(apps/synthesize_command_test.cpp LIBS graspsynth::solver
-                nlohmann_json::nlohmann_json)
-add_dependencies(apps_synthesize_command_test graspsynth)
 graspsynth_test(solver/shipped_demos_test.cpp LIBS graspsynth::solver)

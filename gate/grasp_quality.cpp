@@ -1,4 +1,4 @@
-#include "solver/grasp_quality.hpp"
+#include "gate/grasp_quality.hpp"
 
 #include <CGAL/Epick_d.h>
 #include <CGAL/Triangulation.h>

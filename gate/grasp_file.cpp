@@ -1,4 +1,4 @@
-#include "solver/grasp_file.hpp"
+#include "gate/grasp_file.hpp"
 
 #include <cmath>
 #include <fstream>

@@ -6,7 +6,7 @@
 /// the trial's judgement (simulation/trial_judge.hpp) already demands. A grasp that lifts the
 /// object can still hold it by friction alone at two fingertips, slipping in the hand, at the
 /// edge of its friction cones: such a grasp passes in one engine and fails in another. The
-/// margin names those figures; the physics gate (solver/physics_gate.hpp) reports them and, when
+/// margin names those figures; the physics gate (gate/physics_gate.hpp) reports them and, when
 /// HoldMarginOptions::require is on, fails a grasp whose margin is below a threshold.
 ///
 /// The contacts are those of the trial's last step (TrialResult::end_contacts): the end of the
@@ -18,11 +18,11 @@
 #include <string>
 #include <vector>
 
+#include "gate/grasp_quality.hpp"
 #include "kinematics/hand_model.hpp"
 #include "simulation/simulation_model.hpp"
 #include "simulation/trial.hpp"
 #include "simulation/trial_judge.hpp"
-#include "solver/grasp_quality.hpp"
 
 namespace graspsynth {
 

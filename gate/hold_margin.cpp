@@ -1,4 +1,4 @@
-#include "solver/hold_margin.hpp"
+#include "gate/hold_margin.hpp"
 
 #include <algorithm>
 #include <cmath>

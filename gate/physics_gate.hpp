@@ -5,7 +5,7 @@
 /// under perturbation (EvaluateRobustness) before it may be written; it passes when the nominal
 /// trial succeeds and the robustness score reaches the threshold, and, with MuJoCo among its
 /// engines (MujocoGateOptions), when the MuJoCo sweep's success fraction reaches its own. The
-/// grasp's quality (CGAL, Ferrari-Canny epsilon and hull volume; solver/grasp_quality.hpp) comes
+/// grasp's quality (CGAL, Ferrari-Canny epsilon and hull volume; gate/grasp_quality.hpp) comes
 /// from the hand-object contacts of the nominal trial's last step that had any (the hold at the
 /// top, for a grasp that lifts), about the object's centre of mass.
 
@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
+#include "gate/grasp_quality.hpp"
+#include "gate/hold_margin.hpp"
 #include "simulation/robustness.hpp"
 #include "simulation_mujoco/mujoco_sweep.hpp"
-#include "solver/grasp_quality.hpp"
-#include "solver/hold_margin.hpp"
 
 namespace graspsynth {
 
@@ -50,7 +50,7 @@ struct PhysicsGateOptions {
   bool require_nominal = true;  ///< the nominal trial must succeed
   GraspQualityOptions quality;
   MujocoGateOptions mujoco;  ///< MuJoCo as a second engine (off by default)
-  /// The hold margin's thresholds and whether the gate requires them (solver/hold_margin.hpp);
+  /// The hold margin's thresholds and whether the gate requires them (gate/hold_margin.hpp);
   /// required, a nominal trial that succeeds with a margin below a threshold fails the gate,
   /// without its perturbed replays.
   HoldMarginOptions hold_margin;

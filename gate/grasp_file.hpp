@@ -31,10 +31,10 @@
 #include <string>
 #include <string_view>
 
+#include "gate/physics_gate.hpp"
 #include "kinematics/arm_model.hpp"
 #include "kinematics/hand_model.hpp"
 #include "motion/joint_trajectory.hpp"
-#include "solver/physics_gate.hpp"
 #include "solver/synthesis.hpp"
 
 namespace graspsynth {

@@ -1,4 +1,4 @@
-#include "solver/physics_gate.hpp"
+#include "gate/physics_gate.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-#include "solver/grasp_quality.hpp"
+#include "gate/grasp_quality.hpp"
 
 #include <gtest/gtest.h>
 

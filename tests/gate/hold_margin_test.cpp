@@ -1,4 +1,4 @@
-#include "solver/hold_margin.hpp"
+#include "gate/hold_margin.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-#include "solver/validated_synthesis.hpp"
+#include "gate/validated_synthesis.hpp"
 
 #include <gtest/gtest.h>
 

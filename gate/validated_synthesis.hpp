@@ -17,7 +17,7 @@
 
 #include <string>
 
-#include "solver/physics_gate.hpp"
+#include "gate/physics_gate.hpp"
 #include "solver/synthesis.hpp"
 
 namespace graspsynth {
