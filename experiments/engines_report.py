@@ -48,27 +48,29 @@ def failing_table(failing):
 
 
 def shortfall_reason(sweep):
-    """One line on why a sweep fell short, read from its failing runs' outcomes: per servo
-    mapping, the outcomes and in how many of its settings each happened (with the highest
-    lift the simulator's reason names, where it names one)."""
-    parts = []
-    for servo in ("stiff", "soft"):
-        runs = [r for r in sweep["runs"] if r["servo"] == servo]
-        bad = Counter(r["outcome"] for r in runs if r["outcome"] != "success")
-        if not bad:
-            continue
-        said = []
-        for outcome, n in sorted(bad.items(), key=lambda kv: (-kv[1], kv[0])):
-            # the highest lift the simulator's reason names ("lifted up to 64.8 mm, ...").
-            peaks = [float(p.group(1)) for r in runs if r["outcome"] == outcome
-                     for p in [re.search(r"lifted up to ([0-9.]+) mm", r["reason"])] if p]
-            where = ""
-            if peaks:
-                lo, hi = f"{min(peaks):.0f}", f"{max(peaks):.0f}"
-                where = f" (after lifting it {lo if lo == hi else lo + '-' + hi} mm)"
-            said.append(f"{outcome} in {n} of {len(runs)} settings{where}")
-        parts.append(f"{servo}: " + ", ".join(said))
-    return "; ".join(parts) or "-"
+    """One line on why a sweep fell short, read from its failing runs: their outcomes (with the
+    highest lift the simulator's reason names for the dropped ones), and the contact settings
+    they fail in, with the servo mapping(s)."""
+    bad = [r for r in sweep["runs"] if r["outcome"] != "success"]
+    if not bad:
+        return "-"
+    outcomes = Counter(r["outcome"] for r in bad)
+    said = []
+    for outcome, n in sorted(outcomes.items(), key=lambda kv: (-kv[1], kv[0])):
+        # "lifted up to 64.8 mm, ..." in the simulator's reason of a dropped run.
+        peaks = [float(p.group(1)) for r in bad if r["outcome"] == outcome
+                 for p in [re.search(r"lifted up to ([0-9.]+) mm", r["reason"])] if p]
+        where = ""
+        if peaks:
+            lo, hi = f"{min(peaks):.0f}", f"{max(peaks):.0f}"
+            where = f" (after lifting it {lo if lo == hi else lo + '-' + hi} mm)"
+        said.append(f"{outcome} {n}{where}")
+    servos = {}
+    for r in bad:
+        servos.setdefault(r["setting"], []).append(r["servo"])
+    where = ", ".join(f"{setting} ({'both' if len(sv) == 2 else sv[0]})"
+                      for setting, sv in servos.items())
+    return ", ".join(said) + "; in " + where
 
 
 def pan(d, grasps, md):
@@ -152,8 +154,9 @@ def objects(d, md):
         "--mujoco-sweep`; docs/mujoco.md), as in [engines.md](engines.md) for the pan study. Slip:",
         "the object's motion in the hand from when it left the table to the end of the hold, over",
         "the MuJoCo runs that held. A grasp falls short of the issue's bar when fewer than 95% of",
-        "its 16 runs hold (so any failing run); its reason is read from the failing runs' outcomes",
-        "(per servo mapping, in how many of its 8 contact settings each outcome happened).",
+        "its 16 runs hold (so any failing run); its reason is read from the failing runs: their",
+        "outcomes, how many runs each (a dropped run: how high the object rose before it fell), and",
+        "the contact settings they fail in, under both servo mappings or one.",
         "",
     ]
     summary = ["## Totals", "", "| part | grasps | ODE gate passed | MuJoCo runs held | "
