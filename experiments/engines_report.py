@@ -68,6 +68,9 @@ def shortfall_reason(sweep):
     servos = {}
     for r in bad:
         servos.setdefault(r["setting"], []).append(r["servo"])
+    if len(servos) == len({r["setting"] for r in sweep["runs"]}) and all(
+            len(sv) == 2 for sv in servos.values()):
+        return ", ".join(said) + f"; in all {len(servos)} settings under both servo mappings"
     where = ", ".join(f"{setting} ({'both' if len(sv) == 2 else sv[0]})"
                       for setting, sv in servos.items())
     return ", ".join(said) + "; in " + where
@@ -191,7 +194,10 @@ def objects(d, md):
             held += m["successes"]
             full += m["successes"] == m["runs"]
             count_failing(sweep, failing)
-            rows.append(f"| {shown} | " + " | ".join(ode + sweep_cells(sweep)) + " |")
+            cells = sweep_cells(sweep)
+            if m["successes"] == 0:
+                cells[1] = cells[2] = "-"  # no run held: no slip to measure
+            rows.append(f"| {shown} | " + " | ".join(ode + cells) + " |")
             if m["successes"] < BAR * m["runs"]:
                 short.append(f"- {shown}: {m['successes']}/{m['runs']}; " +
                              shortfall_reason(sweep))
