@@ -49,21 +49,24 @@ def failing_table(failing):
 
 def shortfall_reason(sweep):
     """One line on why a sweep fell short, read from its failing runs: their outcomes (with the
-    highest lift the simulator's reason names for the dropped ones), and the contact settings
-    they fail in, with the servo mapping(s)."""
+    highest lift the simulator's reason names for the dropped ones and the tilt of the tilted
+    ones), and the contact settings they fail in, with the servo mapping(s)."""
     bad = [r for r in sweep["runs"] if r["outcome"] != "success"]
     if not bad:
         return "-"
     outcomes = Counter(r["outcome"] for r in bad)
     said = []
     for outcome, n in sorted(outcomes.items(), key=lambda kv: (-kv[1], kv[0])):
-        # "lifted up to 64.8 mm, ..." in the simulator's reason of a dropped run.
-        peaks = [float(p.group(1)) for r in bad if r["outcome"] == outcome
-                 for p in [re.search(r"lifted up to ([0-9.]+) mm", r["reason"])] if p]
+        # the simulator's reason: "lifted up to 64.8 mm, ..." (dropped), "but tilted 45.5 deg"
+        # (tilted).
         where = ""
-        if peaks:
-            lo, hi = f"{min(peaks):.0f}", f"{max(peaks):.0f}"
-            where = f" (after lifting it {lo if lo == hi else lo + '-' + hi} mm)"
+        for pattern, say, unit in ((r"lifted up to ([0-9.]+) mm", "after lifting it", "mm"),
+                                   (r"but tilted ([0-9.]+) deg", "hanging", "deg")):
+            vals = [float(p.group(1)) for r in bad if r["outcome"] == outcome
+                    for p in [re.search(pattern, r["reason"])] if p]
+            if vals:
+                lo, hi = f"{min(vals):.0f}", f"{max(vals):.0f}"
+                where = f" ({say} {lo if lo == hi else lo + '-' + hi} {unit})"
         said.append(f"{outcome} {n}{where}")
     servos = {}
     for r in bad:
@@ -158,8 +161,9 @@ def objects(d, md):
         "the object's motion in the hand from when it left the table to the end of the hold, over",
         "the MuJoCo runs that held. A grasp falls short of the issue's bar when fewer than 95% of",
         "its 16 runs hold (so any failing run); its reason is read from the failing runs: their",
-        "outcomes, how many runs each (a dropped run: how high the object rose before it fell), and",
-        "the contact settings they fail in, under both servo mappings or one.",
+        "outcomes, how many runs each (dropped: how high the object rose before it fell; tilted:",
+        "how far it hangs from upright, held), and the contact settings they fail in, under both",
+        "servo mappings or one.",
         "",
     ]
     summary = ["## Totals", "", "| part | grasps | ODE gate passed | MuJoCo runs held | "
