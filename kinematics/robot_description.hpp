@@ -22,6 +22,12 @@ struct RobotModel {
   /// Pose of the hand-mount frame H in the flange frame F (the URDF joint `hand_mount`).
   Eigen::Isometry3d X_FH = Eigen::Isometry3d::Identity();
   HandModel hand;
+  /// The robot's name: a URDF's `<robot name=...>` ("pa10_gifu3" for the shipped URDF), a robot
+  /// file's `name`.
+  std::string name;
+  /// Pose of the arm's base frame B in the study's world frame W (m; identity for the PA-10).
+  /// A robot file may give it (its `base`); a URDF alone gives identity.
+  Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
 };
 
 /// Reads and checks the robot description at `path` (see ParseRobotModel). Throws InputError

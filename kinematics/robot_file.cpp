@@ -9,6 +9,7 @@
 #include "common/errors.hpp"
 #include "common/input_file.hpp"
 #include "common/json_reader.hpp"
+#include "kinematics/types.hpp"
 #include "kinematics/urdf_arm_chain.hpp"
 
 namespace graspsynth {
@@ -55,6 +56,17 @@ RobotFileArm ReadArm(const JsonReader& arm) {
   return out;
 }
 
+// the base's pose in the world: {"position_m": [x, y, z], "yaw_deg": a}.
+Eigen::Isometry3d ReadBase(const JsonReader& base) {
+  base.AsObject();
+  base.RejectUnknownKeys({"position_m", "yaw_deg"});
+  Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
+  X_WB.translation() = base.Field("position_m").AsNumbers(3, -10.0, 10.0);
+  const double yaw_deg = base.Has("yaw_deg") ? base.NumberIn("yaw_deg", -180.0, 180.0) : 0.0;
+  X_WB.linear() = Eigen::AngleAxisd(Radians(yaw_deg), Eigen::Vector3d::UnitZ()).matrix();
+  return X_WB;
+}
+
 }  // namespace
 
 RobotFile ParseRobotFile(std::string_view json, const std::string& source,
@@ -62,12 +74,14 @@ RobotFile ParseRobotFile(std::string_view json, const std::string& source,
   const JsonReader top = JsonReader::Parse(json, source);
   top.AsObject();
   top.ExpectString("format", kFormat);
-  top.RejectUnknownKeys({"format", "name", "comment", "urdf", "arm", "hand", "collision", "glove"});
+  top.RejectUnknownKeys(
+      {"format", "name", "comment", "urdf", "base", "arm", "hand", "collision", "glove"});
   RobotFile file;
   file.source = source;
   file.name = NonEmptyString(top, "name");
   if (top.Has("comment")) file.comment = top.String("comment");
   file.urdf = folder / NonEmptyString(top, "urdf");
+  if (top.Has("base")) file.X_WB = ReadBase(top.Field("base"));
   file.arm = ReadArm(top.Object("arm"));
   return file;
 }

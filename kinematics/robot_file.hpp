@@ -37,16 +37,21 @@ struct RobotFile {
   std::string name;            ///< the robot's name
   std::string comment;         ///< the file's `comment`: what the robot is ("" when it has none)
   std::filesystem::path urdf;  ///< the URDF: the file's `urdf` relative to its folder
+  /// Pose of the arm's base frame B in the study's world frame W: the file's `base`
+  /// ({"position_m": [x, y, z], "yaw_deg": a}: a turn by a about W's z, then the shift); identity
+  /// when it has none.
+  Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
   RobotFileArm arm;
 };
 
 /// Parses a robot file's text (`json`; `source` names it in messages; `folder` is where its
 /// relative URDF path starts). Throws InputError in JsonReader's wording ("<source>: field
 /// '<path>': expected <what>, found <value>") when it is not JSON, the format is not
-/// `graspsynth-robot/1`, a key is unknown (top level, arm, arm.servo), `name` or `urdf` is not a
-/// non-empty string, `arm.base_link` / `arm.flange_link` is not a non-empty string or both are
-/// the same, `arm.ik` is not "srs", `arm.srs_tolerance_m` is not in (0, 0.01], or a servo
-/// number is not positive.
+/// `graspsynth-robot/1`, a key is unknown (top level, base, arm, arm.servo), `name` or `urdf` is
+/// not a non-empty string, `base.position_m` is not 3 numbers each in [-10, 10] m or
+/// `base.yaw_deg` (optional, 0 by default) not in [-180, 180], `arm.base_link` / `arm.flange_link`
+/// is not a non-empty string or both are the same, `arm.ik` is not "srs", `arm.srs_tolerance_m` is
+/// not in (0, 0.01], or a servo number is not positive.
 RobotFile ParseRobotFile(std::string_view json, const std::string& source,
                          const std::filesystem::path& folder);
 

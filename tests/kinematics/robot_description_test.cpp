@@ -59,6 +59,8 @@ RobotModel ParseEdited(const std::string& text) { return ParseRobotModel(text, "
 TEST(RobotDescription, ShippedFileLoads) {
   const RobotModel& robot = Shipped();
   EXPECT_EQ(robot.source, testing::ShippedUrdfPath());
+  EXPECT_EQ(robot.name, "pa10_gifu3");
+  EXPECT_EQ(robot.X_WB.matrix(), Eigen::Matrix4d::Identity());
   EXPECT_EQ(robot.arm.source(), testing::ShippedUrdfPath());
   EXPECT_EQ(robot.hand.source(), testing::ShippedUrdfPath());
   const std::array<const char*, kArmDof> joints = {"S1", "S2", "S3", "E1", "E2", "W1", "W2"};

@@ -69,9 +69,22 @@ TEST(RobotFile, ReadsBothShippedFiles) {
   EXPECT_EQ(iiwa.arm.ik, "srs");
   EXPECT_EQ(iiwa.arm.srs_tolerance_m, 1e-6);
   EXPECT_EQ(iiwa.arm.servo.position_gain, 20.0);
+  // the iiwa stands at (0.20, -0.20, 0) m, yaw 0 (docs/robot-file-draft.md).
+  EXPECT_EQ(iiwa.X_WB.translation(), Eigen::Vector3d(0.20, -0.20, 0.0));
+  EXPECT_EQ(iiwa.X_WB.linear(), Eigen::Matrix3d::Identity());
   const RobotFile pa10 = LoadRobotFile(Pa10File());
   EXPECT_EQ(pa10.name, "pa10_gifu3");
   EXPECT_EQ(pa10.arm.flange_link, "W2_link");
+  EXPECT_EQ(pa10.X_WB.matrix(), Eigen::Matrix4d::Identity());
+}
+
+TEST(RobotFile, ReadsTheBasePoseAsAYawThenAShift) {
+  const std::string text = R"({"format": "graspsynth-robot/1", "name": "x", "urdf": "x.urdf",
+      "base": {"position_m": [0.5, -0.25, 0.125], "yaw_deg": 90},
+      "arm": {"base_link": "a", "flange_link": "b", "ik": "srs"}})";
+  const RobotFile file = ParseRobotFile(text, "x.json", ".");
+  const Eigen::Vector3d p_B(1.0, 0.0, 0.0);  // a point 1 m along the base's x
+  EXPECT_LE((file.X_WB * p_B - Eigen::Vector3d(0.5, 0.75, 0.125)).norm(), 1e-15);
 }
 
 TEST(RobotFile, IiwaArmIsThePa10TableWithA4Turned) {
@@ -354,6 +367,17 @@ TEST(RobotFile, RefusesBadFieldsNamingThem) {
                              "servo": {"position_gain": -1}})"),
                "field 'arm.servo.position_gain'");
   expect_field(R"({"format": "graspsynth-robot/1", "name": "x", "urdf": "x.urdf"})", "field 'arm'");
+  const std::string arm = R"("arm": {"base_link": "a", "flange_link": "b", "ik": "srs"})";
+  const std::string head = R"({"format": "graspsynth-robot/1", "name": "x", "urdf": "x.urdf", )";
+  expect_field(head + R"("base": {"position_m": [0, 0]}, )" + arm + "}",
+               "field 'base.position_m': expected an array of 3 numbers");
+  expect_field(head + R"("base": {"position_m": [0, 0, 11]}, )" + arm + "}",
+               "field 'base.position_m[2]'");
+  expect_field(head + R"("base": {"position_m": [0, 0, 0], "yaw_deg": 270}, )" + arm + "}",
+               "field 'base.yaw_deg': expected a number in [-180, 180], found 270");
+  expect_field(head + R"("base": {"position_m": [0, 0, 0], "roll_deg": 1}, )" + arm + "}",
+               "base.roll_deg");
+  expect_field(head + R"("base": {"yaw_deg": 1}, )" + arm + "}", "field 'base.position_m'");
   // a URDF that is not there: named with the robot file's folder.
   const fs::path path = Write(dir.path(), "c.json", RobotJson(ArmJson("a", "b"), "missing.urdf"));
   GS_EXPECT_THROW_WITH(LoadArmFromRobotFile(path), InputError, "missing.urdf");

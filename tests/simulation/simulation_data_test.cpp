@@ -232,9 +232,13 @@ RobotModel OtherLayout(const std::string& ring_name = "ring") {
       if (!hj.coupling) hj.actuated = actuated++;
     }
   }
-  return RobotModel{"other.urdf", gifu.arm, gifu.X_FH,
+  return RobotModel{"other.urdf",
+                    gifu.arm,
+                    gifu.X_FH,
                     HandModel("other.urdf", gifu.hand.mount(), gifu.hand.palm(), gifu.hand.X_HP(),
-                              std::move(fingers))};
+                              std::move(fingers)),
+                    "other",
+                    Eigen::Isometry3d::Identity()};
 }
 
 TEST(SimulationData, AHandOfAnotherLayoutHasItsBodiesAndHingesAndReachesItsTargets) {
