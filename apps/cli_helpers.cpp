@@ -13,6 +13,7 @@
 #include "common/json_reader.hpp"
 #include "kinematics/robot_description.hpp"
 #include "request/physics_options.hpp"
+#include "scene/base_frame.hpp"
 #include "scene/object_model.hpp"
 
 namespace graspsynth::apps {
@@ -39,7 +40,8 @@ void AddObjectFlag(CLI::App* app, std::string* object) {
 
 void PlaceTrajectoryObject(const SceneModel& scene, const std::optional<Eigen::Vector2d>& at,
                            const std::string& file, JointTrajectory* trajectory) {
-  if (at) trajectory->object_xy = at;
+  // --at is in the study's world; the scene (a model's) may be in the robot's base frame.
+  if (at) trajectory->object_xy = TablePointInScene(scene, *at);
   if (!trajectory->object_xy) return;
   try {
     scene.CheckOnTable(*trajectory->object_xy);

@@ -14,6 +14,7 @@
 #include "common/errors.hpp"
 #include "gate/grasp_file.hpp"
 #include "request/mujoco_request.hpp"
+#include "scene/base_frame.hpp"
 
 namespace graspsynth::apps {
 namespace {
@@ -40,12 +41,12 @@ int RunExportMjcf(const ExportOptions& o, const request::ExportMjcfRequest& r) {
     PlaceTrajectoryObject(model.scene(), r.at, o.trajectory, &*trajectory);
     placement = trajectory->placement();
   } else if (r.at) {
+    placement.xy = TablePointInScene(model.scene(), *r.at);
     try {
-      model.scene().CheckOnTable(*r.at);
+      model.scene().CheckOnTable(*placement.xy);
     } catch (const InputError& e) {
       throw InputError(std::string("--at: ") + e.what());
     }
-    placement.xy = r.at;
   }
   if (r.theta) placement.theta = Radians(*r.theta);
   if (trajectory && r.theta && *r.theta != trajectory->theta_deg) {

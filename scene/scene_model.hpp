@@ -57,6 +57,10 @@ struct SceneModel {
   /// The object's yaw at orientation 0: its x axis points along theta + object_yaw_offset, rad.
   double object_yaw_offset = 0.0;
   GraspRegionModel grasp_region;
+  /// Pose of the frame the scene's coordinates are in (S) in the study's world W: identity as
+  /// read from a scene file; a robot's base frame once SceneInBaseFrame (scene/base_frame.hpp)
+  /// has re-expressed it for a robot standing elsewhere.
+  Eigen::Isometry3d X_WS = Eigen::Isometry3d::Identity();
 
   /// Pose X_WO of the object frame at rest on the table at orientation theta (radians), at
   /// the scene's object centre.

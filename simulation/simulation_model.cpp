@@ -6,6 +6,7 @@
 
 #include "common/errors.hpp"
 #include "common/valid_options.hpp"
+#include "scene/base_frame.hpp"
 #include "simulation/trial_judge.hpp"
 
 namespace graspsynth {
@@ -62,7 +63,9 @@ bool SimulationOptions::IsValid(std::string* why) const {
 }
 
 SimulationModel::SimulationModel(RobotModel robot, SceneModel scene, SimulationOptions options)
-    : robot_(std::move(robot)), scene_(std::move(scene)), options_(options) {
+    : robot_(std::move(robot)),
+      scene_(SceneInBaseFrame(std::move(scene), robot_.X_WB)),
+      options_(options) {
   RequireValid(options_, "invalid simulation option");
   // a trial's load share counts each finger's contacts by its name (kLoadShareGroups).
   for (const Finger& finger : robot_.hand.fingers()) {

@@ -9,6 +9,7 @@
 #include "common/format.hpp"
 #include "common/valid_options.hpp"
 #include "motion/scripted_grasp.hpp"
+#include "scene/base_frame.hpp"
 
 namespace graspsynth {
 
@@ -19,8 +20,10 @@ SynthesisTask MakeSynthesisTask(const SceneModel& scene, double theta_deg,
   task.theta_deg = theta_deg;
   task.placement.theta = theta_deg * kDeg;
   if (at) {
-    scene.CheckOnTable(*at);
-    task.placement.xy = *at;
+    // --at is in the study's world; the model's scene in the robot's base frame.
+    const Eigen::Vector2d xy = TablePointInScene(scene, *at);
+    scene.CheckOnTable(xy);
+    task.placement.xy = xy;
   }
   task.X_WO = scene.ObjectPose(task.placement);
   return task;
@@ -34,7 +37,7 @@ Eigen::Vector3d PlacementCoordinates(const SceneModel& scene, const Placement& p
 SynthesisModel::SynthesisModel(RobotModel robot, SceneModel scene, GraspLibrary library,
                                const LinePrincipleOptions& line_options)
     : robot_(std::move(robot)),
-      scene_(std::move(scene)),
+      scene_(SceneInBaseFrame(std::move(scene), robot_.X_WB)),
       library_(std::move(library)),
       collision_(robot_, scene_) {
   // the file's checks (ReadGraspLibrary) again, for a library built in memory.
