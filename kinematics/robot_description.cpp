@@ -570,8 +570,13 @@ RobotModel ParseRobotModel(std::string_view urdf_xml, const std::string& source)
 
   HandModel hand(source, std::move(mount_link), std::move(palm),
                  ToIsometry(palm_joint.parent_to_joint_origin_transform), std::move(fingers));
-  return RobotModel{source,          std::move(arm),   X_FH,
-                    std::move(hand), model->getName(), Eigen::Isometry3d::Identity()};
+  return RobotModel{source,
+                    std::move(arm),
+                    X_FH,
+                    std::move(hand),
+                    model->getName(),
+                    Eigen::Isometry3d::Identity(),
+                    {}};
 }
 
 RobotModel LoadRobotModel(const std::filesystem::path& path) {

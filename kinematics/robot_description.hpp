@@ -11,6 +11,7 @@
 
 #include "kinematics/arm_model.hpp"
 #include "kinematics/hand_model.hpp"
+#include "kinematics/robot_grasp.hpp"
 
 namespace graspsynth {
 
@@ -28,6 +29,9 @@ struct RobotModel {
   /// Pose of the arm's base frame B in the study's world frame W (m; identity for the PA-10).
   /// A robot file may give it (its `base`); a URDF alone gives identity.
   Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
+  /// The scripted grasp's hand shapes and grip (a robot file's `grasp` part); empty when the
+  /// robot was loaded from its URDF alone (RobotGraspOf then reads the shipped robot file).
+  std::optional<RobotGrasp> grasp;
 };
 
 /// Reads and checks the robot description at `path` (see ParseRobotModel). Throws InputError

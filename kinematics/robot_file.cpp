@@ -75,7 +75,7 @@ RobotFile ParseRobotFile(std::string_view json, const std::string& source,
   top.AsObject();
   top.ExpectString("format", kFormat);
   top.RejectUnknownKeys(
-      {"format", "name", "comment", "urdf", "base", "arm", "hand", "collision", "glove"});
+      {"format", "name", "comment", "urdf", "base", "arm", "hand", "collision", "glove", "grasp"});
   RobotFile file;
   file.source = source;
   file.name = NonEmptyString(top, "name");

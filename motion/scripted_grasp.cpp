@@ -7,6 +7,7 @@
 #include "kinematics/arm_ik.hpp"
 #include "motion/joint_space.hpp"
 #include "motion/reach.hpp"
+#include "scene/base_frame.hpp"
 
 namespace graspsynth {
 namespace {
@@ -43,41 +44,6 @@ void AppendSegment(CartesianPath* path, const Eigen::Isometry3d& a, const Eigen:
 
 }  // namespace
 
-namespace {
-
-// f indices of the fingers' joints: j1 (ab/adduction), j2 (MCP), j3 (PIP).
-constexpr int kIndexJ1 = 4, kRingJ1 = 10, kLittleJ1 = 13;
-constexpr int J2(int finger) { return 4 + 3 * finger + 1; }  // finger 0..3: index..little
-
-HandVector Spread() {
-  HandVector f = HandVector::Zero();
-  f[0] = 90.0 * kDeg;  // thumb opposed
-  f[kIndexJ1] = -20.0 * kDeg;
-  f[kRingJ1] = 20.0 * kDeg;
-  f[kLittleJ1] = 20.0 * kDeg;
-  return f;
-}
-
-}  // namespace
-
-HandVector ScriptedGraspOptions::DefaultOpenHand() {
-  HandVector f = Spread();
-  f[2] = 15.0 * kDeg;
-  return f;
-}
-
-HandVector ScriptedGraspOptions::DefaultClosedHand() {
-  HandVector f = Spread();
-  f.head<4>() << 90.0 * kDeg, 0.0, 30.0 * kDeg, 10.0 * kDeg;
-  for (int finger = 0; finger < 3; ++finger) {
-    f[J2(finger)] = 70.0 * kDeg;
-    f[J2(finger) + 1] = 17.5 * kDeg;
-  }
-  f[J2(3)] = 20.0 * kDeg;
-  f[J2(3) + 1] = 10.0 * kDeg;
-  return f;
-}
-
 bool ScriptedGraspOptions::IsValid(std::string* why) const {
   auto fail = [&](const std::string& what) {
     if (why) *why = what;
@@ -86,13 +52,15 @@ bool ScriptedGraspOptions::IsValid(std::string* why) const {
   auto positive = [](double x) { return std::isfinite(x) && x > 0.0; };
   if (!std::isfinite(theta_deg)) return fail("theta_deg is not finite");
   if (!positive(grasp_radius)) return fail("grasp_radius must be positive");
-  if (!bar_in_hand.allFinite()) return fail("bar_in_hand is not finite");
+  if (bar_in_hand && !bar_in_hand->allFinite()) return fail("bar_in_hand is not finite");
   if (!std::isfinite(yaw)) return fail("yaw is not finite");
   if (side != 1 && side != -1) return fail("side must be +1 or -1");
   if (!std::isfinite(pregrasp_up) || !std::isfinite(pregrasp_back)) {
     return fail("the pre-grasp offsets must be finite");
   }
-  if (!open.allFinite() || !closed.allFinite()) return fail("the finger shapes must be finite");
+  if ((open && !open->allFinite()) || (closed && !closed->allFinite())) {
+    return fail("the finger shapes must be finite");
+  }
   for (double d : {reach_duration, approach_duration, close_duration, settle_duration,
                    lift_duration, end_duration, sample_period}) {
     if (!positive(d)) return fail("every duration and the sample period must be positive");
@@ -101,7 +69,34 @@ bool ScriptedGraspOptions::IsValid(std::string* why) const {
   return true;
 }
 
-Eigen::Isometry3d GraspWristPose(const SceneModel& scene, const ScriptedGraspOptions& options) {
+namespace {
+
+// the wrist pose X_WH of the grasp in the scene's frame, with the handle at `bar_in_hand` of H.
+Eigen::Isometry3d GraspWristPose(const SceneModel& scene, const ScriptedGraspOptions& options,
+                                 const Eigen::Vector3d& bar_in_hand);
+
+}  // namespace
+
+RobotGrasp ScriptedGraspShapes(const RobotModel& robot, const ScriptedGraspOptions& options) {
+  RobotGrasp g =
+      options.open && options.closed && options.bar_in_hand ? RobotGrasp{} : RobotGraspOf(robot);
+  if (options.open) g.open = *options.open;
+  if (options.closed) g.closed = *options.closed;
+  if (options.bar_in_hand) g.bar_in_hand = *options.bar_in_hand;
+  if (options.keep_open) g.closed = g.open;
+  return g;
+}
+
+Eigen::Isometry3d GraspWristPose(const RobotModel& robot, const SceneModel& scene_in,
+                                 const ScriptedGraspOptions& options) {
+  const SceneModel scene = SceneInBaseFrame(scene_in, robot.X_WB);
+  return GraspWristPose(scene, options, ScriptedGraspShapes(robot, options).bar_in_hand);
+}
+
+namespace {
+
+Eigen::Isometry3d GraspWristPose(const SceneModel& scene, const ScriptedGraspOptions& options,
+                                 const Eigen::Vector3d& bar_in_hand) {
   const Eigen::Isometry3d X_WO = scene.ObjectPose(options.theta_deg * kDeg);
   const Eigen::Vector3d h = scene.object.HandleDirection(X_WO);  // along the handle, horizontal
   const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
@@ -115,14 +110,20 @@ Eigen::Isometry3d GraspWristPose(const SceneModel& scene, const ScriptedGraspOpt
   const ObjectModel& o = scene.object;
   const Eigen::Vector3d p_bar = X_WO.translation() + options.grasp_radius * h +
                                 (o.Handle("the scripted grasp").axis_height - o.rest_height) * up;
-  return Pose(R, p_bar - R * options.bar_in_hand);
+  return Pose(R, p_bar - R * bar_in_hand);
 }
 
-ScriptedGraspResult BuildScriptedGrasp(const RobotModel& robot, const SceneModel& scene,
+}  // namespace
+
+ScriptedGraspResult BuildScriptedGrasp(const RobotModel& robot, const SceneModel& scene_in,
                                        const ScriptedGraspOptions& options) {
   RequireValid(options, "invalid scripted grasp option");
+  const SceneModel scene = SceneInBaseFrame(scene_in, robot.X_WB);
+  const RobotGrasp shapes = ScriptedGraspShapes(robot, options);
+  const HandVector& open = shapes.open;
+  const HandVector& closed = shapes.closed;
   ScriptedGraspResult result;
-  const Eigen::Isometry3d X_grasp = GraspWristPose(scene, options);
+  const Eigen::Isometry3d X_grasp = GraspWristPose(scene, options, shapes.bar_in_hand);
   const Vector7d rest =
       options.rest ? *options.rest : DefaultRestConfiguration(robot, scene, X_grasp.linear());
   const Eigen::Isometry3d X_rest = ArmFlangePose(robot.arm, rest) * robot.X_FH;
@@ -135,18 +136,17 @@ ScriptedGraspResult BuildScriptedGrasp(const RobotModel& robot, const SceneModel
   result.X_WH_pregrasp = X_pre;
 
   const double dt = options.sample_period;
-  CartesianPath path = {Waypoint(0.0, X_rest, options.open)};
-  AppendSegment(&path, X_rest, X_pre, options.open, options.open, options.reach_duration, dt);
+  CartesianPath path = {Waypoint(0.0, X_rest, open)};
+  AppendSegment(&path, X_rest, X_pre, open, open, options.reach_duration, dt);
   const size_t i_pre = path.size() - 1;
-  AppendSegment(&path, X_pre, X_grasp, options.open, options.open, options.approach_duration, dt);
+  AppendSegment(&path, X_pre, X_grasp, open, open, options.approach_duration, dt);
   const size_t i_grasp = path.size() - 1;
-  AppendSegment(&path, X_grasp, X_grasp, options.open, options.closed, options.close_duration, dt);
+  AppendSegment(&path, X_grasp, X_grasp, open, closed, options.close_duration, dt);
   const size_t i_closed = path.size() - 1;
-  AppendSegment(&path, X_grasp, X_grasp, options.closed, options.closed, options.settle_duration,
-                dt);
-  AppendSegment(&path, X_grasp, X_lift, options.closed, options.closed, options.lift_duration, dt);
+  AppendSegment(&path, X_grasp, X_grasp, closed, closed, options.settle_duration, dt);
+  AppendSegment(&path, X_grasp, X_lift, closed, closed, options.lift_duration, dt);
   const size_t i_lift = path.size() - 1;
-  AppendSegment(&path, X_lift, X_lift, options.closed, options.closed, options.end_duration, dt);
+  AppendSegment(&path, X_lift, X_lift, closed, closed, options.end_duration, dt);
 
   JointSpaceOptions js;
   const JointSpaceResult joints = ToJointTrajectory(robot, path, rest, js);

@@ -16,6 +16,7 @@
 #include <string>
 
 #include "kinematics/robot_description.hpp"
+#include "kinematics/robot_grasp.hpp"
 #include "motion/joint_trajectory.hpp"
 #include "scene/rest_pose.hpp"
 #include "scene/scene_model.hpp"
@@ -32,10 +33,11 @@ struct ScriptedGraspOptions {
   /// hand shapes: 0.12-0.15 m hold level, from 0.17 m the pan pitches down and slips.
   double grasp_radius = 0.14;
   /// Where the handle's axis lies in the hand-mount frame H at the grasp: depth below the
-  /// palm (x), along the thumb side (y), toward the fingertips (z), m. The default is the pinch
-  /// of models/README.md (a 24 mm bar between the distal pads of the fingers and the thumb's
-  /// tip): the wrist ends up 0.131 m above the table.
-  Eigen::Vector3d bar_in_hand = Eigen::Vector3d(0.086, 0.0, 0.103);
+  /// palm (x), along the thumb side (y), toward the fingertips (z), m. Unset: the robot's
+  /// (RobotGraspOf: its robot file's `grasp.bar_in_hand_m`; the PA-10's is the pinch of
+  /// models/README.md, a 24 mm bar between the distal pads of the fingers and the thumb's tip:
+  /// the wrist ends up 0.131 m above the table).
+  std::optional<Eigen::Vector3d> bar_in_hand;
   /// Hand yaw about the vertical away from "across the handle", rad.
   double yaw = 0.0;
   /// Wrist side: +1 puts the wrist on the right of the handle (seen along the handle from the
@@ -45,9 +47,13 @@ struct ScriptedGraspOptions {
   /// pregrasp_back, m.
   double pregrasp_up = 0.07;
   double pregrasp_back = 0.02;
-  /// Finger shapes f0..f15 (rad): open during reach and approach, closed at the grasp.
-  HandVector open = DefaultOpenHand();
-  HandVector closed = DefaultClosedHand();
+  /// Finger shapes f0..f15 (rad): open during reach and approach, closed at the grasp. Unset:
+  /// the robot's (RobotGraspOf: its robot file's `grasp.open_deg`, `grasp.closed_deg`).
+  std::optional<HandVector> open;
+  std::optional<HandVector> closed;
+  /// Keep the hand open at the grasp (the closed hand is the open one): a trajectory that must
+  /// fail.
+  bool keep_open = false;
   double reach_duration = 2.0;     ///< rest -> pre-grasp
   double approach_duration = 1.0;  ///< pre-grasp -> grasp
   double close_duration = 0.8;     ///< open -> closed at the grasp pose
@@ -59,26 +65,18 @@ struct ScriptedGraspOptions {
   /// Arm configuration at the start (rad); unset picks DefaultRestConfiguration.
   std::optional<Vector7d> rest;
 
-  /// The open hand: fingers straight, the index spread 20 deg toward the thumb side and the
-  /// ring and little fingers 20 deg the other way; the thumb opposed (thumb_j1 90 deg) and
-  /// pre-curled (thumb_j3 15 deg), so that its tip clears the table and the handle's near face.
-  /// The spreads sit at the ends of the ab/adduction ranges (+-20 deg), so perturbation noise
-  /// on those joints is clamped on one side.
-  static HandVector DefaultOpenHand();
-  /// The closed hand, with the spread of the open one: index, middle and ring MCP 70 deg and
-  /// PIP (= DIP) 17.5 deg, so that the distal phalanges stand vertical on the handle's far face
-  /// when they stall against it (MCP about 55 deg) and the motors squeeze; the little finger,
-  /// too short to reach around the bar, curled out of the way (MCP 20, PIP 10 deg); the thumb at
-  /// (90, 0, 30, 10) deg: its tip on the near face (models/README.md's pinch). The thumb is
-  /// the stronger side (2 N m against 0.5 N m), so it holds its place and the fingers press
-  /// the handle against it.
-  static HandVector DefaultClosedHand();
-
   bool IsValid(std::string* why) const;
 };
 
-/// The wrist pose X_WH of the grasp (see the file comment).
-Eigen::Isometry3d GraspWristPose(const SceneModel& scene, const ScriptedGraspOptions& options);
+/// The scripted grasp's hand shapes and grip for `robot`: the options' where set, else the
+/// robot's (RobotGraspOf); with keep_open the closed hand is the open one. Throws RobotGraspOf's
+/// InputError.
+RobotGrasp ScriptedGraspShapes(const RobotModel& robot, const ScriptedGraspOptions& options);
+
+/// The wrist pose X_BH of the grasp in the robot's base frame B (see the file comment; `scene`
+/// is re-expressed in B, scene/base_frame.hpp).
+Eigen::Isometry3d GraspWristPose(const RobotModel& robot, const SceneModel& scene,
+                                 const ScriptedGraspOptions& options);
 
 /// The built trajectory, or why it could not be built.
 struct ScriptedGraspResult {

@@ -152,7 +152,7 @@ ScriptedGraspOptions ToScriptedGraspOptions(const ScriptedGraspRequest& request)
   ScriptedGraspOptions g;
   g.theta_deg = request.theta;
   g.grasp_radius = request.grasp_radius;
-  if (request.keep_open) g.closed = g.open;
+  g.keep_open = request.keep_open;
   RequireValid(g, "bad scripted grasp option");
   return g;
 }

@@ -74,6 +74,7 @@ struct TeleopSession::Impl {
   double h = 0.0;                   // physics step, s
   double tick = 0.0;                // s
   std::vector<Vector7d> rest_arms;  // per orientation
+  HandVector rest_hand;             // the robot's open hand (RestHand)
 
   size_t orientation = 0;
   std::unique_ptr<SimulationData> world;
@@ -113,6 +114,7 @@ struct TeleopSession::Impl {
     tick = 1.0 / options.rate_hz;
     steps = std::max(1, static_cast<int>(std::ceil(tick / options.max_physics_step - 1e-9)));
     h = tick / steps;
+    rest_hand = RestHand(model.robot());
     for (double theta : options.orientations_deg) {
       rest_arms.push_back(RestArm(model.robot(), model.scene(), theta));
     }
@@ -136,10 +138,10 @@ struct TeleopSession::Impl {
     world_options.theta = Radians(theta_deg());
     world_options.object_xy = options.object_xy;
     const Vector7d& rest = rest_arms[orientation];
-    world = std::make_unique<SimulationData>(model, world_options, rest, RestHand());
+    world = std::make_unique<SimulationData>(model, world_options, rest, rest_hand);
     kinematic = true;
     q_cmd = q_goal = q_ik = rest;
-    f_cmd = f_goal = RestHand();
+    f_cmd = f_goal = rest_hand;
     phase = Phase::kWaiting;
     samples.clear();
     grasp_sample.reset();
@@ -460,11 +462,11 @@ Vector7d TeleopSession::RestArm(const RobotModel& robot, const SceneModel& scene
                                 double theta_deg) {
   ScriptedGraspOptions grasp;
   grasp.theta_deg = theta_deg;
-  const Eigen::Isometry3d X_WH = GraspWristPose(scene, grasp);
+  const Eigen::Isometry3d X_WH = GraspWristPose(robot, scene, grasp);
   return DefaultRestConfiguration(robot, scene, X_WH.linear());
 }
 
-HandVector TeleopSession::RestHand() { return ScriptedGraspOptions::DefaultOpenHand(); }
+HandVector TeleopSession::RestHand(const RobotModel& robot) { return RobotGraspOf(robot).open; }
 
 std::string TeleopSession::SummaryJson(const std::string& end, double wall_s) const {
   using nlohmann::json;

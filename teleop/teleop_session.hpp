@@ -190,10 +190,12 @@ class TeleopSession {
   const HandVector& hand_command() const;
   /// The rest configuration of the arm for orientation theta (deg): where every trial starts
   /// (DefaultRestConfiguration, scene/rest_pose.hpp, for the wrist orientation of the
-  /// scripted grasp, motion/scripted_grasp.hpp), and the open hand. Throws InputError when
-  /// the rest pose of the scene is out of reach.
+  /// scripted grasp, motion/scripted_grasp.hpp). Throws InputError when the rest pose of the
+  /// scene is out of reach.
   static Vector7d RestArm(const RobotModel& robot, const SceneModel& scene, double theta_deg);
-  static HandVector RestHand();
+  /// The open hand where every trial starts: the scripted grasp's open hand of `robot`
+  /// (RobotGraspOf, its robot file's `grasp.open_deg`), rad. Throws RobotGraspOf's InputError.
+  static HandVector RestHand(const RobotModel& robot);
 
   /// The summary (`graspsynth-teleop-session/1`, JSON): options, counters (dropped by reason),
   /// ticks, trials with outcome and file. `end` says why the session ended (e.g.

@@ -242,7 +242,8 @@ TEST_F(SynthesizeCommand, ObjectWithoutAHandleIsRefusedUpFront) {
 TEST_F(SynthesizeCommand, GraspBelowTheGateIsNotWrittenUnlessForced) {
   // a library whose grasps hold the hand 5 cm too high: nothing is lifted.
   ScriptedGraspOptions high;
-  high.bar_in_hand.x() -= 0.05;
+  high.bar_in_hand = RobotGraspOf(testing::ShippedSimulationModel().robot()).bar_in_hand;
+  high.bar_in_hand->x() -= 0.05;
   WriteGraspLibrary(
       testing::ScriptedLibrary(testing::ShippedSimulationModel().robot(),
                                testing::ShippedSimulationModel().scene(), {40.0, 60.0}, +1, high),

@@ -17,7 +17,8 @@ using testing::ShippedSimulationModel;
 JointTrajectory Scripted(double theta_deg, double higher = 0.0) {
   ScriptedGraspOptions o;
   o.theta_deg = theta_deg;
-  o.bar_in_hand.x() -= higher;  // the handle nearer the palm: the wrist `higher` up
+  o.bar_in_hand = RobotGraspOf(ShippedSimulationModel().robot()).bar_in_hand;
+  o.bar_in_hand->x() -= higher;  // the handle nearer the palm: the wrist `higher` up
   const ScriptedGraspResult r =
       BuildScriptedGrasp(ShippedSimulationModel().robot(), ShippedSimulationModel().scene(), o);
   EXPECT_TRUE(r.ok) << r.message;

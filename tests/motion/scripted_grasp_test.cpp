@@ -42,10 +42,10 @@ TEST(ScriptedGrasp, TheWristPutsTheHandleWhereTheHandPinches) {
   for (double theta : {40.0, 60.0, 80.0}) {
     ScriptedGraspOptions o;
     o.theta_deg = theta;
-    const Eigen::Isometry3d X_WH = GraspWristPose(Scene(), o);
+    const Eigen::Isometry3d X_WH = GraspWristPose(Robot(), Scene(), o);
     const Eigen::Isometry3d X_WO = Scene().ObjectPose(theta * M_PI / 180.0);
     // the bar point of the hand lies on the handle's axis, grasp_radius from the centre.
-    const Eigen::Vector3d p_O = X_WO.inverse() * (X_WH * o.bar_in_hand);
+    const Eigen::Vector3d p_O = X_WO.inverse() * (X_WH * RobotGraspOf(Robot()).bar_in_hand);
     EXPECT_NEAR(p_O.x(), o.grasp_radius, 1e-12);
     EXPECT_NEAR(p_O.y(), 0.0, 1e-12);
     EXPECT_NEAR(p_O.z(), Scene().object.handle->axis_height - Scene().object.rest_height, 1e-12);
@@ -74,8 +74,8 @@ TEST(ScriptedGrasp, TheTrajectoryIsPlayableAndPassesThroughItsWaypoints) {
                        o.settle_duration + o.lift_duration + o.end_duration;
   EXPECT_NEAR(r.trajectory.duration(), total, 1e-9);  // slow enough: no re-timing
   // the hand opens before and closes after the approach.
-  EXPECT_EQ(SampleAt(r.trajectory, r.trajectory.waypoints[2].t).hand, o.open);
-  EXPECT_EQ(r.trajectory.samples.back().hand, o.closed);
+  EXPECT_EQ(SampleAt(r.trajectory, r.trajectory.waypoints[2].t).hand, RobotGraspOf(Robot()).open);
+  EXPECT_EQ(r.trajectory.samples.back().hand, RobotGraspOf(Robot()).closed);
   // no joint jumps: consecutive samples within 0.05 rad.
   for (size_t i = 1; i < r.trajectory.samples.size(); ++i) {
     EXPECT_LT((r.trajectory.samples[i].arm - r.trajectory.samples[i - 1].arm).cwiseAbs().maxCoeff(),

@@ -5,8 +5,8 @@
 
 #include <limits>
 
-#include "scene/rest_pose.hpp"
 #include "motion/scripted_grasp.hpp"
+#include "scene/rest_pose.hpp"
 #include "tests/utils/eigen_matchers.hpp"
 #include "tests/utils/simulation_fixtures.hpp"
 
@@ -31,9 +31,9 @@ SimulationData RestWorld() {
   const SimulationModel& model = ShippedSimulationModel();
   ScriptedGraspOptions grasp;
   grasp.theta_deg = kTheta;
-  const Vector7d rest = DefaultRestConfiguration(model.robot(), model.scene(),
-                                                 GraspWristPose(model.scene(), grasp).linear());
-  return SimulationData(model, Options(), rest, ScriptedGraspOptions::DefaultOpenHand());
+  const Vector7d rest = DefaultRestConfiguration(
+      model.robot(), model.scene(), GraspWristPose(model.robot(), model.scene(), grasp).linear());
+  return SimulationData(model, Options(), rest, RobotGraspOf(model.robot()).open);
 }
 
 // The same world with the hand pushed into the table beside the object (the last sample of

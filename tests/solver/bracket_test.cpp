@@ -85,7 +85,7 @@ TEST(Bracket, HandleSideFollowsTheScriptedGraspsSide) {
     ScriptedGraspOptions o;
     o.theta_deg = 60.0;
     o.side = side;
-    const Eigen::Isometry3d X = GraspWristPose(Scene(), o);
+    const Eigen::Isometry3d X = GraspWristPose(ShippedSimulationModel().robot(), Scene(), o);
     EXPECT_EQ(HandleSide(Scene(), 60.0 * M_PI / 180.0, X.translation(), 0.01), side);
   }
 }

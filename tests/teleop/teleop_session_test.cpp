@@ -124,7 +124,7 @@ TEST(TeleopSession, HoldsStillBeforeTheFirstCommandAndSendsNothing) {
 TEST(TeleopSession, DropsBadPacketsByReasonWhileTheRobotStaysControllable) {
   TeleopSession session(ShippedSimulationModel(), SixtyDegrees());
   const Eigen::Isometry3d target = RestWrist(Eigen::Vector3d(0.06, -0.04, -0.05));
-  const HandVector f = TeleopSession::RestHand();
+  const HandVector f = TeleopSession::RestHand(ShippedSimulationModel().robot());
   std::mt19937 rng(5);
   const int ticks = 90;
   uint32_t seq = 100;
@@ -197,8 +197,8 @@ TEST(TeleopSession, DropsBadPacketsByReasonWhileTheRobotStaysControllable) {
 TEST(TeleopSession, SurvivesAFloodOfMutatedPackets) {
   TeleopSession session(ShippedSimulationModel(), SixtyDegrees());
   std::mt19937 rng(11);
-  const std::vector<uint8_t> base =
-      EncodeCommand(JointCommand(1, RestWrist(), TeleopSession::RestHand()));
+  const std::vector<uint8_t> base = EncodeCommand(
+      JointCommand(1, RestWrist(), TeleopSession::RestHand(ShippedSimulationModel().robot())));
   const int ticks = graspsynth::testing::Scaled(30, 5);
   for (int k = 0; k < ticks; ++k) {
     std::vector<Datagram> in;
@@ -229,7 +229,8 @@ TEST(TeleopSession, AStallLongerThanTheTimeoutHoldsTheRobotStill) {
   uint32_t seq = 0;
   int k = 0;
   for (; k < 3; ++k) {
-    const Datagram d = Wrap(EncodeCommand(JointCommand(seq++, far, TeleopSession::RestHand())));
+    const Datagram d = Wrap(EncodeCommand(
+        JointCommand(seq++, far, TeleopSession::RestHand(ShippedSimulationModel().robot()))));
     session.Step({&d, 1}, k * kTick);
   }
   // silence from t = 2 ticks on: the robot goes on toward the target for 0.2 s, then holds.
@@ -249,7 +250,8 @@ TEST(TeleopSession, AStallLongerThanTheTimeoutHoldsTheRobotStill) {
   EXPECT_LT((session.arm() - q_held).cwiseAbs().maxCoeff(), 2e-3);
   EXPECT_GT((session.wrist_pose().translation() - far.translation()).norm(), 0.05);
   // a new command takes over again.
-  const Datagram d = Wrap(EncodeCommand(JointCommand(seq++, far, TeleopSession::RestHand())));
+  const Datagram d = Wrap(EncodeCommand(
+      JointCommand(seq++, far, TeleopSession::RestHand(ShippedSimulationModel().robot()))));
   r = session.Step({&d, 1}, k++ * kTick);
   EXPECT_FALSE(r.flags & kHoldingStill);
 }
@@ -306,7 +308,8 @@ TEST(TeleopSession, AnUnreachableTargetHoldsTheArm) {
   TickResult r;
   const Vector7d q0 = session.arm();
   for (int k = 0; k < 20; ++k) {
-    const Datagram d = Wrap(EncodeCommand(JointCommand(k, beyond, TeleopSession::RestHand())));
+    const Datagram d = Wrap(EncodeCommand(
+        JointCommand(k, beyond, TeleopSession::RestHand(ShippedSimulationModel().robot()))));
     r = session.Step({&d, 1}, k * kTick);
   }
   EXPECT_TRUE(r.flags & kOutOfReach);
@@ -330,7 +333,8 @@ TEST(TeleopSession, RecordsATrialThatPassesTheLogReader) {
     Eigen::Isometry3d X = start;
     X.translation() = (1 - a) * start.translation() + a * lower.translation();
     const uint8_t buttons = k == 30 ? kGraspButton : k == 45 ? kEndTrialButton : 0;
-    const Datagram d = Wrap(EncodeCommand(JointCommand(k, X, TeleopSession::RestHand(), buttons)));
+    const Datagram d = Wrap(EncodeCommand(
+        JointCommand(k, X, TeleopSession::RestHand(ShippedSimulationModel().robot()), buttons)));
     const TickResult r = session.Step({&d, 1}, k * kTick);
     if (k < 45) {
       EXPECT_TRUE(r.flags & kRecording) << k;
@@ -389,7 +393,8 @@ TEST(TeleopSession, DrivingTheHandIntoTheTableIsACollision) {
     Eigen::Isometry3d X = start;
     X.translation() = (1 - a) * start.translation() + a * below.translation();
     const uint8_t buttons = k == 150 ? kEndTrialButton : 0;
-    const Datagram d = Wrap(EncodeCommand(JointCommand(k, X, TeleopSession::RestHand(), buttons)));
+    const Datagram d = Wrap(EncodeCommand(
+        JointCommand(k, X, TeleopSession::RestHand(ShippedSimulationModel().robot()), buttons)));
     ended = session.Step({&d, 1}, k * kTick).trial;
   }
   for (; k < 300 && !ended; ++k) ended = session.Step({}, k * kTick).trial;
@@ -407,8 +412,8 @@ TEST(TeleopSession, ATrialWithoutAGraspIsJudgedButNotWritten) {
   std::optional<TrialRecord> ended;
   for (int k = 0; k < 40 && !ended; ++k) {
     const uint8_t buttons = k == 10 ? kEndTrialButton : 0;
-    const Datagram d =
-        Wrap(EncodeCommand(JointCommand(k, RestWrist(), TeleopSession::RestHand(), buttons)));
+    const Datagram d = Wrap(EncodeCommand(JointCommand(
+        k, RestWrist(), TeleopSession::RestHand(ShippedSimulationModel().robot()), buttons)));
     ended = session.Step({&d, 1}, k * kTick).trial;
   }
   ASSERT_TRUE(ended);
@@ -424,11 +429,12 @@ TEST(TeleopSession, NextOrientationAbandonsTheTrialAndResetsTheWorld) {
   TeleopSession session(ShippedSimulationModel(), options);
   const Eigen::Isometry3d X = RestWrist(Eigen::Vector3d(0, 0, -0.03));
   for (int k = 0; k < 10; ++k) {
-    const Datagram d = Wrap(EncodeCommand(JointCommand(k, X, TeleopSession::RestHand())));
+    const Datagram d = Wrap(EncodeCommand(
+        JointCommand(k, X, TeleopSession::RestHand(ShippedSimulationModel().robot()))));
     session.Step({&d, 1}, k * kTick);
   }
-  const Datagram next =
-      Wrap(EncodeCommand(JointCommand(10, X, TeleopSession::RestHand(), kNextOrientationButton)));
+  const Datagram next = Wrap(EncodeCommand(JointCommand(
+      10, X, TeleopSession::RestHand(ShippedSimulationModel().robot()), kNextOrientationButton)));
   const TickResult r = session.Step({&next, 1}, 10 * kTick);
   EXPECT_EQ(session.theta_deg(), 80.0);
   ASSERT_TRUE(r.trial);
@@ -445,7 +451,8 @@ TEST(TeleopSession, NextOrientationAbandonsTheTrialAndResetsTheWorld) {
 
 TEST(TeleopSession, AnEndOfSessionPacketFinishesTheSession) {
   TeleopSession session(ShippedSimulationModel(), SixtyDegrees());
-  const Datagram c = Wrap(EncodeCommand(JointCommand(0, RestWrist(), TeleopSession::RestHand())));
+  const Datagram c = Wrap(EncodeCommand(
+      JointCommand(0, RestWrist(), TeleopSession::RestHand(ShippedSimulationModel().robot()))));
   EXPECT_FALSE(session.Step({&c, 1}, 0.0).finished);
   const Datagram end = Wrap(EncodeEndOfSession(1, 0.1));
   const TickResult r = session.Step({&end, 1}, kTick);
@@ -467,7 +474,7 @@ TEST(TeleopSession, WithAKeyOnlyFreshAuthenticatedCommandsDriveTheRobot) {
   const PacketKey& key = *options.key;
   const PacketKey stranger(std::vector<uint8_t>(32, 0x43));
   TeleopSession session(ShippedSimulationModel(), options);
-  const HandVector f = TeleopSession::RestHand();
+  const HandVector f = TeleopSession::RestHand(ShippedSimulationModel().robot());
   const Eigen::Isometry3d target = RestWrist(Eigen::Vector3d(0.05, 0.0, -0.04));
   const Eigen::Isometry3d wild = RestWrist(Eigen::Vector3d(0.0, 0.0, -0.3));
   std::vector<std::vector<uint8_t>> recorded;

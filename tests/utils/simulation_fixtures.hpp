@@ -52,7 +52,7 @@ inline JointTrajectory HandThroughTable() {
     w.t = 0.02 * k;
     w.p_WH = Eigen::Vector3d(0.0, 0.55, 0.35 - 0.40 * k / 100.0);
     w.q_WH = Eigen::Quaterniond(R);
-    w.f = ScriptedGraspOptions::DefaultOpenHand();
+    w.f = RobotGraspOf(robot).open;
     path.push_back(w);
   }
   Eigen::Isometry3d X0 = Eigen::Isometry3d::Identity();
