@@ -277,10 +277,12 @@ RobotModel LoadRobotOption(std::string_view name_or_path) {
   return LoadRobot(ResolveRobotPath(name_or_path));
 }
 
-const char* const kRobotOptionHelp =
-    "The robot: a shipped robot's name ('graspsynth robots' lists them, e.g. iiwa14_allegro), "
-    "a robot file (*.json, graspsynth-robot/1) or a URDF; default: "
-    "models/pa10_gifu3.urdf of the data folder (this checkout or $GRASPSYNTH_DATA_DIR)";
+void RequireDefaultRobot(const RobotModel& robot, std::string_view user, std::string_view data) {
+  if (robot.name == kDefaultRobotName) return;
+  throw InputError(std::string(user) + " cannot use robot '" + robot.name + "' (" + robot.source +
+                   ") yet: it reads " + std::string(data) +
+                   ", made for the PA-10 + Gifu Hand III (" + std::string(kDefaultRobotName) + ")");
+}
 
 std::vector<ShippedRobot> ShippedRobots() {
   constexpr std::string_view kSuffix = ".robot.json";

@@ -132,8 +132,12 @@ RobotModel RobotFromFile(const RobotFile& file);
 /// LoadRobot. Throws as those.
 RobotModel LoadRobotOption(std::string_view name_or_path);
 
-/// The help text of every command's `--robot` option: what it takes and its default.
-extern const char* const kRobotOptionHelp;
+/// Refuses a robot other than the PA-10 + Gifu Hand III (RobotModel::name kDefaultRobotName,
+/// the shipped default) where `user` (a command, "--robot: run", or a Python call) reads data
+/// made for that robot (`data`, e.g. "the grasp library": libraries, demonstrations and
+/// trajectories do not name their robot yet). Throws InputError "<user> cannot use robot
+/// '<name>' (<source>) yet: it reads <data>, made for the PA-10 + Gifu Hand III (pa10_gifu3)".
+void RequireDefaultRobot(const RobotModel& robot, std::string_view user, std::string_view data);
 
 /// A robot shipped with graspsynth: the robot file DataDirectory()/models/<name>.robot.json.
 struct ShippedRobot {
