@@ -12,6 +12,7 @@
 #include "common/format.hpp"
 #include "common/json_reader.hpp"
 #include "kinematics/robot_description.hpp"
+#include "kinematics/robot_file.hpp"
 #include "request/physics_options.hpp"
 #include "scene/base_frame.hpp"
 #include "scene/object_model.hpp"
@@ -29,6 +30,15 @@ void RefuseFormerConfig(const std::string& config, std::string_view format, cons
                      " FILE; --config FILE takes a file of this command's options "
                      "(graspsynth-options/1)");
   }
+}
+
+void AddRobotOption(CLI::App* app, std::string* robot, std::string_view what) {
+  app->add_option("--robot", *robot,
+                  "The robot: a shipped robot's name ('graspsynth robots' lists them, e.g. "
+                  "iiwa14_allegro), a robot file (*.json, graspsynth-robot/1) or a URDF" +
+                      std::string(what) +
+                      "; default: models/pa10_gifu3.urdf of the data folder (this checkout or "
+                      "$GRASPSYNTH_DATA_DIR)");
 }
 
 void AddObjectFlag(CLI::App* app, std::string* object) {
@@ -98,8 +108,14 @@ RunIdentity CommandIdentity(const CLI::App& command) {
 
 void AddModelFiles(const std::string& robot, const std::string& scene, const std::string& object,
                    RunIdentity* identity) {
-  identity->AddFile("robot file",
-                    robot.empty() ? DefaultRobotDescriptionPath() : std::filesystem::path(robot));
+  if (robot.empty()) {
+    identity->AddFile("robot file", DefaultRobotDescriptionPath());
+  } else {
+    // a robot file and its URDF (a shipped robot's name is its robot file).
+    const std::filesystem::path path = ResolveRobotPath(robot);
+    identity->AddFile("robot file", path);
+    if (path.extension() == ".json") identity->AddFile("robot URDF", LoadRobotFile(path).urdf);
+  }
   identity->AddFile("scene file",
                     scene.empty() ? DefaultSceneModelPath() : std::filesystem::path(scene));
   if (!object.empty()) identity->AddFile("object file", ResolveObjectPath(object));

@@ -16,6 +16,7 @@
 #include "apps/request_flags.hpp"
 #include "common/job_runner.hpp"
 #include "common/orientation_list.hpp"
+#include "kinematics/robot_description.hpp"
 #include "motion/joint_trajectory.hpp"
 #include "scene/scene_model.hpp"
 #include "simulation/physics_perturbation.hpp"
@@ -33,6 +34,11 @@ namespace graspsynth::apps {
 /// Nothing for an empty `config` or another file.
 void RefuseFormerConfig(const std::string& config, std::string_view format, const char* what,
                         const char* name, const char* flag);
+
+/// Adds --robot NAME|FILE to a command, with the one help text every command shows: a shipped
+/// robot's name, a robot file or a URDF; empty for the default (kinematics/robot_file.hpp's
+/// LoadRobotOption reads it). `what` adds what this command reads of it ("" for nothing).
+void AddRobotOption(CLI::App* app, std::string* robot, std::string_view what = {});
 
 /// Adds --object NAME|FILE to a command that takes --scene: the object to use in place of the
 /// scene's (a shipped object's name, models/objects/NAME.json, or an object file).

@@ -21,6 +21,7 @@
 #include "common/json_reader.hpp"
 #include "common/orientation_list.hpp"
 #include "kinematics/robot_description.hpp"
+#include "kinematics/robot_file.hpp"
 #include "learning_data/segmentation.hpp"
 #include "learning_data/synthetic_operator.hpp"
 #include "request/demos_request.hpp"
@@ -63,8 +64,9 @@ void RefuseOperatorConfig(const std::string& config) {
 }
 
 std::unique_ptr<SimulationModel> LoadModel(const DemosOptions& o) {
-  RobotModel robot =
-      LoadRobotModel(o.robot.empty() ? DefaultRobotDescriptionPath() : fs::path(o.robot));
+  RobotModel robot = LoadRobotOption(o.robot);
+  RequireDefaultRobot(robot, "--robot: demos",
+                      "the synthetic operator (its operator file and glove map)");
   SceneModel scene = LoadScene(o.scene, o.object, "the synthetic operator's grip");
   return std::make_unique<SimulationModel>(std::move(robot), std::move(scene));
 }
@@ -245,7 +247,7 @@ void AddCommonOptions(CLI::App* cmd, DemosOptions* o) {
   cmd->add_option("--operator", o->operator_file,
                   "Operator file (graspsynth-operator/1); default: the shipped, calibrated "
                   "learning_data/demos/operator.json");
-  cmd->add_option("--robot", o->robot, "Robot description (URDF)");
+  AddRobotOption(cmd, &o->robot);
   cmd->add_option("--scene", o->scene, "Scene description (JSON)");
   AddObjectFlag(cmd, &o->object);
   cmd->add_flag("--quiet", o->quiet, "No progress bar");

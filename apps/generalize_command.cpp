@@ -17,6 +17,7 @@
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
 #include "kinematics/robot_description.hpp"
+#include "kinematics/robot_file.hpp"
 #include "learning_data/grasp_library.hpp"
 #include "request/generalize_request.hpp"
 #include "scene/scene_model.hpp"
@@ -56,8 +57,8 @@ int RunGeneralize(const GeneralizeOptions& o, const request::GeneralizeRequest& 
   const std::string library_name =
       o.library.empty() ? "the shipped library" : "`" + o.library + "`";
   const GraspLibrary library = ReadGraspLibrary(library_path);
-  const fs::path robot_path = o.robot.empty() ? DefaultRobotDescriptionPath() : fs::path(o.robot);
-  const SimulationModel model(LoadRobotModel(robot_path), std::move(scene));
+  const SimulationModel model(LoadRobotOption(o.robot), std::move(scene));
+  RequireDefaultRobot(model.robot(), "--robot: generalize", "a grasp library (graspsynth-library)");
 
   table.runner = &ProcessRunner();
   RunIdentity identity = CommandIdentity(command);
@@ -156,7 +157,7 @@ void AddGeneralizeCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--name", opts->name, "Stem of the output files")->capture_default_str();
   cmd->add_option("--out", opts->out, "Output folder")->required();
   AddResumeFlag(cmd, &opts->resume);
-  cmd->add_option("--robot", opts->robot, "Robot description (URDF); default: the shipped one");
+  AddRobotOption(cmd, &opts->robot);
   cmd->add_option("--scene", opts->scene, "Scene description (JSON); default: models/scene.json");
   AddObjectFlag(cmd, &opts->object);
   cmd->callback(

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/cli_helpers.hpp"
 #include "apps/request_flags.hpp"
 #include "common/data_dir.hpp"
 #include "common/errors.hpp"
@@ -248,11 +249,7 @@ LineResult IkLine(const ArmModel& arm, std::optional<ArmBranch> only, std::strin
 void AddCommonOptions(CLI::App* cmd, KinematicsOptions* opts) {
   cmd->add_option("input", opts->input, "Input file, or - for standard input")
       ->capture_default_str();
-  cmd->add_option("--robot", opts->robot,
-                  "A shipped robot's name ('graspsynth robots' lists them, e.g. iiwa14_allegro), "
-                  "a robot file (*.json, graspsynth-robot/1: only its arm is read) or a URDF; "
-                  "default: models/pa10_gifu3.urdf of this checkout or "
-                  "$GRASPSYNTH_DATA_DIR/models/pa10_gifu3.urdf");
+  AddRobotOption(cmd, &opts->robot, " (of a robot file only its arm is read)");
 }
 
 // fk and ik need only the arm: from the URDF's whole robot, or from a robot file's arm part.

@@ -13,6 +13,7 @@
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
 #include "gate/grasp_file.hpp"
+#include "kinematics/robot_file.hpp"
 #include "request/mujoco_request.hpp"
 #include "scene/base_frame.hpp"
 
@@ -30,12 +31,12 @@ struct ExportOptions {
 
 int RunExportMjcf(const ExportOptions& o, const request::ExportMjcfRequest& r) {
   const MjcfOptions options = request::ToMjcfOptions(r);  // every option checked first
-  const SimulationModel model(LoadRobotModel(o.robot.empty() ? DefaultRobotDescriptionPath()
-                                                             : std::filesystem::path(o.robot)),
-                              LoadScene(o.scene, o.object));
+  const SimulationModel model(LoadRobotOption(o.robot), LoadScene(o.scene, o.object));
   std::optional<JointTrajectory> trajectory;
   Placement placement;
   if (!o.trajectory.empty()) {
+    RequireDefaultRobot(model.robot(), "--robot: export-mjcf",
+                        "a trajectory or grasp file (graspsynth-trajectory/1, graspsynth-grasp/1)");
     // a graspsynth-trajectory/1 file, or the "trajectory" member of a graspsynth-grasp/1 file.
     trajectory = LoadTrajectoryOrGraspFile(o.trajectory, model.robot().arm, model.robot().hand);
     PlaceTrajectoryObject(model.scene(), r.at, o.trajectory, &*trajectory);
@@ -86,7 +87,7 @@ void AddExportMjcfCommand(CLI::App& app, int* exit_code) {
                   "Trajectory or grasp file whose samples become keyframes "
                   "(graspsynth-trajectory/1, graspsynth-grasp/1)")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--robot", opts->robot, "Robot description (URDF); default: the shipped one");
+  AddRobotOption(cmd, &opts->robot);
   cmd->add_option("--scene", opts->scene, "Scene description (JSON); default: models/scene.json");
   AddObjectFlag(cmd, &opts->object);
   cmd->callback([opts, flags, exit_code] { *exit_code = RunExportMjcf(*opts, flags->Build()); });

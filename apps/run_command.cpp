@@ -21,6 +21,7 @@
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
 #include "kinematics/robot_description.hpp"
+#include "kinematics/robot_file.hpp"
 #include "learning_data/demo_directory.hpp"
 #include "learning_data/grasp_library.hpp"
 #include "request/run_request.hpp"
@@ -106,8 +107,9 @@ void PrintStudySummary(const StudyResult& result, const fs::path& out) {
 
 int RunStudyCommand(const RunOptions& o, const request::RunRequest& r, const CLI::App& command) {
   const SceneModel scene = LoadScene(o.scene, o.object, kSynthesisNeedsHandle);
-  const SimulationModel model(
-      LoadRobotModel(o.robot.empty() ? DefaultRobotDescriptionPath() : fs::path(o.robot)), scene);
+  const SimulationModel model(LoadRobotOption(o.robot), scene);
+  RequireDefaultRobot(model.robot(), "--robot: run",
+                      "the demonstration logs (graspsynth-demo/1) and the study's grasp library");
   StudyOptions options = request::ToStudyOptions(r, scene, o.demos);
   options.runner = &ProcessRunner();
   RunIdentity identity = CommandIdentity(command);
@@ -176,7 +178,7 @@ void AddRunCommand(CLI::App& app, int* exit_code) {
   auto flags = std::make_shared<RequestFlags<request::RunRequest>>(run, request::RunOptions());
   run->add_option("--gnuplot", opts->gnuplot, "The gnuplot program for Fig. 8")
       ->capture_default_str();
-  run->add_option("--robot", opts->robot, "Robot description (URDF); default: the shipped one");
+  AddRobotOption(run, &opts->robot);
   run->add_option("--scene", opts->scene, "Scene description (JSON); default: models/scene.json");
   AddObjectFlag(run, &opts->object);
   AddResumeFlag(run, &opts->resume);

@@ -15,6 +15,7 @@
 #include "apps/request_flags.hpp"
 #include "common/errors.hpp"
 #include "kinematics/robot_description.hpp"
+#include "kinematics/robot_file.hpp"
 #include "learning_data/grasp_library.hpp"
 #include "learning_data/representative_selection.hpp"
 #include "request/select_request.hpp"
@@ -36,9 +37,8 @@ struct SelectCommandOptions {
 int RunSelect(const SelectCommandOptions& o, const request::SelectRequest& r,
               const CLI::App& command) {
   const SceneModel scene = LoadScene(o.scene, o.object);
-  const SimulationModel model(LoadRobotModel(o.robot.empty() ? DefaultRobotDescriptionPath()
-                                                             : std::filesystem::path(o.robot)),
-                              scene);
+  const SimulationModel model(LoadRobotOption(o.robot), scene);
+  RequireDefaultRobot(model.robot(), "--robot: select", "demonstration logs (graspsynth-demo/1)");
   SelectionOptions options = request::ToSelectionOptions(r, scene);
   options.runner = &ProcessRunner();
   RunIdentity identity = CommandIdentity(command);
@@ -171,7 +171,7 @@ void AddSelectCommand(CLI::App& app, int* exit_code) {
   select->add_option("--out", opts->out, "Library file to write (JSON)")->required();
   auto flags =
       std::make_shared<RequestFlags<request::SelectRequest>>(select, request::SelectOptions());
-  select->add_option("--robot", opts->robot, "Robot description (URDF); default: the shipped one");
+  AddRobotOption(select, &opts->robot);
   select->add_option("--scene", opts->scene,
                      "Scene description (JSON); default: models/scene.json");
   AddObjectFlag(select, &opts->object);

@@ -24,6 +24,7 @@
 #include "gate/hold_margin.hpp"
 #include "gate/physics_gate.hpp"
 #include "kinematics/pose_math.hpp"
+#include "kinematics/robot_file.hpp"
 #include "motion/joint_trajectory.hpp"
 #include "motion/scripted_grasp.hpp"
 #include "request/simulate_request.hpp"
@@ -74,11 +75,18 @@ json PoseJson(const Eigen::Isometry3d& X) {
           {"quaternion", {Round(q.w()), Round(q.x()), Round(q.y()), Round(q.z())}}};
 }
 
+// The trajectory and grasp files a simulation plays, made for the PA-10 + Gifu Hand III.
+constexpr std::string_view kTrajectoryData =
+    "a trajectory or grasp file (graspsynth-trajectory/1, graspsynth-grasp/1)";
+
+// The model of --robot, --scene and --object; `data` is what the command reads that only the
+// PA-10 + Gifu Hand III can use yet (RequireDefaultRobot).
 SimulationModel LoadModel(const std::string& robot, const std::string& scene,
-                          const std::string& object, std::string_view needs_handle = {}) {
-  return SimulationModel(
-      LoadRobotModel(robot.empty() ? DefaultRobotDescriptionPath() : std::filesystem::path(robot)),
-      LoadScene(scene, object, needs_handle));
+                          const std::string& object, std::string_view command,
+                          std::string_view data, std::string_view needs_handle = {}) {
+  RobotModel robot_model = LoadRobotOption(robot);
+  RequireDefaultRobot(robot_model, "--robot: " + std::string(command), data);
+  return SimulationModel(std::move(robot_model), LoadScene(scene, object, needs_handle));
 }
 
 std::string StatesCsv(const std::vector<TrialState>& states) {
@@ -218,7 +226,7 @@ int RunMujocoSweepCommand(const SimulateOptions& o, const request::SimulateReque
   sweep.trial = trial;
   sweep.time_step = mujoco.time_step > 0.0 ? mujoco.time_step : sweep.time_step;
   sweep.threads = r.threads;
-  const SimulationModel model = LoadModel(o.robot, o.scene, o.object);
+  const SimulationModel model = LoadModel(o.robot, o.scene, o.object, "simulate", kTrajectoryData);
   JointTrajectory trajectory =
       LoadTrajectoryOrGraspFile(o.trajectory, model.robot().arm, model.robot().hand);
   PlaceTrajectoryObject(model.scene(), r.at, o.trajectory, &trajectory);
@@ -265,7 +273,7 @@ int RunSimulate(const SimulateOptions& o, const request::SimulateRequest& r) {
     if (!mujoco) throw InputError("--mujoco-sweep needs --engine mujoco");
     return RunMujocoSweepCommand(o, r, trial, *mujoco);
   }
-  const SimulationModel model = LoadModel(o.robot, o.scene, o.object);
+  const SimulationModel model = LoadModel(o.robot, o.scene, o.object, "simulate", kTrajectoryData);
   // a graspsynth-trajectory/1 file, or the "trajectory" member of a graspsynth-grasp/1 file.
   JointTrajectory trajectory =
       LoadTrajectoryOrGraspFile(o.trajectory, model.robot().arm, model.robot().hand);
@@ -333,7 +341,9 @@ int RunSimulate(const SimulateOptions& o, const request::SimulateRequest& r) {
 
 int RunScripted(const ScriptedOptions& o, const request::ScriptedGraspRequest& request) {
   const ScriptedGraspOptions g = request::ToScriptedGraspOptions(request);
-  const SimulationModel model = LoadModel(o.robot, o.scene, o.object, "the scripted grasp");
+  const SimulationModel model =
+      LoadModel(o.robot, o.scene, o.object,
+                "the scripted grasp's finger shapes (the Gifu's f0..f15)", "the scripted grasp");
   const ScriptedGraspResult r = BuildScriptedGrasp(model.robot(), model.scene(), g);
   if (!r.ok)
     throw InputError("no scripted grasp for theta = " + std::to_string(request.theta) +
@@ -356,7 +366,7 @@ void AddScriptedGraspCommand(CLI::App& app, int* exit_code) {
   auto flags = std::make_shared<RequestFlags<request::ScriptedGraspRequest>>(
       scripted, request::ScriptedGraspRequestOptions());
   scripted->add_option("--out", sopts->out, "Trajectory file to write")->required();
-  scripted->add_option("--robot", sopts->robot, "Robot description (URDF)");
+  AddRobotOption(scripted, &sopts->robot);
   scripted->add_option("--scene", sopts->scene, "Scene description (JSON)");
   AddObjectFlag(scripted, &sopts->object);
   scripted->callback(
@@ -415,7 +425,7 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
                   "Write the nominal trial as simulated, for `graspsynth view --trial`: "
                   "graspsynth-trial-record/1 JSON (joints, object pose and object-hand contacts "
                   "every --record-interval s, the outcome)");
-  sim->add_option("--robot", opts->robot, "Robot description (URDF); default: the shipped one");
+  AddRobotOption(sim, &opts->robot);
   sim->add_option("--scene", opts->scene, "Scene description (JSON); default: models/scene.json");
   AddObjectFlag(sim, &opts->object);
   sim->callback([opts, flags, exit_code] { *exit_code = RunSimulate(*opts, flags->Build()); });

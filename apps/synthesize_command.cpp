@@ -16,6 +16,7 @@
 #include "gate/grasp_file.hpp"
 #include "gate/physics_gate.hpp"
 #include "gate/validated_synthesis.hpp"
+#include "kinematics/robot_file.hpp"
 #include "learning_data/grasp_library.hpp"
 #include "request/synthesize_request.hpp"
 #include "simulation/simulation_model.hpp"
@@ -42,9 +43,8 @@ int RunSynthesize(const SynthesizeOptions& o, const request::SynthesizeRequest& 
                                                  ? DefaultGraspLibraryPath(scene.object.name)
                                                  : std::filesystem::path(o.library);
   GraspLibrary library = ReadGraspLibrary(library_path);
-  const SimulationModel sim(LoadRobotModel(o.robot.empty() ? DefaultRobotDescriptionPath()
-                                                           : std::filesystem::path(o.robot)),
-                            std::move(scene));
+  const SimulationModel sim(LoadRobotOption(o.robot), std::move(scene));
+  RequireDefaultRobot(sim.robot(), "--robot: synthesize", "a grasp library (graspsynth-library)");
   SynthesisModel model(sim.robot(), sim.scene(), std::move(library));
   const std::optional<Eigen::Vector2d>& at = r.at;
   SynthesisData data(model);
@@ -139,7 +139,7 @@ void AddSynthesizeCommand(CLI::App& app, int* exit_code) {
   cmd->add_flag("--force", opts->force,
                 "Write the grasp even when it fails the gate (with the failed validation)");
   cmd->add_option("--out", opts->out, "Output grasp file")->required();
-  cmd->add_option("--robot", opts->robot, "Robot description (default: the shipped URDF)");
+  AddRobotOption(cmd, &opts->robot);
   cmd->add_option("--scene", opts->scene, "Scene description (default: models/scene.json)");
   AddObjectFlag(cmd, &opts->object);
   cmd->callback([opts, flags, exit_code] { *exit_code = RunSynthesize(*opts, flags->Build()); });

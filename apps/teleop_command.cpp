@@ -29,8 +29,10 @@
 #include "common/orientation_list.hpp"
 #include "common/stopwatch.hpp"
 #include "kinematics/pose_math.hpp"
+#include "kinematics/robot_file.hpp"
 #include "learning_data/demo_log.hpp"
 #include "request/teleop_request.hpp"
+#include "scene/scene_model.hpp"
 #include "simulation/simulation_model.hpp"
 #include "teleop/calibration.hpp"
 #include "teleop/packet_key.hpp"
@@ -52,6 +54,7 @@ struct ServerOptions : request::TeleopRequest {
   std::string summary;
   std::string port_file;
   std::string key_file;
+  std::string robot;  // --robot: empty for the shipped default
 };
 
 // The calibration of --calibration, or the shipped one.
@@ -184,9 +187,19 @@ LoopFigures RunControlLoop(const SimulationModel& model, const ServerOptions& op
   return f;
 }
 
+// The model of --robot (the shipped default when empty) in the shipped scene. The glove map
+// and the calibration are the PA-10 + Gifu Hand III's: another robot is refused.
+SimulationModel LoadTeleopModel(const std::string& robot) {
+  if (robot.empty()) return LoadDefaultSimulationModel();
+  RobotModel model = LoadRobotOption(robot);
+  RequireDefaultRobot(model, "--robot: teleop",
+                      "the glove map and the calibration (graspsynth-teleop-config/1)");
+  return SimulationModel(std::move(model), LoadSceneModel(DefaultSceneModelPath()));
+}
+
 int RunServer(const ServerOptions& opts) {
   const teleop::TeleopOptions options = SessionOptions(opts);
-  const SimulationModel model = LoadDefaultSimulationModel();
+  const SimulationModel model = LoadTeleopModel(opts.robot);
   teleop::TeleopSession session(model, options);
 
   teleop::UdpLinkOptions link_options;
@@ -360,6 +373,7 @@ void AddServerCommand(CLI::App& app, int* exit_code) {
   teleop->add_option("--record", opts->record_dir,
                      "Folder to write every trial to, as trial_NNN_thetaT.csv (v1 logs)");
   AddCalibrationFlag(teleop, &opts->calibration);
+  AddRobotOption(teleop, &opts->robot);
   teleop->add_option(
       "--summary", opts->summary,
       "Write the session summary (graspsynth-teleop-session/1 JSON) here at the end");

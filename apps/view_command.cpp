@@ -23,6 +23,7 @@
 #include "common/stopwatch.hpp"
 #include "gate/grasp_file.hpp"
 #include "kinematics/robot_description.hpp"
+#include "kinematics/robot_file.hpp"
 #include "learning_data/demo_log.hpp"
 #include "motion/joint_trajectory.hpp"
 #include "request/simulate_request.hpp"
@@ -93,6 +94,10 @@ viewer::ViewerReplay LoadReplay(const ViewOptions& opts, const RobotModel& robot
   }
   if (opts.joints_only && opts.trajectory.empty()) {
     throw InputError("--joints-only plays a --trajectory's joint commands without the physics");
+  }
+  if (!opts.trial.empty() || !opts.trajectory.empty() || !opts.log.empty()) {
+    RequireDefaultRobot(robot, "--robot: view",
+                        "a trajectory, grasp, trial record or demonstration log file");
   }
   if (!opts.trial.empty()) return TrialReplay(opts, opts.trial);
   if (!opts.trajectory.empty()) {
@@ -171,8 +176,7 @@ PlayFigures PlayReplay(const ViewOptions& opts, const RobotModel& robot, const S
 
 // `opts`' numbers are in their ranges: the request's options checked them (request/view_request).
 int RunView(const ViewOptions& opts) {
-  const RobotModel robot = LoadRobotModel(opts.robot.empty() ? DefaultRobotDescriptionPath()
-                                                             : std::filesystem::path(opts.robot));
+  const RobotModel robot = LoadRobotOption(opts.robot);
   const SceneModel scene = LoadScene(opts.scene, opts.object);
   const viewer::ViewerCamera camera =
       opts.camera.empty()
@@ -244,9 +248,7 @@ void AddViewCommand(CLI::App& app, int* exit_code) {
   source->add_option("--log", opts->log, "Demonstration log (graspsynth-demo/1 CSV)")
       ->check(CLI::ExistingFile);
   source->require_option(0, 1);
-  view->add_option("--robot", opts->robot,
-                   "Robot description (URDF); default: models/pa10_gifu3.urdf of this checkout "
-                   "or $GRASPSYNTH_DATA_DIR");
+  AddRobotOption(view, &opts->robot);
   view->add_option("--scene", opts->scene,
                    "Scene description (graspsynth-scene/2); default: models/scene.json");
   AddObjectFlag(view, &opts->object);

@@ -39,8 +39,7 @@ Eigen::Quaterniond WeightedSlerp(const std::vector<Eigen::Quaterniond>& q,
 /// positions with weights (1 - t, t) it is Aslerp(p1, p2, t) (to 1e-12 m). When a position is
 /// at the origin, or two directions with weight are nearly opposite (no mean direction), the
 /// result is the weighted linear mean, as Aslerp does.
-Eigen::Vector3d WeightedAslerp(const std::vector<Eigen::Vector3d>& p,
-                               const std::vector<double>& w);
+Eigen::Vector3d WeightedAslerp(const std::vector<Eigen::Vector3d>& p, const std::vector<double>& w);
 
 /// The convex blend of eq. 4, f = (1 - t) f1 + t f2, for vectors of any size.
 template <typename Derived>

@@ -14,6 +14,7 @@
 #include <mutex>
 #include <set>
 #include <sstream>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -159,6 +160,9 @@ const char* JointTypeName(int type) {
       return "unknown";
   }
 }
+
+// A link that a fixed joint adds to a body: a frame only (merging links is not supported yet).
+bool IsFrameOnly(const urdf::Link& link) { return !link.inertial && link.collision_array.empty(); }
 
 // the parsed description and the names of the links the model has used so far.
 class Reader {
@@ -311,7 +315,20 @@ class Reader {
     }
   }
 
+  // every link with mass or collision geometry must have been read (RequireAllLinksUsed for a
+  // robot file, which names its parts: frames elsewhere change nothing and are let be).
+  void RequireAllBodiesUsed(const std::string& where) const {
+    for (const auto& [name, link] : model_.links_) {
+      if (!used_links_.count(name) && link && !IsFrameOnly(*link)) {
+        throw InputError(where + ": expected every link of " + Quoted(source_) +
+                         " with mass or collision geometry in the arm or the hand, found link " +
+                         Quoted(name) + " in neither");
+      }
+    }
+  }
+
   const urdf::ModelInterface& model() const { return model_; }
+  const std::string& source() const { return source_; }
 
  private:
   const urdf::ModelInterface& model_;
@@ -338,25 +355,41 @@ std::string Where(const std::string& where, const std::string& source) {
   return where.empty() ? source : where;
 }
 
+// The joints from link `top` down to link `bottom`, top first; throws InputError (`where`)
+// when `bottom` is not below `top`. Both links must exist.
+std::vector<const urdf::Joint*> PathJoints(const urdf::ModelInterface& model,
+                                           const std::string& source, const std::string& top,
+                                           const std::string& bottom, const std::string& where) {
+  std::vector<const urdf::Joint*> path;
+  std::string link = bottom;
+  while (link != top) {
+    const urdf::LinkConstSharedPtr l = model.getLink(link);
+    if (!l->parent_joint) {
+      throw InputError(where + ": expected a chain of joints from link " + Quoted(top) +
+                       " down to link " + Quoted(bottom) + " in " + Quoted(source) +
+                       ", found that " + Quoted(bottom) + " is not below " + Quoted(top) +
+                       " (its root is " + Quoted(link) + ")");
+    }
+    path.push_back(l->parent_joint.get());
+    link = l->parent_joint->parent_link_name;
+  }
+  std::reverse(path.begin(), path.end());
+  return path;
+}
+
 // The joints from `base` down to `flange`, base first; throws when `flange` is not below it.
 std::vector<const urdf::Joint*> ChainJoints(const urdf::ModelInterface& model,
                                             const std::string& source, const ArmChainNames& names) {
-  std::vector<const urdf::Joint*> chain;
-  std::string link = names.flange_link;
-  while (link != names.base_link) {
-    const urdf::LinkConstSharedPtr l = model.getLink(link);
-    if (!l->parent_joint) {
-      throw InputError(Where(names.chain_where, source) +
-                       ": expected a chain of joints from link " + Quoted(names.base_link) +
-                       " down to link " + Quoted(names.flange_link) + " in " + Quoted(source) +
-                       ", found that " + Quoted(names.flange_link) + " is not below " +
-                       Quoted(names.base_link) + " (its root is " + Quoted(link) + ")");
-    }
-    chain.push_back(l->parent_joint.get());
-    link = l->parent_joint->parent_link_name;
+  return PathJoints(model, source, names.base_link, names.flange_link,
+                    Where(names.chain_where, source));
+}
+
+// Throws "<where>: expected a link of '<source>', found \"<name>\"" when the URDF lacks it.
+void RequireLink(const urdf::ModelInterface& model, const std::string& source,
+                 const std::string& name, const std::string& where) {
+  if (!model.getLink(name)) {
+    throw InputError(where + ": expected a link of " + Quoted(source) + ", found \"" + name + "\"");
   }
-  std::reverse(chain.begin(), chain.end());
-  return chain;
 }
 
 // The hand joints' names in the order the URDF document lists them (urdfdom keeps its joints
@@ -476,21 +509,13 @@ std::vector<Finger> ReadFingers(Reader& reader, std::string_view urdf_xml) {
   return fingers;
 }
 
-}  // namespace
-
-ArmChain ReadArmChain(std::string_view urdf_xml, const std::string& source,
-                      const ArmChainNames& names) {
-  const urdf::ModelInterfaceSharedPtr model = ParseWithUrdfdom(urdf_xml, source);
-  Reader reader(*model, source);
-  const auto require_link = [&](const std::string& name, const std::string& where) {
-    if (!model->getLink(name)) {
-      throw InputError(Where(where, source) + ": expected a link of " + Quoted(source) +
-                       ", found \"" + name + "\"");
-    }
-  };
-  require_link(names.base_link, names.base_where);
-  require_link(names.flange_link, names.flange_where);
-  const std::vector<const urdf::Joint*> chain = ChainJoints(*model, source, names);
+// The arm chain of names.base_link .. names.flange_link (ReadArmChain).
+ArmChain ReadArmChainFrom(Reader& reader, const ArmChainNames& names) {
+  const urdf::ModelInterface& model = reader.model();
+  const std::string& source = reader.source();
+  RequireLink(model, source, names.base_link, Where(names.base_where, source));
+  RequireLink(model, source, names.flange_link, Where(names.flange_where, source));
+  const std::vector<const urdf::Joint*> chain = ChainJoints(model, source, names);
   const std::string at = Where(names.chain_where, source) + ": expected ";
   const std::string between = " from link " + Quoted(names.base_link) + " to link " +
                               Quoted(names.flange_link) + " in " + Quoted(source);
@@ -519,8 +544,8 @@ ArmChain ReadArmChain(std::string_view urdf_xml, const std::string& source,
   for (const urdf::Joint* joint : chain) {
     if (joint->type == urdf::Joint::FIXED) {
       X_fixed = X_fixed * ToIsometry(joint->parent_to_joint_origin_transform);
-      const urdf::Link& link = *model->getLink(joint->child_link_name);
-      if (link.inertial || !link.collision_array.empty()) {
+      const urdf::Link& link = reader.Link(joint->child_link_name, "arm");
+      if (!IsFrameOnly(link)) {
         throw InputError(at +
                          "massless frames without collision geometry at the links of fixed "
                          "joints" +
@@ -538,6 +563,226 @@ ArmChain ReadArmChain(std::string_view urdf_xml, const std::string& source,
   }
   arm.X_7F = X_fixed;
   return arm;
+}
+
+// The pose of link `bottom` in link `top` through fixed joints only, each link between them a
+// frame only. Throws InputError (`where`) otherwise, or when `bottom` is not below `top`.
+Eigen::Isometry3d FixedPath(Reader& reader, const std::string& top, const std::string& bottom,
+                            const std::string& where) {
+  const std::string between = " from link " + Quoted(top) + " down to link " + Quoted(bottom) +
+                              " in " + Quoted(reader.source());
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  for (const urdf::Joint* joint : PathJoints(reader.model(), reader.source(), top, bottom, where)) {
+    if (joint->type != urdf::Joint::FIXED) {
+      throw InputError(where + ": expected fixed joints only" + between + ", found joint " +
+                       Quoted(joint->name) + " (" + JointTypeName(joint->type) + ")");
+    }
+    X = X * ToIsometry(joint->parent_to_joint_origin_transform);
+    if (joint->child_link_name == bottom) break;
+    if (!IsFrameOnly(reader.Link(joint->child_link_name, "hand"))) {
+      throw InputError(where + ": expected massless frames without collision geometry" + between +
+                       ", found link " + Quoted(joint->child_link_name) +
+                       " with mass or collision geometry (merging links is not supported yet)");
+    }
+  }
+  return X;
+}
+
+// The fingertip frame of a finger whose last joint's link is `distal`: its name and its pose in
+// `distal`.
+std::pair<std::string, Eigen::Isometry3d> ReadNamedTip(Reader& reader, const FingerPartNames& names,
+                                                       const std::string& distal) {
+  RequireLink(reader.model(), reader.source(), names.tip_link, names.tip_where);
+  const urdf::Link& tip = reader.Link(names.tip_link, "fingertip");
+  const urdf::Joint* joint = tip.parent_joint.get();
+  if (joint == nullptr || joint->type != urdf::Joint::FIXED || joint->parent_link_name != distal) {
+    throw InputError(
+        names.tip_where + ": expected a link fixed to link " + Quoted(distal) +
+        " (the child of joint " + Quoted(names.joints.back()) + "), found \"" + tip.name + "\"" +
+        (joint == nullptr ? std::string(" (the root)")
+                          : " (joint " + Quoted(joint->name) + ", " + JointTypeName(joint->type) +
+                                ", on link " + Quoted(joint->parent_link_name) + ")"));
+  }
+  if (!IsFrameOnly(tip) || !tip.child_joints.empty()) {
+    throw InputError(names.tip_where +
+                     ": expected a frame only (no <inertial>, no <collision>, no child joints), "
+                     "found link \"" +
+                     tip.name + "\" with " +
+                     (tip.inertial
+                          ? "<inertial>"
+                          : (!tip.collision_array.empty() ? "<collision>" : "child joints")));
+  }
+  return {tip.name, ToIsometry(joint->parent_to_joint_origin_transform)};
+}
+
+// A coupling read so far: the joint it follows by name, and where it was named.
+struct NamedCoupling {
+  std::string follows;
+  double ratio = 1.0, offset = 0.0;
+  std::string where;
+};
+
+std::string CouplingText(const std::string& follows, double ratio, double offset) {
+  std::ostringstream s;
+  s.precision(17);
+  s << "follows '" << follows << "', ratio " << ratio << ", offset " << offset << " rad";
+  return s.str();
+}
+
+// Finger `names`: its joints from `palm` on, each the child of the one before, their links and
+// its tip. Couplings from the file (`file_couplings`, by joint name) and the URDF's <mimic>s go
+// to `*couplings`; the others are numbered from `*actuated` on.
+Finger ReadNamedFinger(Reader& reader, const FingerPartNames& names, const std::string& palm,
+                       const std::map<std::string, NamedCoupling>& file_couplings,
+                       std::set<std::string>* seen, int* actuated,
+                       std::map<std::string, NamedCoupling>* couplings) {
+  Finger finger;
+  finger.name = names.name;
+  std::string parent = palm;
+  for (size_t k = 0; k < names.joints.size(); ++k) {
+    const std::string& name = names.joints[k];
+    const std::string& where = names.joints_where[k];
+    const urdf::JointConstSharedPtr joint = reader.model().getJoint(name);
+    if (!joint) {
+      throw InputError(where + ": expected a joint of " + Quoted(reader.source()) + ", found \"" +
+                       name + "\"");
+    }
+    if (!seen->insert(name).second) {
+      throw InputError(where + ": expected a joint that no finger names before, found \"" + name +
+                       "\" again");
+    }
+    if (joint->parent_link_name != parent) {
+      throw InputError(where + ": expected a joint on link " + Quoted(parent) +
+                       (k == 0 ? " (hand.palm_link)"
+                               : " (the child of joint " + Quoted(names.joints[k - 1]) + ")") +
+                       ", found \"" + name + "\" on link " + Quoted(joint->parent_link_name));
+    }
+    HandJoint hj;
+    hj.joint = reader.Revolute(*joint, "hand joint");
+    const auto file = file_couplings.find(name);
+    if (joint->mimic) {
+      const urdf::JointMimic& m = *joint->mimic;
+      const NamedCoupling mimic{m.joint_name, m.multiplier, m.offset, where};
+      if (file != file_couplings.end() && (file->second.follows != mimic.follows ||
+                                           std::abs(file->second.ratio - mimic.ratio) > 1e-12 ||
+                                           std::abs(file->second.offset - mimic.offset) > 1e-12)) {
+        throw InputError(
+            file->second.where + ": expected the coupling of the URDF's <mimic> of " +
+            Quoted(name) + " (" + CouplingText(mimic.follows, mimic.ratio, mimic.offset) +
+            "), found " +
+            CouplingText(file->second.follows, file->second.ratio, file->second.offset));
+      }
+      (*couplings)[name] = file != file_couplings.end() ? file->second : mimic;
+    } else if (file != file_couplings.end()) {
+      (*couplings)[name] = file->second;
+    } else {
+      hj.actuated = (*actuated)++;
+    }
+    finger.joints.push_back(std::move(hj));
+    finger.links.push_back(reader.Body(joint->child_link_name, "hand"));
+    parent = joint->child_link_name;
+  }
+  std::tie(finger.tip_name, finger.X_LT) = ReadNamedTip(reader, names, parent);
+  return finger;
+}
+
+// Sets every coupled joint's coupling to the joint it follows, which must be an actuated hand
+// joint; a loop of couplings is named joint by joint.
+void ResolveCouplings(const std::map<std::string, NamedCoupling>& couplings,
+                      std::vector<Finger>* fingers) {
+  std::map<std::string, std::pair<int, bool>> index;  // joint name: index, actuated
+  int j = 0;
+  for (const Finger& finger : *fingers) {
+    for (const HandJoint& hj : finger.joints) index[hj.joint.name] = {j++, hj.is_actuated()};
+  }
+  for (Finger& finger : *fingers) {
+    for (HandJoint& hj : finger.joints) {
+      const auto c = couplings.find(hj.joint.name);
+      if (c == couplings.end()) continue;
+      const NamedCoupling& coupling = c->second;
+      const auto source = index.find(coupling.follows);
+      if (source == index.end()) {
+        throw InputError(coupling.where + ": expected " + Quoted(hj.joint.name) +
+                         " to follow a joint of the hand, found \"" + coupling.follows + "\"");
+      }
+      if (!source->second.second) {
+        // follow the couplings from this joint: back to it is a loop.
+        std::string path = hj.joint.name, at = coupling.follows;
+        bool loop = false;
+        for (size_t steps = 0; steps <= couplings.size() && couplings.count(at); ++steps) {
+          path += " -> " + at;
+          if (at == hj.joint.name) {
+            loop = true;
+            break;
+          }
+          at = couplings.at(at).follows;
+        }
+        throw InputError(coupling.where + ": expected " + Quoted(hj.joint.name) +
+                         " to follow an actuated joint, found \"" + coupling.follows +
+                         "\", which is coupled itself" +
+                         (loop ? " (the couplings make a loop: " + path + ")" : ""));
+      }
+      hj.coupling = JointCoupling{source->second.first, coupling.ratio, coupling.offset};
+    }
+  }
+}
+
+// The hand below the arm's flange link: the mount, the palm and the fingers of `names`.
+void ReadHandParts(Reader& reader, const std::string& flange_link,
+                   const std::set<std::string>& arm_links, const HandNames& names,
+                   RobotParts* parts) {
+  const std::string& source = reader.source();
+  for (const auto& [link, where] : {std::pair(names.mount_link, names.mount_where),
+                                    std::pair(names.palm_link, names.palm_where)}) {
+    RequireLink(reader.model(), source, link, where);
+    if (arm_links.count(link)) {
+      throw InputError(where + ": expected a link of the hand, below arm.flange_link " +
+                       Quoted(flange_link) + ", found \"" + link + "\", a link of the arm");
+    }
+  }
+  parts->X_FH = FixedPath(reader, flange_link, names.mount_link, names.mount_where);
+  parts->mount = reader.Body(names.mount_link, "hand mount");
+  parts->X_HP = FixedPath(reader, names.mount_link, names.palm_link, names.palm_where);
+  parts->palm = reader.Body(names.palm_link, "hand");
+  std::map<std::string, NamedCoupling> file_couplings;
+  for (const FingerPartNames& finger : names.fingers) {
+    for (const CoupledJointNames& c : finger.coupled) {
+      file_couplings[c.joint] = NamedCoupling{c.follows, c.ratio, c.offset, c.where};
+    }
+  }
+  std::set<std::string> seen;
+  std::map<std::string, NamedCoupling> couplings;
+  int actuated = 0;
+  for (const FingerPartNames& finger : names.fingers) {
+    parts->fingers.push_back(ReadNamedFinger(reader, finger, names.palm_link, file_couplings, &seen,
+                                             &actuated, &couplings));
+  }
+  ResolveCouplings(couplings, &parts->fingers);
+}
+
+}  // namespace
+
+ArmChain ReadArmChain(std::string_view urdf_xml, const std::string& source,
+                      const ArmChainNames& names) {
+  const urdf::ModelInterfaceSharedPtr model = ParseWithUrdfdom(urdf_xml, source);
+  Reader reader(*model, source);
+  return ReadArmChainFrom(reader, names);
+}
+
+RobotParts ReadRobotParts(std::string_view urdf_xml, const std::string& source,
+                          const ArmChainNames& arm, const HandNames& hand) {
+  const urdf::ModelInterfaceSharedPtr model = ParseWithUrdfdom(urdf_xml, source);
+  Reader reader(*model, source);
+  RobotParts parts;
+  parts.name = model->getName();
+  parts.arm = ReadArmChainFrom(reader, arm);
+  std::set<std::string> arm_links = {arm.base_link};
+  for (const urdf::Joint* joint : ChainJoints(*model, source, arm)) {
+    arm_links.insert(joint->child_link_name);
+  }
+  ReadHandParts(reader, arm.flange_link, arm_links, hand, &parts);
+  reader.RequireAllBodiesUsed(hand.where);
+  return parts;
 }
 
 RobotModel ParseRobotModel(std::string_view urdf_xml, const std::string& source) {

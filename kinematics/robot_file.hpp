@@ -3,16 +3,19 @@
 /// @file
 /// The robot file (`graspsynth-robot/1`, docs/formats.md "Robot file"): a JSON file beside a
 /// URDF that says which parts of the URDF are what. This reader reads the robot's name, its
-/// URDF and the arm part; the hand, collision and glove parts are left to later readers (their
-/// keys are accepted and not read). models/pa10_gifu3.robot.json and
-/// models/iiwa14_allegro.robot.json are the shipped ones.
+/// URDF, where its base stands, the arm part and the hand part, and loads the whole robot
+/// (LoadRobot); the collision and glove parts are left to later readers (their keys are
+/// accepted and not read). models/pa10_gifu3.robot.json and models/iiwa14_allegro.robot.json
+/// are the shipped ones.
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "kinematics/arm_model.hpp"
+#include "kinematics/robot_description.hpp"
 
 namespace graspsynth {
 
@@ -31,6 +34,33 @@ struct RobotFileArm {
   RobotFileServo servo;
 };
 
+/// A coupled finger joint of a robot file (hand.fingers[].coupled[]): joint = ratio * follows +
+/// offset.
+struct RobotFileCoupling {
+  std::string joint;    ///< one of its finger's joints
+  std::string follows;  ///< the joint it follows (an actuated hand joint)
+  double ratio = 1.0;   ///< dimensionless
+  double offset = 0.0;  ///< rad
+};
+
+/// A finger of a robot file (hand.fingers[]).
+struct RobotFileFinger {
+  std::string name;                 ///< unique in the hand
+  std::string role;                 ///< "thumb" or "" (read and checked, not used yet)
+  std::vector<std::string> joints;  ///< the URDF's revolute joints, proximal to distal
+  std::string tip_link;             ///< the fingertip frame's link
+  std::vector<RobotFileCoupling> coupled;
+};
+
+/// The hand part of a robot file.
+struct RobotFileHand {
+  std::string mount_link;                ///< the link of frame H, fixed below the arm's flange
+  std::string palm_link;                 ///< the link of frame P, fixed below the mount
+  std::string palm_frame = "gifu";       ///< the frames' convention: "gifu", the only one
+  std::vector<RobotFileFinger> fingers;  ///< in the actuated order f0.. (coupled joints aside)
+  RobotFileServo servo;
+};
+
 /// What a robot file says (the parts read so far).
 struct RobotFile {
   std::string source;          ///< the robot file, for messages
@@ -42,6 +72,7 @@ struct RobotFile {
   /// when it has none.
   Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
   RobotFileArm arm;
+  std::optional<RobotFileHand> hand;  ///< the file's `hand`; LoadRobot needs it
 };
 
 /// Parses a robot file's text (`json`; `source` names it in messages; `folder` is where its
@@ -73,6 +104,40 @@ ArmModel LoadArmFromRobotFile(const std::filesystem::path& path);
 /// The arm of a parsed robot file (LoadArmFromRobotFile after its LoadRobotFile): reads the URDF
 /// at file.urdf. Throws as LoadArmFromRobotFile.
 ArmModel ArmFromRobotFile(const RobotFile& file);
+
+/// The whole robot of a robot file (`.json`) or a URDF (any other extension: LoadRobotModel).
+/// A robot file gives: `name`; X_WB from its `base`; the arm as ArmFromRobotFile; X_FH, the
+/// URDF's fixed joints from arm.flange_link down to hand.mount_link, and X_HP, those from the
+/// mount down to hand.palm_link; the fingers of hand.fingers in order, each joint's parent the
+/// link before (the palm for the first), its tip_link a fixed, massless child of the last
+/// joint's link; the couplings of the file's `coupled` and the URDF's <mimic>s (where both give
+/// one they must agree), each following an actuated hand joint; the actuated joints numbered
+/// finger by finger, coupled ones left out; masses, inertias and collision shapes as
+/// ParseRobotModel reads them. RobotModel::source is the robot file, the arm's and hand's the
+/// URDF. Throws InputError naming the robot file, the field and the value: ParseRobotFile's and
+/// ArmFromRobotFile's errors; no `hand`; a link or joint the URDF lacks; the mount or the palm
+/// on the arm, or not fixed below the link before it (through massless frames only); a joint
+/// on another link than the one before it, or named twice; a tip link that is not a fixed,
+/// massless child of the last joint's link; a coupling that disagrees with the URDF's <mimic>,
+/// follows a joint outside the hand or a coupled joint (a loop of couplings is named joint by
+/// joint); a link with mass or geometry in neither the arm nor the hand; a hand HandModel
+/// refuses (e.g. other than 16 actuated joints).
+RobotModel LoadRobot(const std::filesystem::path& path);
+
+/// The whole robot of a parsed robot file (LoadRobot after LoadRobotFile). Throws as LoadRobot.
+RobotModel RobotFromFile(const RobotFile& file);
+
+/// The robot of a `--robot` option (or of Python's Robot): "" gives the shipped default,
+/// LoadRobotModel(DefaultRobotDescriptionPath()), exactly; anything else ResolveRobotPath then
+/// LoadRobot. Throws as those.
+RobotModel LoadRobotOption(std::string_view name_or_path);
+
+/// Refuses a robot other than the PA-10 + Gifu Hand III (RobotModel::name kDefaultRobotName,
+/// the shipped default) where `user` (a command, "--robot: run", or a Python call) reads data
+/// made for that robot (`data`, e.g. "the grasp library": libraries, demonstrations and
+/// trajectories do not name their robot yet). Throws InputError "<user> cannot use robot
+/// '<name>' (<source>) yet: it reads <data>, made for the PA-10 + Gifu Hand III (pa10_gifu3)".
+void RequireDefaultRobot(const RobotModel& robot, std::string_view user, std::string_view data);
 
 /// A robot shipped with graspsynth: the robot file DataDirectory()/models/<name>.robot.json.
 struct ShippedRobot {
