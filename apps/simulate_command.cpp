@@ -80,12 +80,12 @@ constexpr std::string_view kTrajectoryData =
     "a trajectory or grasp file (graspsynth-trajectory/1, graspsynth-grasp/1)";
 
 // The model of --robot, --scene and --object; `data` is what the command reads that only the
-// PA-10 + Gifu Hand III can use yet (RequireDefaultRobot).
+// PA-10 + Gifu Hand III can use yet (RequireDefaultRobot; empty: nothing, every robot is taken).
 SimulationModel LoadModel(const std::string& robot, const std::string& scene,
                           const std::string& object, std::string_view command,
                           std::string_view data, std::string_view needs_handle = {}) {
   RobotModel robot_model = LoadRobotOption(robot);
-  RequireDefaultRobot(robot_model, "--robot: " + std::string(command), data);
+  if (!data.empty()) RequireDefaultRobot(robot_model, "--robot: " + std::string(command), data);
   return SimulationModel(std::move(robot_model), LoadScene(scene, object, needs_handle));
 }
 
@@ -341,9 +341,9 @@ int RunSimulate(const SimulateOptions& o, const request::SimulateRequest& r) {
 
 int RunScripted(const ScriptedOptions& o, const request::ScriptedGraspRequest& request) {
   const ScriptedGraspOptions g = request::ToScriptedGraspOptions(request);
+  // the finger shapes and the grip are the robot file's (its grasp part): any robot with one.
   const SimulationModel model =
-      LoadModel(o.robot, o.scene, o.object,
-                "the scripted grasp's finger shapes (the Gifu's f0..f15)", "the scripted grasp");
+      LoadModel(o.robot, o.scene, o.object, "scripted-grasp", "", "the scripted grasp");
   const ScriptedGraspResult r = BuildScriptedGrasp(model.robot(), model.scene(), g);
   if (!r.ok)
     throw InputError("no scripted grasp for theta = " + std::to_string(request.theta) +

@@ -165,6 +165,7 @@ RobotFile ParseRobotFile(std::string_view json, const std::string& source,
   if (top.Has("base")) file.X_WB = ReadBase(top.Field("base"));
   file.arm = ReadArm(top.Object("arm"));
   if (top.Has("hand")) file.hand = ReadHand(top.Field("hand"));
+  file.grasp = top.OptionalField("grasp");
   return file;
 }
 
@@ -254,17 +255,22 @@ RobotModel RobotFromFile(const RobotFile& file) {
   RobotParts parts = ReadRobotParts(ReadInputFile(file.urdf, input_kind::kRobot), urdf,
                                     ArmNames(file), HandPartNames(file));
   ArmModel arm = ArmOfChain(file, std::move(parts.arm));
-  try {
-    HandModel hand(urdf, std::move(parts.mount), std::move(parts.palm), parts.X_HP,
-                   std::move(parts.fingers));
-    return RobotModel{file.source,     std::move(arm), parts.X_FH,
-                      std::move(hand), file.name,      file.X_WB};
-  } catch (const InputError& e) {
-    throw InputError(file.source +
-                     ": field 'hand.fingers': expected a hand graspsynth can use, "
-                     "found " +
-                     e.what());
-  }
+  RobotModel robot = [&] {
+    try {
+      HandModel hand(urdf, std::move(parts.mount), std::move(parts.palm), parts.X_HP,
+                     std::move(parts.fingers));
+      return RobotModel{file.source, std::move(arm), parts.X_FH, std::move(hand),
+                        file.name,   file.X_WB,      {}};
+    } catch (const InputError& e) {
+      throw InputError(file.source +
+                       ": field 'hand.fingers': expected a hand graspsynth can use, "
+                       "found " +
+                       e.what());
+    }
+  }();
+  // the scripted grasp's part names the hand's joints: read against the hand.
+  if (file.grasp) robot.grasp = ReadRobotGrasp(*file.grasp, robot.hand);
+  return robot;
 }
 
 RobotModel LoadRobot(const std::filesystem::path& path) {

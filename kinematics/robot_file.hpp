@@ -73,6 +73,8 @@ struct RobotFile {
   Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
   RobotFileArm arm;
   std::optional<RobotFileHand> hand;  ///< the file's `hand`; LoadRobot needs it
+  /// The file's `grasp` part, read against the hand by LoadRobot (ReadRobotGrasp).
+  std::optional<JsonReader> grasp;
 };
 
 /// Parses a robot file's text (`json`; `source` names it in messages; `folder` is where its

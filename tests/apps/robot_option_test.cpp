@@ -71,7 +71,7 @@ INSTANTIATE_TEST_SUITE_P(
         RobotCase{"demos_generate", "demos generate --out {dir}/demos", "", false},
         RobotCase{"demos_calibrate", "demos calibrate --out {dir}/operator.json", "", false},
         RobotCase{"simulate", "simulate {src}/examples/grasp_60deg.json", "", false},
-        RobotCase{"scripted_grasp", "scripted-grasp --out {dir}/s.json", "", false},
+        RobotCase{"scripted_grasp", "scripted-grasp --out {dir}/s.json", "", true},
         RobotCase{"export_mjcf_grasp",
                   "export-mjcf --trajectory {src}/examples/grasp_60deg.json --out {dir}/m.xml", "",
                   false},

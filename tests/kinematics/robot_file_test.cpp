@@ -70,8 +70,9 @@ TEST(RobotFile, ReadsBothShippedFiles) {
   EXPECT_EQ(iiwa.arm.ik, "srs");
   EXPECT_EQ(iiwa.arm.srs_tolerance_m, 1e-6);
   EXPECT_EQ(iiwa.arm.servo.position_gain, 20.0);
-  // the iiwa stands at (0.20, -0.20, 0) m, yaw 0 (docs/robot-file-draft.md).
-  EXPECT_EQ(iiwa.X_WB.translation(), Eigen::Vector3d(0.20, -0.20, 0.0));
+  // the iiwa stands at (-0.10, 0.10, 0) m, yaw 0, where its scripted grasp reaches the pan at
+  // every orientation 20-100 deg (models/iiwa14_allegro.robot.json).
+  EXPECT_EQ(iiwa.X_WB.translation(), Eigen::Vector3d(-0.10, 0.10, 0.0));
   EXPECT_EQ(iiwa.X_WB.linear(), Eigen::Matrix3d::Identity());
   const RobotFile pa10 = LoadRobotFile(Pa10File());
   EXPECT_EQ(pa10.name, "pa10_gifu3");
@@ -501,7 +502,7 @@ TEST(LoadRobot, IiwaAllegroLoadsWithFourFingersAndSixteenActuatedJoints) {
   const RobotModel robot = LoadRobot(IiwaFile());
   EXPECT_EQ(robot.name, "iiwa14_allegro");
   EXPECT_EQ(robot.source, IiwaFile().string());
-  EXPECT_EQ(robot.X_WB.translation(), Eigen::Vector3d(0.20, -0.20, 0.0));
+  EXPECT_EQ(robot.X_WB.translation(), Eigen::Vector3d(-0.10, 0.10, 0.0));
   EXPECT_EQ(robot.hand.finger_names(),
             (std::vector<std::string>{"thumb", "index", "middle", "ring"}));
   EXPECT_EQ(robot.hand.joint_count(), 16);

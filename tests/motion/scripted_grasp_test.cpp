@@ -4,6 +4,9 @@
 
 #include "common/errors.hpp"
 #include "kinematics/arm_ik.hpp"
+#include "kinematics/robot_file.hpp"
+#include "scene/base_frame.hpp"
+#include "simulation/trial.hpp"
 #include "tests/utils/eigen_matchers.hpp"
 #include "tests/utils/simulation_fixtures.hpp"
 
@@ -100,6 +103,38 @@ TEST(ScriptedGrasp, AnUnreachableGraspIsAResult) {
   const ScriptedGraspResult r = BuildScriptedGrasp(Robot(), Scene(), o);
   EXPECT_FALSE(r.ok);
   EXPECT_FALSE(r.message.empty());
+}
+
+// The KUKA LBR iiwa 14 with the Allegro hand, standing at its robot file's base, grasps and lifts
+// the pan with its robot file's grasp part (the hand shapes found by search in ODE): the pan
+// ends 5 cm or more up, held by the hand alone, and the contact normals are horizontal, so that
+// friction carries the weight (as the Gifu's pinch does).
+TEST(ScriptedGrasp, TheIiwaWithTheAllegroHandLiftsThePanByFriction) {
+  const SimulationModel model(LoadRobotOption("iiwa14_allegro"),
+                              LoadSceneModel(DefaultSceneModelPath()));
+  ASSERT_TRUE(model.robot().grasp.has_value());
+  EXPECT_NE(model.robot().X_WB.matrix(), Eigen::Isometry3d::Identity().matrix());
+  for (double theta : {40.0, 60.0, 80.0}) {
+    ScriptedGraspOptions o;
+    o.theta_deg = theta;
+    const ScriptedGraspResult g = BuildScriptedGrasp(model.robot(), model.scene(), o);
+    ASSERT_TRUE(g.ok) << theta << ": " << g.message;
+    // the arm plays it within its limits, the hand at the robot file's shapes.
+    EXPECT_NO_THROW(CheckJointLimits(g.trajectory, model.robot().arm, model.robot().hand, "iiwa"));
+    EXPECT_EQ(g.trajectory.samples.back().hand, model.robot().grasp->closed);
+    const TrialResult r = RunTrial(model, g.trajectory, TrialOptions{});
+    EXPECT_TRUE(r.success()) << theta << ": " << r.BriefReport();
+    EXPECT_GT(r.lift, 0.05) << theta;
+    EXPECT_LT(r.hold.slip, 0.01) << theta;
+    // friction holds it: the contacts' normal forces carry under 10% of the weight.
+    double normal_up = 0.0, up = 0.0;
+    for (const HandObjectContact& c : r.end_contacts) {
+      normal_up += c.f_W.dot(c.n_W) * c.n_W.z();
+      up += c.f_W.z();
+    }
+    ASSERT_GT(up, 0.0) << theta;
+    EXPECT_LT(std::abs(normal_up) / up, 0.1) << theta;
+  }
 }
 
 }  // namespace
