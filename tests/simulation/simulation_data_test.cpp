@@ -238,7 +238,8 @@ RobotModel OtherLayout(const std::string& ring_name = "ring") {
                     HandModel("other.urdf", gifu.hand.mount(), gifu.hand.palm(), gifu.hand.X_HP(),
                               std::move(fingers)),
                     "other",
-                    Eigen::Isometry3d::Identity()};
+                    Eigen::Isometry3d::Identity(),
+                    {}};
 }
 
 TEST(SimulationData, AHandOfAnotherLayoutHasItsBodiesAndHingesAndReachesItsTargets) {
